@@ -1,0 +1,113 @@
+"""Command line of tripod-thrust: argument parsing only; the work is in library functions."""
+from __future__ import annotations
+
+import argparse
+import json
+import math
+import sys
+
+from reduced_model import scene as scene_mod
+
+
+class CliError(Exception):
+    """A user error: printed as one line, exit code 2."""
+
+
+def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
+    names = ", ".join(f"{q.name} [{q.unit}]" for q in scene_mod.params_for(model))
+    p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
+                   help=f"set a parameter in SI units; names: {names}")
+    p.add_argument("--theta-deg", type=float, metavar="DEG", help="joint angle in degrees")
+    p.add_argument("--whirl-hz", type=float, metavar="HZ", help="whirl frequency in Hz (omega = 2 pi f)")
+
+
+def overrides_from(args) -> dict:
+    """Scene overrides from --set and the unit-named convenience options (SI values)."""
+    out: dict = {}
+    for item in args.set:
+        if "=" not in item:
+            raise ValueError(f"--set expects NAME=VALUE, got '{item}'")
+        name, text = item.split("=", 1)
+        name = name.strip()
+        out[name] = scene_mod.parse_value(name, text)
+    if args.theta_deg is not None:
+        if not math.isfinite(args.theta_deg):
+            raise ValueError("theta-deg: not a finite number; allowed range [0, 45) deg")
+        out["theta"] = math.radians(args.theta_deg)
+    if args.whirl_hz is not None:
+        if not math.isfinite(args.whirl_hz):
+            raise ValueError("whirl-hz: not a finite number; allowed range [0, 1591.5] Hz")
+        out["omega"] = 2.0 * math.pi * args.whirl_hz
+    return out
+
+
+def _fmt_o(o):
+    return f"{o['amplitude']:9.4f} N  {o['phase_deg']:8.2f} deg"
+
+
+def format_analytic(r: dict) -> str:
+    sc = r["scene"]
+    lines = [
+        "tripod-thrust analytic: reduced model, Eqs. (18)-(27) (one roller unless stated)",
+        f"scene: theta = {math.degrees(sc['theta']):.3f} deg, omega = {sc['omega']:.4g} rad/s "
+        f"({sc['omega'] / (2 * math.pi):.4g} Hz), F_press = {sc['F_press']:.6g} N, "
+        f"mu_groove = {sc['mu_groove']:g}",
+        "",
+        f"  A      = {r['A'] * 1e3:9.4f} mm/s   (pitching, Eq. 19)",
+        f"  B      = {r['B'] * 1e3:9.4f} mm/s   (rolling, Eq. 20)",
+        f"  v_st   = {r['v_st'] * 1e3:9.4f} mm/s   ({'automatic, sqrt(A^2+B^2)/4' if sc['v_st'] == 0 else 'set'})",
+        f"  C      = {r['C']:9.4f} N      (2nd order of ft, Eq. 25; FFT {r['C_fft']:.4f} N)",
+        f"  beta   = {r['beta_deg']:9.4f} deg    (Eq. 27)",
+        "",
+        f"  {'':28s}{'FFT':>26s}   {'closed form':>26s}",
+        f"  {'friction ftz order 1':28s}{_fmt_o(r['friction']['order1'])}   {_fmt_o(r['friction']['closed_form']['order1'])}",
+        f"  {'friction ftz order 3':28s}{_fmt_o(r['friction']['order3'])}   {_fmt_o(r['friction']['closed_form']['order3'])}",
+        f"  {'spin inertia order 1':28s}{'':26s}   {_fmt_o(r['spin_inertia']['order1'])}",
+        f"  {'thrust Fz order 1':28s}{_fmt_o(r['order1'])}   {_fmt_o(r['closed_form']['order1'])}",
+        f"  {'thrust Fz order 3':28s}{_fmt_o(r['order3'])}   {_fmt_o(r['closed_form']['order3'])}",
+        f"  {'three rollers order 1':28s}{_fmt_o(r['three_rollers']['order1'])}   {_fmt_o(r['three_rollers']['closed_form']['order1'])}",
+        f"  {'three rollers order 3':28s}{_fmt_o(r['three_rollers']['order3'])}   {_fmt_o(r['three_rollers']['closed_form']['order3'])}",
+        "",
+        "order k is a_k sin(k w t + p_k), t = 0 where pitching is 0 and rising (model.md).",
+    ]
+    return "\n".join(lines)
+
+
+def cmd_analytic(args) -> int:
+    from reduced_model.analysis import analytic_report
+    r = analytic_report(overrides_from(args))
+    print(json.dumps(r, indent=2) if args.json else format_analytic(r))
+    return 0
+
+
+def cmd_params(args) -> int:
+    from reduced_model.docs import params_markdown
+    print(params_markdown())
+    return 0
+
+
+def build_parser() -> argparse.ArgumentParser:
+    ap = argparse.ArgumentParser(prog="tripod-thrust",
+                                 description="Thrust force of tripod constant-velocity joints.")
+    sub = ap.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("params", help="print the parameter table (Markdown)")
+    p.set_defaults(func=cmd_params)
+    p = sub.add_parser("analytic", help="reduced (analytic) model: orders 1 and 3, closed form vs FFT")
+    _scene_args(p, "analytic")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_analytic)
+    return ap
+
+
+def main(argv=None) -> int:
+    ap = build_parser()
+    args = ap.parse_args(argv)
+    try:
+        return args.func(args)
+    except (ValueError, CliError) as e:
+        print(f"tripod-thrust {args.command}: error: {e}", file=sys.stderr)
+        return 2
+
+
+if __name__ == "__main__":
+    sys.exit(main())

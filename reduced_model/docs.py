@@ -1,0 +1,18 @@
+"""Markdown documentation generated from the parameter table (one source of truth)."""
+from .scene import PARAMS
+
+
+def _start(p):
+    if p.kind == "bool":
+        return "true" if p.default else "false"
+    return f"{p.default:.6g}"
+
+
+def params_markdown() -> str:
+    """The parameter table as Markdown: name, start, unit, range, models, description."""
+    rows = ["| name | start | unit | range | causality | models | description |",
+            "|---|---|---|---|---|---|---|"]
+    for p in PARAMS:
+        rows.append(f"| `{p.name}` | {_start(p)} | {p.unit} | {p.range_text()} | {p.causality} "
+                    f"| {', '.join(sorted(p.models))} | {p.description} |")
+    return "\n".join(rows)

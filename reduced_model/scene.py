@@ -1,0 +1,189 @@
+"""The parameter table: every scene and model parameter declared once.
+
+Each entry gives name, default, SI unit, allowed range, description, type, FMI causality and
+which models use it.  The CLI options, the FMU variables and the docs are generated from
+``PARAMS``; ``validate`` checks a scene against it and names the offending parameter.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+DEG = math.pi / 180.0
+
+
+@dataclass(frozen=True)
+class Param:
+    name: str
+    default: float | int | bool
+    unit: str                   # SI unit, "1" for dimensionless
+    lo: float | None            # lower bound (None = unbounded)
+    hi: float | None            # upper bound (None = unbounded)
+    description: str
+    kind: str = "real"          # real | int | bool
+    causality: str = "parameter"  # parameter | input (FMI)
+    models: frozenset = field(default_factory=lambda: frozenset({"analytic", "contact"}))
+    hi_open: bool = False       # True: hi itself is excluded
+    lo_open: bool = False
+    display_unit: str | None = None  # FMI displayUnit, e.g. "deg"
+
+    def range_text(self) -> str:
+        if self.kind == "bool":
+            return "true or false"
+        lo = "-inf" if self.lo is None else _fmt(self.lo, self)
+        hi = "inf" if self.hi is None else _fmt(self.hi, self)
+        lb = "(" if (self.lo_open or self.lo is None) else "["
+        rb = ")" if (self.hi_open or self.hi is None) else "]"
+        u = "" if self.unit == "1" else f" {self.unit}"
+        return f"{lb}{lo}, {hi}{rb}{u}"
+
+
+def _fmt(v: float, p: Param) -> str:
+    if p.unit == "rad" and v != 0:
+        return f"{v:.6g} ({v / DEG:.6g} deg)"
+    return f"{v:.6g}"
+
+
+_A = frozenset({"analytic", "contact"})
+_C = frozenset({"contact"})
+
+PARAMS: tuple[Param, ...] = (
+    # --- scene: the paper's test conditions (section 3.1) ---
+    Param("theta", 10 * DEG, "rad", 0.0, 45 * DEG, "joint angle", causality="input",
+          hi_open=True, display_unit="deg"),
+    Param("omega", 20 * math.pi, "rad/s", 0.0, 1.0e4, "whirl angular speed of the output shaft",
+          causality="input"),
+    Param("F_press", 1000.0, "N", 0.0, 1.0e6, "pressing load of the roller on the groove",
+          causality="input"),
+    Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove"),
+    Param("v_st", 0.0, "m/s", 0.0, 10.0,
+          "transition velocity of the tanh friction law; 0 = automatic, sqrt(A^2+B^2)/4"),
+    Param("pitch", True, "1", None, None, "pitching motion acts, Eq. (1)", kind="bool"),
+    Param("yaw", True, "1", None, None, "yawing motion acts, Eq. (3)", kind="bool"),
+    Param("roll", True, "1", None, None, "rolling motion acts, Eq. (5)", kind="bool"),
+    Param("axial", True, "1", None, None, "axial trunnion displacement acts, Eq. (7)", kind="bool"),
+    # --- geometry (model.md, assumed: the paper publishes none) ---
+    Param("s", 0.022, "m", 0.0, 1.0, "spider centre to roller centre (pitch circle radius)",
+          lo_open=True),
+    Param("r_roller", 0.019, "m", 0.0, 1.0, "roller outer sphere radius", lo_open=True),
+    Param("r_groove", 0.0192, "m", 0.0, 1.0, "groove radius (must exceed r_roller)", lo_open=True),
+    Param("r_bore", 0.0125, "m", 0.0, 1.0, "roller bore radius (must be below r_roller)",
+          lo_open=True),
+    Param("m_roller", 0.060, "kg", 0.0, 100.0, "roller mass", lo_open=True),
+    Param("spin_inertia", True, "1", None, None,
+          "add the roller spin-inertia thrust (I_spin/r^2) d2z/dt2", kind="bool", models=_A),
+    # --- contact model only ---
+    Param("mu_needle", 0.050, "1", 0.0, 1.0, "sliding friction coefficient needle-roller/trunnion",
+          models=_C),
+    Param("mu_rolling", 0.002, "1", 0.0, 0.1, "rolling friction coefficient of the needles, Eq. (12)",
+          models=_C),
+    Param("bearing", 0, "1", 0, 1, "needle bearing: 0 ideal, 1 lumped", kind="int", models=_C),
+    Param("traverse", True, "1", None, None,
+          "roller free along the trunnion axis (contact point traverses the groove)",
+          kind="bool", models=_C),
+    Param("friction_groove", True, "1", None, None, "roller-groove sliding friction on",
+          kind="bool", models=_C),
+    Param("spin_moment", True, "1", None, None, "roller-groove spin moment Eq. (16) on",
+          kind="bool", models=_C),
+    Param("friction_needle", True, "1", None, None, "needle sliding friction on (lumped bearing)",
+          kind="bool", models=_C),
+    Param("rolling_resistance", True, "1", None, None, "needle rolling resistance Eq. (12) on",
+          kind="bool", models=_C),
+    Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
+          "largest internal integration substep; 0 = automatic from a stability estimate",
+          models=_C),
+    Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_C),
+    Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_C),
+    Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),
+    Param("d_needle", 0.0016, "m", 0.0, 0.1, "needle diameter", lo_open=True, models=_C),
+    Param("l_needle", 0.012, "m", 0.0, 0.1, "needle length", lo_open=True, models=_C),
+    Param("n_needles", 46, "1", 3, 200, "number of needles in the row", kind="int", models=_C),
+    Param("roller_width", 0.013, "m", 0.0, 0.1, "roller width", lo_open=True, models=_C),
+)
+
+BY_NAME = {p.name: p for p in PARAMS}
+
+
+def params_for(model: str) -> tuple[Param, ...]:
+    """The parameters a model ('analytic' or 'contact') uses, in table order."""
+    return tuple(p for p in PARAMS if model in p.models)
+
+
+def defaults(model: str = "analytic") -> dict:
+    return {p.name: p.default for p in params_for(model)}
+
+
+_TRUE = {"1", "true", "yes", "on"}
+_FALSE = {"0", "false", "no", "off"}
+
+
+def parse_value(name: str, text: str):
+    """Parse a textual value (as given by ``--set NAME=VALUE``) for parameter ``name``."""
+    p = _param(name)
+    t = str(text).strip().lower()
+    if p.kind == "bool":
+        if t in _TRUE:
+            return True
+        if t in _FALSE:
+            return False
+        raise ValueError(f"{name}: '{text}' is not a boolean; allowed: true or false (1/0)")
+    try:
+        v = float(t)
+    except ValueError:
+        raise ValueError(f"{name}: '{text}' is not a number; allowed range {p.range_text()}") from None
+    if p.kind == "int":
+        if not math.isfinite(v) or v != int(v):
+            raise ValueError(f"{name}: '{text}' is not an integer; allowed range {p.range_text()}")
+        return int(v)
+    return v
+
+
+def _param(name: str) -> Param:
+    try:
+        return BY_NAME[name]
+    except KeyError:
+        raise ValueError(f"unknown parameter '{name}'; known: {', '.join(BY_NAME)}") from None
+
+
+def check_value(name: str, value) -> None:
+    """Raise ValueError naming ``name`` and its allowed range if ``value`` is outside it."""
+    p = _param(name)
+    if p.kind == "bool":
+        if not isinstance(value, (bool, int)) or int(value) not in (0, 1):
+            raise ValueError(f"{name} = {value!r}: allowed {p.range_text()}")
+        return
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name} = {value!r} is not a number; allowed range {p.range_text()}") from None
+    bad = not math.isfinite(v)
+    if not bad and p.lo is not None:
+        bad = v <= p.lo if p.lo_open else v < p.lo
+    if not bad and p.hi is not None:
+        bad = v >= p.hi if p.hi_open else v > p.hi
+    if bad:
+        raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
+
+
+def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
+    """A complete scene for ``model``: defaults updated by ``overrides``, every value checked.
+
+    Raises ValueError that names the parameter and its allowed range.
+    """
+    scene = defaults(model)
+    for name, value in (overrides or {}).items():
+        p = _param(name)
+        if model not in p.models:
+            raise ValueError(f"parameter '{name}' does not apply to the {model} model")
+        scene[name] = value
+    for name, value in scene.items():
+        check_value(name, value)
+        p = BY_NAME[name]
+        scene[name] = bool(value) if p.kind == "bool" else int(value) if p.kind == "int" else float(value)
+    if scene["r_groove"] <= scene["r_roller"]:
+        raise ValueError(f"r_groove = {scene['r_groove']:g} m must exceed r_roller = "
+                         f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
+    if scene["r_bore"] >= scene["r_roller"]:
+        raise ValueError(f"r_bore = {scene['r_bore']:g} m must be below r_roller = "
+                         f"{scene['r_roller']:g} m (range (0, r_roller) m)")
+    return scene

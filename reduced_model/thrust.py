@@ -1,0 +1,111 @@
+"""Thrust of one roller and of the three-roller joint, Eqs. (25)-(27), in the reduced model.
+
+``scene`` is a validated dict (see ``scene.validate``), SI units.  Whirl angle x = w t [rad].
+"""
+import numpy as np
+from scipy.integrate import quad
+
+from . import kinematics, sliding
+from .friction import mu_tanh, v_st_auto
+from .orders import wrap_deg
+
+
+def spin_inertia(m, r, r_bore):
+    """Spin inertia of the roller as a thick ring, I = m (r^2 + r_bore^2) / 2 [kg m^2]."""
+    return 0.5 * m * (r**2 + r_bore**2)
+
+
+def amplitudes(scene):
+    """A, B [m/s] of Eq. (24) for the scene's motion switches."""
+    A = sliding.amplitude_A(scene["s"], scene["omega"], scene["theta"], scene["pitch"])
+    B = sliding.amplitude_B(scene["r_roller"], scene["omega"], scene["theta"], scene["roll"])
+    return float(A), float(B)
+
+
+def transition_velocity(scene):
+    """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2+B^2)/4 when it is 0."""
+    return scene["v_st"] if scene["v_st"] > 0 else v_st_auto(*amplitudes(scene))
+
+
+def second_order_amplitude(F, mu_s, R, v_st):
+    """C [N], Eq. (25): amplitude of the 2nd order of ft = F mu(R sin u), by quadrature.
+
+    C = F mu_s (2/pi) int_0^pi tanh(3 R sin u / v_st) sin u du; Coulomb limit 4/pi F mu_s.
+    """
+    if R <= 0.0 or F <= 0.0 or mu_s <= 0.0:
+        return 0.0
+    if v_st <= 0.0:
+        return 4.0 / np.pi * F * mu_s
+    k = 3.0 * R / v_st
+    val, _ = quad(lambda u: np.tanh(k * np.sin(u)) * np.sin(u), 0.0, np.pi,
+                  epsabs=1e-13, epsrel=1e-12, limit=200)
+    return F * mu_s * 2.0 / np.pi * val
+
+
+def time_series(scene, x):
+    """All reduced-model signals at whirl angles ``x`` [rad] (array).
+
+    Returns a dict of arrays: phi [rad], z [m], v1, v2, V [m/s], mu [-], ft, ftz, F_spin, Fz [N].
+    Fz = ftz (+ F_spin when scene['spin_inertia']), the thrust on the groove.
+    """
+    x = np.asarray(x, dtype=float)
+    th = scene["theta"]
+    A, B = amplitudes(scene)
+    vst = transition_velocity(scene)
+    phi = kinematics.pitch_small(x, th) if scene["pitch"] else np.zeros_like(x)
+    z = sliding.groove_travel(x, scene["s"], th) if scene["pitch"] else np.zeros_like(x)
+    v1, v2 = sliding.v1(x, A), sliding.v2(x, B)
+    V = v1 + v2
+    mu = mu_tanh(V, scene["mu_groove"], vst)
+    ft = mu * scene["F_press"]                    # Eq. (11) with Eq. (25)'s ft
+    ftz = ft * np.sin(phi)                        # Eq. (26)
+    F_spin = np.zeros_like(x)
+    if scene["spin_inertia"] and scene["pitch"]:
+        I = spin_inertia(scene["m_roller"], scene["r_roller"], scene["r_bore"])
+        zdd = -scene["omega"]**2 * z              # d2z/dt2 of z = s theta sin wt at constant w
+        F_spin = I / scene["r_roller"]**2 * zdd
+    return dict(phi=phi, z=z, v1=v1, v2=v2, V=V, mu=mu, ft=ft, ftz=ftz,
+                F_spin=F_spin, Fz=ftz + F_spin)
+
+
+def three_roller_thrust(scene, x):
+    """Housing thrust [N]: sum of Fz of rollers at whirl phases 0, 120, 240 deg."""
+    x = np.asarray(x, dtype=float)
+    return sum(time_series(scene, x + 2.0 * np.pi * i / 3.0)["Fz"] for i in range(3))
+
+
+def _phasor(a, p_deg):
+    return a * np.exp(1j * np.radians(p_deg))
+
+
+def _from_phasor(c):
+    a = float(abs(c))
+    return (a, float(wrap_deg(np.degrees(np.angle(c)))) if a > 0 else 0.0)
+
+
+def closed_form(scene):
+    """Closed form of Eqs. (24)-(27) plus the spin-inertia term.
+
+    Returns a dict: A, B [m/s], v_st [m/s], C [N], alpha_deg, beta_deg, friction orders 1 and 3
+    (Eq. 27: C theta/2 at beta + 180 deg and at beta), spin-inertia order 1 and the totals,
+    each order as (amplitude N, phase deg).
+    """
+    A, B = amplitudes(scene)
+    R = float(np.hypot(A, B))
+    vst = transition_velocity(scene)
+    C = second_order_amplitude(scene["F_press"], scene["mu_groove"], R, vst)
+    th = scene["theta"] if scene["pitch"] else 0.0
+    bet = np.degrees(sliding.beta(A, B)) if R > 0 else 0.0
+    half = C * th / 2.0
+    o1 = (half, float(wrap_deg(bet + 180.0))) if half > 0 else (0.0, 0.0)
+    o3 = (half, float(wrap_deg(bet))) if half > 0 else (0.0, 0.0)
+    spin = (0.0, 0.0)
+    if scene["spin_inertia"] and th > 0:
+        I = spin_inertia(scene["m_roller"], scene["r_roller"], scene["r_bore"])
+        amp = I / scene["r_roller"]**2 * scene["s"] * th * scene["omega"]**2
+        spin = (amp, 180.0) if amp > 0 else (0.0, 0.0)   # -amp sin wt
+    total1 = _from_phasor(_phasor(*o1) + _phasor(*spin))
+    return dict(A=A, B=B, v_st=vst, C=C,
+                alpha_deg=float(np.degrees(sliding.alpha(A, B))) if R > 0 else 0.0,
+                beta_deg=float(bet),
+                friction={1: o1, 3: o3}, spin={1: spin}, total={1: total1, 3: o3})
