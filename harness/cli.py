@@ -86,10 +86,19 @@ def cmd_params(args) -> int:
     return 0
 
 
+def cmd_build(args) -> int:
+    from harness.fmus import ensure_fmu
+    print(ensure_fmu("TripodRoller", force=args.force))
+    return 0
+
+
 def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="tripod-thrust",
                                  description="Thrust force of tripod constant-velocity joints.")
     sub = ap.add_subparsers(dest="command", required=True)
+    p = sub.add_parser("build", help="build build/TripodRoller.fmu (when missing or stale)")
+    p.add_argument("--force", action="store_true", help="rebuild even when up to date")
+    p.set_defaults(func=cmd_build)
     p = sub.add_parser("params", help="print the parameter table (Markdown)")
     p.set_defaults(func=cmd_params)
     p = sub.add_parser("analytic", help="reduced (analytic) model: orders 1 and 3, closed form vs FFT")

@@ -1,0 +1,83 @@
+"""pythonfmu slave of the one-roller contact model: a thin adapter over tripod_model.
+
+Variables are generated from the parameter table (reduced_model.scene) and the output list
+(tripod_model.model.OUTPUTS); units, ranges and display units are added by fmu_src/build.py.
+"""
+import math
+import traceback
+
+from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
+                       Fmi2Variability, Integer, Real)
+from pythonfmu.enums import Fmi2Status
+
+from reduced_model.scene import check_value, params_for
+from tripod_model.model import OUTPUTS, ContactModel
+
+_TYPES = {"real": Real, "int": Integer, "bool": Boolean}
+_INPUTS = ("theta", "omega", "F_press")
+
+
+class TripodRoller(Fmi2Slave):
+    author = "tripod-thrust"
+    description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
+                   "trunnion motions as driving constraints, Hertz contact, tanh friction, "
+                   "spin moment, ideal or lumped needle bearing. Thrust Fz and modified thrust "
+                   "Fz_mod.")
+    # two whirl cycles of the paper's scene (10 Hz)
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self._params = params_for("contact")
+        for p in self._params:
+            setattr(self, p.name, p.default)
+            if p.causality == "input":
+                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.input,
+                                     variability=Fmi2Variability.continuous,
+                                     description=p.description)
+            else:
+                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.parameter,
+                                     variability=Fmi2Variability.fixed,
+                                     description=p.description)
+            self.register_variable(var)
+        for name, _unit, desc in OUTPUTS:
+            setattr(self, name, 0.0)
+            self.register_variable(Real(name, causality=Fmi2Causality.output,
+                                        variability=Fmi2Variability.continuous,
+                                        initial=Fmi2Initial.exact, description=desc))
+        self.model = None
+
+    def _param_values(self):
+        return {p.name: getattr(self, p.name) for p in self._params}
+
+    def exit_initialization_mode(self):
+        try:
+            self.model = ContactModel(self._param_values())
+        except ValueError as e:
+            # rejected parameters: log the reason, then fail initialisation (non-OK status)
+            self.log(f"invalid parameter: {e}", Fmi2Status.error)
+            self.model = None
+            raise RuntimeError(f"invalid parameter: {e}") from None
+
+    def do_step(self, current_time, step_size):
+        if self.model is None:
+            self.log("doStep before a successful initialisation", Fmi2Status.error)
+            return False
+        try:
+            for name in _INPUTS:
+                check_value(name, getattr(self, name))
+            out = self.model.step(step_size, float(self.theta), float(self.omega),
+                                  float(self.F_press))
+            if not all(math.isfinite(v) for v in out.values()):
+                self.log(f"non-finite output at t = {current_time:g} s; step rejected",
+                         Fmi2Status.error)
+                return False
+            for k, v in out.items():
+                setattr(self, k, v)
+            return True
+        except ValueError as e:
+            self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
+            return False
+        except Exception:   # no exception may escape into the host
+            self.log(traceback.format_exc(), Fmi2Status.error)
+            return False

@@ -1,0 +1,337 @@
+"""Hot kernel of the one-roller contact model: driving motions, roller-groove contact, bearing,
+and the substep integrator.  Scalar math only so that numba compiles it (see jit.py).
+
+Frame (model.md): groove fixed, groove axis = z axis through the origin, x = pressing
+direction, y = trunnion axis (nominal).  Forces are reported from the roller on the groove.
+"""
+import math
+
+import numpy as np
+
+from .jit import njit
+
+# --- parameter vector layout (float64 array P) ---
+(P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
+ P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
+ P_CLR, P_INTEG, P_LEN) = range(27)
+# --- state vector layout (float64 array Y) ---
+# whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
+# radial offset of the roller from the trunnion axis along x (lumped bearing), its rate
+(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_LEN) = range(7)
+# --- output vector layout ---
+(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
+
+HX = 2e-4   # whirl-angle step for finite-difference derivatives of the driving motions [rad]
+
+
+@njit
+def trunnion_line(x, theta, s, pitch, roll):
+    """Trunnion axis at whirl angle x: point Q on it at the groove's mid-plane and direction a.
+
+    Pitching about x through the spider centre, Eq. (1): the axis meets the plane y = 0 at
+    z = s tan(phi) (Eq. 18).  Rolling, Eq. (5), turns the axis about -z through that point
+    (sense chosen so that the slip on the loaded +x flank is V = v1 + v2, model.md).
+    Returns (Qz, ax, ay, az); Q = (x0, 0, Qz) with x0 the pressing offset.
+    """
+    T = math.tan(theta)
+    phi = math.atan(T * math.sin(x)) if pitch else 0.0
+    xi = 0.0
+    if roll:
+        k = (1.0 - math.cos(theta)) / (2.0 * math.cos(theta))   # e / s
+        xi = math.asin(k * math.sin(2.0 * x))
+    cp = math.cos(phi)
+    return s * math.tan(phi), math.sin(xi) * cp, math.cos(xi) * cp, math.sin(phi)
+
+
+@njit
+def trunnion_axial(x, theta, s, axial):
+    """Axial displacement of the trunnion along its axis d [m], Eq. (7)."""
+    if not axial:
+        return 0.0
+    c = math.cos(theta)
+    e = s * (1.0 - c) / (2.0 * c)
+    xi = math.asin(e * math.sin(2.0 * x) / s)
+    return s - (e * math.cos(2.0 * x) + s * math.cos(xi))
+
+
+@njit
+def trunnion_yaw(x, theta, yaw):
+    """Yawing angle psi [rad], Eq. (3): turns the trunnion about its own axis."""
+    return math.atan(math.tan(theta) * math.cos(x)) if yaw else 0.0
+
+
+@njit
+def line_kinematics(x, w, theta, P, out):
+    """Q, a and their first and second time derivatives at whirl angle x, whirl rate w.
+
+    out[0:3] a, [3:6] da/dt, [6:9] d2a/dt2, [9] Qz, [10] dQz/dt, [11] d2Qz/dt2,
+    [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a.
+    Central differences in x (step HX), chain rule with constant w within a substep.
+    """
+    s = P[P_S]
+    pitch = P[P_PITCH] > 0.5
+    roll = P[P_ROLL] > 0.5
+    q0, a0x, a0y, a0z = trunnion_line(x, theta, s, pitch, roll)
+    qp, apx, apy, apz = trunnion_line(x + HX, theta, s, pitch, roll)
+    qm, amx, amy, amz = trunnion_line(x - HX, theta, s, pitch, roll)
+    i1 = w / (2.0 * HX)
+    i2 = w * w / (HX * HX)
+    out[0] = a0x
+    out[1] = a0y
+    out[2] = a0z
+    out[3] = (apx - amx) * i1
+    out[4] = (apy - amy) * i1
+    out[5] = (apz - amz) * i1
+    out[6] = (apx - 2.0 * a0x + amx) * i2
+    out[7] = (apy - 2.0 * a0y + amy) * i2
+    out[8] = (apz - 2.0 * a0z + amz) * i2
+    out[9] = q0
+    out[10] = (qp - qm) * i1
+    out[11] = (qp - 2.0 * q0 + qm) * i2
+    ax = P[P_AXIAL] > 0.5
+    out[12] = (trunnion_axial(x + HX, theta, s, ax) - trunnion_axial(x - HX, theta, s, ax)) * i1
+    yw = P[P_YAW] > 0.5
+    out[13] = (trunnion_yaw(x + HX, theta, yw) - trunnion_yaw(x - HX, theta, yw)) * i1
+
+
+@njit
+def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
+    """Roller (sphere) in groove (concave cylinder along z): Hertz normal force, tanh friction
+    on the full 3-D slip at the contact point, spin moment Eq. (16).
+
+    c: roller centre [m], v: its velocity [m/s], w: roller angular velocity [rad/s].
+    res (on the roller): [0:3] force [N], [3:6] moment about c [N m], [6:9] normal n,
+    [9] f_n [N], [10:13] tangential slip v_t [m/s], [13] |v_t|, [14] g = tanh(3|v_t|/v_st),
+    [15] friction slope d(mu f_n g)/d|v_t| [N s/m], [16:19] contact point [m].
+    """
+    r = P[P_R]
+    rho = math.sqrt(cx * cx + cy * cy)
+    nx = cx / rho
+    ny = cy / rho
+    delta = rho + r - P[P_RG]                 # penetration, model.md
+    for i in range(19):
+        res[i] = 0.0
+    res[6] = nx
+    res[7] = ny
+    res[16] = cx + r * nx
+    res[17] = cy + r * ny
+    res[18] = cz
+    if delta <= 0.0:
+        return
+    fn = P[P_K] * delta ** 1.5                # Eq. (10) with Table 1, n = 3/2
+    fn_d = fn
+    # velocity of the roller material at the contact point p = c + r n
+    px = vx + (wy * 0.0 - wz * r * ny)
+    py = vy + (wz * r * nx - wx * 0.0)
+    pz = vz + (wx * r * ny - wy * r * nx)
+    pn = px * nx + py * ny
+    tx = px - pn * nx
+    ty = py - pn * ny
+    tz = pz
+    vt = math.sqrt(tx * tx + ty * ty + tz * tz)
+    mu = P[P_MU]
+    vst = P[P_VST]
+    fx = -fn_d * nx
+    fy = -fn_d * ny
+    fz = 0.0
+    mx = 0.0
+    my = 0.0
+    mz = 0.0
+    g = 0.0
+    slope = 0.0
+    if P[P_FRIC] > 0.5 and mu > 0.0:
+        g = math.tanh(3.0 * vt / vst)
+        slope = mu * fn * 3.0 / vst * (1.0 - g * g)
+        if vt > 0.0:
+            ft = mu * fn * g / vt             # Eq. (11): |f_t| = mu(v) f_n, opposing the slip
+            fx -= ft * tx
+            fy -= ft * ty
+            fz -= ft * tz
+            # moment of the friction about the centre: (r n) x f_t
+            mx += r * ny * (-ft * tz)
+            my += -r * nx * (-ft * tz)
+            mz += r * nx * (-ft * ty) - r * ny * (-ft * tx)
+    if P[P_SPIN] > 0.5 and mu > 0.0:
+        a = P[P_A1] * fn ** (1.0 / 3.0)       # semi-major axis, Eq. (15)
+        wn = wx * nx + wy * ny                # spin relative to the fixed groove
+        ms = 0.375 * mu * math.tanh(3.0 * wn * a / vst) * fn * a   # Eqs. (14), (16)
+        mx -= ms * nx
+        my -= ms * ny
+    res[0] = fx
+    res[1] = fy
+    res[2] = fz
+    res[3] = mx
+    res[4] = my
+    res[5] = mz
+    res[9] = fn_d
+    res[10] = tx
+    res[11] = ty
+    res[12] = tz
+    res[13] = vt
+    res[14] = g
+    res[15] = slope
+
+
+@njit
+def substep(Y, P, theta, w, F_press, x0, h, L, res):
+    """One linearly implicit Euler substep of h [s] on the state Y (in place).
+
+    Velocities: (M - h J) dv = h Q, with J the friction Jacobian (the friction slope
+    mu f_n / v_st against the roller's mass and spin inertia is the stiff part); positions then
+    move with the new velocities; the driving motion is taken at the end of the substep.
+    """
+    m = P[P_M]
+    Is = P[P_IS]
+    r = P[P_R]
+    trav = P[P_TRAV] > 0.5
+    lumped = P[P_BEAR] > 0.5
+    # driving motion at the end of the substep (backward in the driving terms, so the
+    # rolling target is not lagged by a whole substep)
+    x = Y[Y_X] + h * w
+    Y[Y_X] = x
+    line_kinematics(x, w, theta, P, L)
+    ax, ay, az = L[0], L[1], L[2]
+    adx, ady, adz = L[3], L[4], L[5]
+    u = Y[Y_U]
+    ud = Y[Y_UD]
+    e = Y[Y_E]
+    ed = Y[Y_ED]
+    # roller centre c = Q + u a (+ e x_hat, the lumped bearing's radial give)
+    cx = x0 + u * ax + e
+    cy = u * ay
+    cz = L[9] + u * az
+    vx = ud * ax + u * adx + ed
+    vy = ud * ay + u * ady
+    vz = L[10] + ud * az + u * adz
+    # roller angular velocity: trunnion's tilt rate a x da/dt plus the spin about a
+    om = Y[Y_OM]
+    wx = ay * adz - az * ady + om * ax
+    wy = az * adx - ax * adz + om * ay
+    wz = ax * ady - ay * adx + om * az
+    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    fx, fy, fz = res[0], res[1], res[2]
+    nx, ny = res[6], res[7]
+    # generalized forces on (u, om): Q_u = f.a, Q_om = M.a
+    Qu = fx * ax + fy * ay + fz * az
+    Qo = res[3] * ax + res[4] * ay + res[5] * az
+    # slip sensitivities: d v_t/d ud = P_t a, d v_t/d om = a x (r n)
+    an = ax * nx + ay * ny
+    gux = ax - an * nx
+    guy = ay - an * ny
+    guz = az
+    gox = -az * r * ny
+    goy = az * r * nx
+    goz = r * (ax * ny - ay * nx)
+    # friction Jacobian D = -(slope t t^T + mu fn g/|v_t| (I - t t^T)), t = v_t/|v_t|
+    vt = res[13]
+    fn = res[9]
+    if vt > 1e-12:
+        iso = P[P_MU] * fn * res[14] / vt
+        tx, ty, tz = res[10] / vt, res[11] / vt, res[12] / vt
+    else:
+        iso = res[15]
+        tx, ty, tz = 0.0, 0.0, 0.0
+    aniso = res[15] - iso
+    gu_t = gux * tx + guy * ty + guz * tz
+    go_t = gox * tx + goy * ty + goz * tz
+    Juu = -(iso * (gux * gux + guy * guy + guz * guz) + aniso * gu_t * gu_t)
+    Joo = -(iso * (gox * gox + goy * goy + goz * goz) + aniso * go_t * go_t)
+    Juo = -(iso * (gux * gox + guy * goy + guz * goz) + aniso * gu_t * go_t)
+    # needle bearing (lumped): the row as a compliant joint (section 2.4.2 lumped)
+    Fr = 0.0
+    kr = 0.0
+    if lumped:
+        # radial needle load, Eq. (17) summed over the loaded needles: F_r = K_row g^(10/9),
+        # g = radial approach beyond the row's clearance (roller pushed back onto the trunnion)
+        g = -e - P[P_CLR]
+        if g > 0.0:
+            Fr = P[P_KN] * g ** (10.0 / 9.0)
+            kr = 10.0 / 9.0 * Fr / g
+        q = P[P_QSUM] * Fr            # sum of the needle loads (> F_r: they fan out)
+        if P[P_FRICN] > 0.5 and q > 0.0:
+            # axial sliding of the roller on the needles, mu_needle, tanh law
+            gn = math.tanh(3.0 * (ud - L[12]) / P[P_VST])
+            Qu -= P[P_MUN] * q * gn
+            Juu -= P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
+        if P[P_ROLLR] > 0.5 and q > 0.0:
+            # Eq. (12): rolling force mu_r P per needle, acting on the bore (radius r_bore)
+            # against the roller's spin relative to the trunnion
+            vr = (om - L[13]) * P[P_RB]
+            grl = math.tanh(3.0 * vr / P[P_VST])
+            Qo -= P[P_MUR] * q * P[P_RB] * grl
+            Joo -= P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
+    # velocity update (M - h J) dv = h Q
+    if trav:
+        # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
+        Qu_eff = Qu - m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
+        a11 = m - h * Juu
+        a22 = Is - h * Joo
+        a12 = -h * Juo
+        det = a11 * a22 - a12 * a12
+        dud = h * (a22 * Qu_eff - a12 * Qo) / det
+        dom = h * (a11 * Qo - a12 * Qu_eff) / det
+        Y[Y_UD] = ud + dud
+        Y[Y_OM] = om + dom
+        Y[Y_U] = u + h * Y[Y_UD]
+    else:
+        Y[Y_OM] = om + h * Qo / (Is - h * Joo)
+    if lumped:
+        # radial: the groove pushes the roller in -x, the needles push it back in +x.
+        # Linearly implicit in position and velocity (Hertz + row stiffness), so the stiff
+        # radial mode (about 1e4 Hz) needs no artificial damping.
+        kh = 0.0
+        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
+        if delta > 0.0:
+            kh = 1.5 * fn / delta * nx * nx
+        Fe = fx + Fr
+        ktot = kh + kr
+        ded = h * (Fe - h * ktot * ed) / (m + h * h * ktot)
+        Y[Y_ED] = ed + ded
+        Y[Y_E] = e + h * Y[Y_ED]
+
+@njit
+def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2):
+    """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
+
+    theta [rad], w [rad/s], F_press [N], x0 [m] the pressing offset of the trunnion axis.
+    P[P_INTEG] = 1: each substep is extrapolated (Richardson) from one step of h and two of
+    h/2, which makes the linearly implicit Euler second order and keeps it L-stable
+    (the scheme of LIMEX/SEULEX with two stages); 0: plain linearly implicit Euler.
+    L (14), res (19), Y1, Y2 (Y_LEN) are work arrays.
+    """
+    extrap = P[P_INTEG] > 0.5
+    for _ in range(n):
+        if extrap:
+            for i in range(Y_LEN):
+                Y1[i] = Y[i]
+            substep(Y1, P, theta, w, F_press, x0, h, L, res)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res)
+            for i in range(Y_LEN):
+                Y[i] = 2.0 * Y[i] - Y1[i]
+        else:
+            substep(Y, P, theta, w, F_press, x0, h, L, res)
+    # outputs at the end of the step (forces on the groove = minus those on the roller)
+    x = Y[Y_X]
+    line_kinematics(x, w, theta, P, L)
+    ax, ay, az = L[0], L[1], L[2]
+    u = Y[Y_U]
+    om = Y[Y_OM]
+    cx = x0 + u * ax + Y[Y_E]
+    cy = u * ay
+    cz = L[9] + u * az
+    vx = Y[Y_UD] * ax + u * L[3] + Y[Y_ED]
+    vy = Y[Y_UD] * ay + u * L[4]
+    vz = L[10] + Y[Y_UD] * az + u * L[5]
+    wx = ay * L[5] - az * L[4] + om * ax
+    wy = az * L[3] - ax * L[5] + om * ay
+    wz = ax * L[4] - ay * L[3] + om * az
+    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    out[O_FX] = -res[0]
+    out[O_FY] = -res[1]
+    out[O_FZ] = -res[2]
+    out[O_CY] = res[17]
+    out[O_CZ] = res[18]
+    out[O_SLIP] = res[13]
+    out[O_SPIN] = om
+    out[O_FN] = res[9]

@@ -1,0 +1,21 @@
+"""Where the FMUs are and how to (re)build them: a thin wrapper over fmu_src/build.py."""
+from __future__ import annotations
+
+import importlib.util
+from functools import lru_cache
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+@lru_cache(maxsize=1)
+def _builder():
+    spec = importlib.util.spec_from_file_location("tripod_fmu_build", ROOT / "fmu_src" / "build.py")
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def ensure_fmu(name: str = "TripodRoller", force: bool = False) -> Path:
+    """Path of build/<name>.fmu, built first when missing, stale or forced."""
+    return _builder().build(name, force=force)
