@@ -175,17 +175,22 @@ class ContactModel:
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN]}
 
 
-def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1e-4):
+def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1e-4,
+             duration=None):
     """Run the model in-process at constant inputs; returns dict of arrays incl. t and whirl.
 
+    Runs ``cycles`` whirl cycles, or ``duration`` [s] when given (needed at omega = 0).
     For tests and quick looks; users run the FMU.  Inputs default to the parameter table.
     """
     d = scene_mod.defaults("contact")
     theta = d["theta"] if theta is None else theta
     omega = d["omega"] if omega is None else omega
     F_press = d["F_press"] if F_press is None else F_press
-    m = ContactModel(dict(params or {}, theta=theta, omega=omega, F_press=F_press))
-    nsteps = int(round(cycles * 2 * math.pi / omega / dt))
+    params = {k: v for k, v in (params or {}).items() if k not in ("theta", "omega", "F_press")}
+    m = ContactModel(dict(params, theta=theta, omega=omega, F_press=F_press))
+    if duration is None:
+        duration = cycles * 2 * math.pi / omega
+    nsteps = int(round(duration / dt))
     rec = {k: np.empty(nsteps) for k, _, _ in OUTPUTS}
     t = np.arange(1, nsteps + 1) * dt
     for i in range(nsteps):

@@ -1,0 +1,54 @@
+"""In-process checks of the contact model package (fast; the FMU tests run the built copy)."""
+import math
+import sys
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
+from tripod_model import hertz  # noqa: E402
+from tripod_model.model import ContactModel, simulate  # noqa: E402
+
+
+def test_hertz_against_model_md_orders():
+    # model.md: at 1000 N, penetration ~4.9 um, semi-axes ~3.7 mm x 0.21 mm, p0 ~0.62 GPa
+    K, a1, k = hertz.hertz_point(0.019, 0.0192, 206e9, 0.3)
+    delta = (1000.0 / K) ** (2 / 3)
+    a = a1 * 1000.0 ** (1 / 3)
+    b = a / k
+    p0 = 1.5 * 1000.0 / (math.pi * a * b)
+    assert delta == pytest.approx(4.9e-6, rel=0.06)
+    assert a == pytest.approx(3.7e-3, rel=0.06)
+    assert b == pytest.approx(0.21e-3, rel=0.06)
+    assert p0 == pytest.approx(0.62e9, rel=0.05)
+    assert 18 < k < 22          # section 2.4.1: ellipse ratio about 20:1
+
+
+def test_needle_line_law_eq17():
+    # Eq. 17 in mm and N: delta = 3.8e-5 (N_s f)^0.9 / l^0.8; check a point by hand
+    C = hertz.needle_line_stiffness(7, 0.012)
+    P = 500.0
+    d_mm = 3.8e-5 * P ** 0.9 / 12.0 ** 0.8
+    assert C * (d_mm * 1e-3) ** (10 / 9) == pytest.approx(P, rel=1e-9)
+
+
+def test_lumped_radial_loads_balance_pressing():
+    m = ContactModel({"bearing": 1, "traverse": False})
+    p = m.p
+    loads = []
+    for _ in range(2000):
+        o = m.step(1e-4, p["theta"], p["omega"], 1000.0)
+        loads.append((m.bearing_load(), o["Fx"]))
+    loads = np.array(loads)
+    # the row carries what the groove pushes back: radial balance of the roller
+    assert np.allclose(loads[:, 0], loads[:, 1], rtol=1e-3)
+    assert loads[:, 0].mean() == pytest.approx(1000.0, rel=0.01)
+
+
+def test_zero_angle_zero_speed_zero_load_finite():
+    for over in ({"theta": 0.0}, {"omega": 0.0}, {"F_press": 0.0}):
+        r = simulate(over, duration=0.05, **over)
+        for k in ("Fx", "Fz", "Fz_mod", "slip_speed"):
+            assert np.all(np.isfinite(r[k])), (over, k)
+        assert np.max(np.abs(r["Fz"])) < 1e-6 + 0.06 * np.max(np.abs(r["Fx"])), over
