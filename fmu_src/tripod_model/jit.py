@@ -1,8 +1,15 @@
 """numba when a scene needs it and it is installed; plain Python otherwise (same source).
 
 Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
+
+numba keys its on-disk cache on the source file's folder, and FMPy extracts an FMU to a new
+temporary folder each run, so the bundled kernel would recompile (about 3 s) on every run.
+A cache locator keyed on the package name and the source's content hash (numba's own stamp)
+keeps one cache for the source tree and every extracted copy: ~/.cache/tripod-thrust/numba,
+or TRIPOD_NUMBA_CACHE.
 """
 import os
+import sys
 
 _ENABLED = os.environ.get("TRIPOD_NUMBA", "1") != "0"
 try:
@@ -13,6 +20,48 @@ try:
 except ImportError:   # numba is optional: the kernel runs as Python, slower
     _nb = None
     HAVE_NUMBA = False
+
+_PKG_DIR = os.path.dirname(os.path.abspath(__file__))
+CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
+    os.path.expanduser("~"), ".cache", "tripod-thrust",
+    f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
+
+
+def _install_stable_locator():
+    """Put a path-independent cache locator first for this package's functions only."""
+    try:
+        from numba.core import caching as c
+    except ImportError:
+        return
+    if any(getattr(k, "_tripod", False) for k in c.CacheImpl._locator_classes):
+        return
+
+    class _StableLocator(c._SourceFileBackedLocatorMixin, c._CacheLocator):
+        _tripod = True
+
+        def __init__(self, py_func, py_file):
+            self._py_file = py_file
+            self._lineno = py_func.__code__.co_firstlineno
+            self._cache_path = os.path.join(CACHE_DIR, "tripod_model")
+
+        def get_cache_path(self):
+            return self._cache_path
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            folder = os.path.dirname(os.path.abspath(py_file))
+            if os.path.basename(folder) != "tripod_model":
+                return None
+            return super().from_function(py_func, py_file)
+
+    c.CacheImpl._locator_classes.insert(0, _StableLocator)
+
+
+if HAVE_NUMBA:
+    try:
+        _install_stable_locator()
+    except Exception:   # numba internals moved: fall back to its own (per-folder) cache
+        pass
 
 
 def njit(fn):
