@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test venv fmu clean
+.PHONY: demo test venv fmu bench clean
 
 venv: $(STAMP)
 
@@ -15,8 +15,15 @@ $(STAMP): pyproject.toml
 	$(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
+# the main job: both FMUs (built when missing or stale) compared on the paper's scene
 demo: $(STAMP)
-	$(BIN)/tripod-thrust analytic
+	$(BIN)/tripod-thrust compare --out out
+
+fmu: $(STAMP)
+	$(BIN)/tripod-thrust build
+
+bench: $(STAMP)
+	$(BIN)/python benchmarks/fmu_speed.py
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q

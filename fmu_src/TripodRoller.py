@@ -1,7 +1,7 @@
 """pythonfmu slave of the one-roller contact model: a thin adapter over tripod_model.
 
 Variables are generated from the parameter table (reduced_model.scene) and the output list
-(tripod_model.model.OUTPUTS); units, ranges and display units are added by fmu_src/build.py.
+(reduced_model.scene.OUTPUTS); units, ranges and display units are added by fmu_src/build.py.
 """
 import math
 import traceback

@@ -14,12 +14,15 @@ FMU_SRC = ROOT / "fmu_src"
 BUILD = ROOT / "build"
 # what goes into resources/: the model packages (numpy/scipy/numba come from the host)
 PACKAGES = (FMU_SRC / "tripod_model", ROOT / "reduced_model")
-SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py"}
+SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
+          "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py"}
+# the analytic FMU needs the reduced model only
+BUNDLE = {"TripodRoller": PACKAGES, "TripodRollerAnalytic": (ROOT / "reduced_model",)}
 
 
 def _sources(name):
     files = [SLAVES[name], Path(__file__)]
-    for pkg in PACKAGES:
+    for pkg in BUNDLE[name]:
         files += [f for f in pkg.rglob("*.py")]
     return files
 
@@ -39,7 +42,7 @@ def is_stale(name="TripodRoller") -> bool:
 
 def _units_and_ranges(xml: bytes, model: str) -> bytes:
     from reduced_model.scene import BY_NAME
-    from tripod_model.model import OUTPUTS
+    from reduced_model.scene import OUTPUTS
     out_units = {n: u for n, u, _ in OUTPUTS}
     root = ET.fromstring(xml)
     units = sorted({p.unit for p in BY_NAME.values() if p.kind == "real"} | set(out_units.values()))
@@ -81,7 +84,7 @@ def build(name="TripodRoller", force=False) -> Path:
     from pythonfmu import FmuBuilder
     BUILD.mkdir(exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
-        raw = FmuBuilder.build_FMU(SLAVES[name], dest=tmp, project_files=list(PACKAGES),
+        raw = FmuBuilder.build_FMU(SLAVES[name], dest=tmp, project_files=list(BUNDLE[name]),
                                    needsExecutionTool=False)
         tmp_fmu = Path(tmp) / "patched.fmu"
         with zipfile.ZipFile(raw) as zin, zipfile.ZipFile(tmp_fmu, "w", zipfile.ZIP_DEFLATED) as zout:
@@ -97,4 +100,5 @@ def build(name="TripodRoller", force=False) -> Path:
 
 
 if __name__ == "__main__":
-    print(build(force="--force" in sys.argv))
+    for n in SLAVES:
+        print(build(n, force="--force" in sys.argv))

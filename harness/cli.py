@@ -21,7 +21,7 @@ def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.add_argument("--whirl-hz", type=float, metavar="HZ", help="whirl frequency in Hz (omega = 2 pi f)")
 
 
-def overrides_from(args) -> dict:
+def overrides_from(args, model: str = "analytic") -> dict:
     """Scene overrides from --set and the unit-named convenience options (SI values)."""
     out: dict = {}
     for item in args.set:
@@ -81,14 +81,46 @@ def cmd_analytic(args) -> int:
 
 
 def cmd_params(args) -> int:
-    from reduced_model.docs import params_markdown
+    from reduced_model.docs import outputs_markdown, params_markdown
     print(params_markdown())
+    print()
+    print(outputs_markdown())
     return 0
 
 
+def _load_scene_file(path) -> dict:
+    import tomllib
+    try:
+        with open(path, "rb") as f:
+            data = tomllib.load(f)
+    except OSError as e:
+        raise ValueError(f"--scene {path}: {e.strerror}") from None
+    except tomllib.TOMLDecodeError as e:
+        raise ValueError(f"--scene {path}: not valid TOML ({e})") from None
+    return data.get("scene", data)
+
+
+def cmd_compare(args) -> int:
+    from harness.compare import compare, format_table
+    over = _load_scene_file(args.scene) if args.scene else {}
+    over.update(overrides_from(args, model="contact"))
+    r = compare(over, cycles=args.cycles, dt=args.dt)
+    if args.out:
+        from harness.plots import compare_plots
+        compare_plots(r, args.out)
+    if args.json:
+        print(json.dumps({k: v for k, v in r.items() if not k.startswith("_")}, indent=2))
+    else:
+        print(format_table(r))
+        if args.out:
+            print(f"plots: {args.out}/")
+    return 0 if r["pass"] else 1
+
+
 def cmd_build(args) -> int:
-    from harness.fmus import ensure_fmu
-    print(ensure_fmu("TripodRoller", force=args.force))
+    from harness.fmus import FMU_NAMES, ensure_fmu
+    for name in FMU_NAMES:
+        print(ensure_fmu(name, force=args.force))
     return 0
 
 
@@ -96,7 +128,15 @@ def build_parser() -> argparse.ArgumentParser:
     ap = argparse.ArgumentParser(prog="tripod-thrust",
                                  description="Thrust force of tripod constant-velocity joints.")
     sub = ap.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("build", help="build build/TripodRoller.fmu (when missing or stale)")
+    p = sub.add_parser("compare", help="run the analytic and the contact FMU on a scene and compare orders 1 and 3")
+    _scene_args(p, "contact")
+    p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE")
+    p.add_argument("--cycles", type=float, default=2.0, help="whirl cycles to simulate (default 2)")
+    p.add_argument("--dt", type=float, default=1e-4, help="communication step [s] (default 1e-4)")
+    p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_compare)
+    p = sub.add_parser("build", help="build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)
     p = sub.add_parser("params", help="print the parameter table (Markdown)")
@@ -114,6 +154,12 @@ def main(argv=None) -> int:
     try:
         return args.func(args)
     except (ValueError, CliError) as e:
+        print(f"tripod-thrust {args.command}: error: {e}", file=sys.stderr)
+        return 2
+    except Exception as e:   # an FMU run that failed: one line with its logged reason
+        from harness.runs import FmuRunError
+        if not isinstance(e, FmuRunError):
+            raise
         print(f"tripod-thrust {args.command}: error: {e}", file=sys.stderr)
         return 2
 

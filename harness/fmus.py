@@ -6,6 +6,7 @@ from functools import lru_cache
 from pathlib import Path
 
 ROOT = Path(__file__).resolve().parents[1]
+FMU_NAMES = ("TripodRoller", "TripodRollerAnalytic")
 
 
 @lru_cache(maxsize=1)

@@ -1,5 +1,5 @@
 """Markdown documentation generated from the parameter table (one source of truth)."""
-from .scene import PARAMS
+from .scene import OUTPUTS, PARAMS
 
 
 def _start(p):
@@ -15,4 +15,12 @@ def params_markdown() -> str:
     for p in PARAMS:
         rows.append(f"| `{p.name}` | {_start(p)} | {p.unit} | {p.range_text()} | {p.causality} "
                     f"| {', '.join(sorted(p.models))} | {p.description} |")
+    return "\n".join(rows)
+
+
+def outputs_markdown() -> str:
+    """The contact FMU's outputs as Markdown (causality output, variability continuous)."""
+    rows = ["| name | unit | causality | variability | description |", "|---|---|---|---|---|"]
+    for name, unit, desc in OUTPUTS:
+        rows.append(f"| `{name}` | {unit} | output | continuous | {desc} |")
     return "\n".join(rows)

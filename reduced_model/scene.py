@@ -110,6 +110,19 @@ PARAMS: tuple[Param, ...] = (
 
 BY_NAME = {p.name: p for p in PARAMS}
 
+# Outputs of the FMUs: name, SI unit, description (same names in both FMUs where they exist).
+OUTPUTS = (
+    ("Fx", "N", "pressing force of the roller on the groove"),
+    ("Fy", "N", "lateral force on the groove, along the trunnion axis"),
+    ("Fz", "N", "thrust: force on the groove along the groove (shaft) axis"),
+    ("Fz_mod", "N", "modified thrust Fz' = Fz F_press / Fx (section 3.2)"),
+    ("dFx", "N", "pressing force change Fx - F_press"),
+    ("contact_y", "m", "contact point on the groove across the groove (trunnion-axis direction)"),
+    ("contact_z", "m", "contact point on the groove along the groove"),
+    ("slip_speed", "m/s", "sliding speed of the roller on the groove at the contact"),
+    ("roller_spin", "rad/s", "absolute spin rate of the roller about the trunnion axis"),
+)
+
 
 def params_for(model: str) -> tuple[Param, ...]:
     """The parameters a model ('analytic' or 'contact') uses, in table order."""

@@ -15,17 +15,7 @@ from reduced_model.sliding import amplitude_A, amplitude_B
 
 from . import hertz, kernel as K
 
-OUTPUTS = (  # name, unit, description
-    ("Fx", "N", "pressing force of the roller on the groove"),
-    ("Fy", "N", "lateral force on the groove, along the trunnion axis"),
-    ("Fz", "N", "thrust: force on the groove along the groove (shaft) axis"),
-    ("Fz_mod", "N", "modified thrust Fz' = Fz F_press / Fx (section 3.2)"),
-    ("dFx", "N", "pressing force change Fx - F_press"),
-    ("contact_y", "m", "contact point on the groove across the groove (trunnion-axis direction)"),
-    ("contact_z", "m", "contact point on the groove along the groove"),
-    ("slip_speed", "m/s", "sliding speed of the roller on the groove at the contact"),
-    ("roller_spin", "rad/s", "absolute spin rate of the roller about the trunnion axis"),
-)
+from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 
 
 class ContactModel:

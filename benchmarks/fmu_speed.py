@@ -1,0 +1,70 @@
+"""Speed of the contact FMU through FMPy, in one process after warm-up (issue: FMU speed).
+
+Two whirl cycles of the paper's scene at a 1e-4 s communication step; median of N runs for the
+ideal and the lumped bearing, with and without traverse; plus a fresh `fmpy simulate` process.
+Prints a Markdown table.  Usage: python benchmarks/fmu_speed.py [--runs N]
+"""
+import argparse
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+sys.path.insert(0, str(ROOT))
+from harness.fmus import ensure_fmu  # noqa: E402
+
+CASES = [
+    ("ideal bearing, traverse (default)", {}),
+    ("ideal bearing, no traverse", {"traverse": False}),
+    ("lumped bearing, traverse", {"bearing": 1}),
+    ("lumped bearing, no traverse", {"bearing": 1, "traverse": False}),
+]
+
+
+def main():
+    ap = argparse.ArgumentParser()
+    ap.add_argument("--runs", type=int, default=5)
+    args = ap.parse_args()
+    fmu = str(ensure_fmu())
+    # in-process timing needs the FMU's own copy: run this loop in a child that imports fmpy
+    code = f"""
+import json, statistics, sys, time
+from fmpy import simulate_fmu, read_model_description, extract
+md = read_model_description({fmu!r}); d = extract({fmu!r})
+cases = {CASES!r}
+res = []
+for name, sv in cases:
+    simulate_fmu(d, model_description=md, start_values=sv, stop_time=0.2, output_interval=1e-4)
+    ts = []
+    for _ in range({args.runs}):
+        t0 = time.perf_counter()
+        simulate_fmu(d, model_description=md, start_values=sv, stop_time=0.2, output_interval=1e-4)
+        ts.append(time.perf_counter() - t0)
+    res.append((name, statistics.median(ts), min(ts), max(ts)))
+print(json.dumps(res))
+import os; sys.stdout.flush(); os._exit(0)
+"""
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+    import json
+    rows = json.loads(out.stdout.strip().splitlines()[-1])
+    fresh = []
+    for _ in range(args.runs):
+        t0 = time.perf_counter()
+        subprocess.run([str(Path(sys.executable).parent / "fmpy"), "simulate", fmu,
+                        "--output-interval", "1e-4", "--output-file", "/dev/null"],
+                       capture_output=True)
+        fresh.append(time.perf_counter() - t0)
+    print(f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
+          f"{args.runs} runs each, median [min-max]\n")
+    print("| case | wall time in one process after warm-up |")
+    print("|---|---|")
+    for name, med, lo, hi in rows:
+        print(f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |")
+    print(f"| fresh `fmpy simulate` process, default scene | {statistics.median(fresh):.2f} s "
+          f"[{min(fresh):.2f}-{max(fresh):.2f}] |")
+
+
+if __name__ == "__main__":
+    main()

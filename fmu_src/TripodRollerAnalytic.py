@@ -1,0 +1,83 @@
+"""pythonfmu slave of the reduced (analytic) thrust model, Eqs. (18)-(27): numpy only.
+
+Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
+contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
+"""
+import math
+import traceback
+
+import numpy as np
+from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
+                       Fmi2Variability, Real)
+from pythonfmu.enums import Fmi2Status
+
+from reduced_model.scene import OUTPUTS, check_value, params_for, validate
+from reduced_model.thrust import time_series
+
+_TYPES = {"real": Real, "bool": Boolean}
+_INPUTS = ("theta", "omega", "F_press")
+# outputs the reduced model defines (no contact point, no roller spin state)
+_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed")
+
+
+class TripodRollerAnalytic(Fmi2Slave):
+    author = "tripod-thrust"
+    description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
+                   "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), plus the "
+                   "roller spin-inertia thrust. Needs numpy only.")
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        self._params = params_for("analytic")
+        for p in self._params:
+            setattr(self, p.name, p.default)
+            if p.causality == "input":
+                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.input,
+                                     variability=Fmi2Variability.continuous,
+                                     description=p.description)
+            else:
+                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.parameter,
+                                     variability=Fmi2Variability.fixed, description=p.description)
+            self.register_variable(var)
+        for name, _unit, desc in OUTPUTS:
+            if name in _OUT:
+                setattr(self, name, 0.0)
+                self.register_variable(Real(name, causality=Fmi2Causality.output,
+                                            variability=Fmi2Variability.continuous,
+                                            initial=Fmi2Initial.exact, description=desc))
+        self._scene = None
+        self._x = np.zeros(1)   # whirl angle [rad]
+
+    def exit_initialization_mode(self):
+        try:
+            self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")
+        except ValueError as e:
+            self.log(f"invalid parameter: {e}", Fmi2Status.error)
+            raise RuntimeError(f"invalid parameter: {e}") from None
+        self._x[0] = 0.0
+
+    def do_step(self, current_time, step_size):
+        if self._scene is None:
+            self.log("doStep before a successful initialisation", Fmi2Status.error)
+            return False
+        try:
+            for name in _INPUTS:
+                check_value(name, getattr(self, name))
+                self._scene[name] = float(getattr(self, name))
+            self._x[0] += self._scene["omega"] * step_size
+            ts = time_series(self._scene, self._x)
+            F = self._scene["F_press"]
+            self.Fz = float(ts["Fz"][0])
+            self.Fy = float(ts["ft"][0] * math.cos(ts["phi"][0]))
+            self.Fx = F
+            self.dFx = 0.0
+            self.Fz_mod = self.Fz          # Fx = F_press in the reduced model
+            self.slip_speed = float(abs(ts["V"][0]))
+            return True
+        except ValueError as e:
+            self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
+            return False
+        except Exception:
+            self.log(traceback.format_exc(), Fmi2Status.error)
+            return False
