@@ -117,6 +117,15 @@ def cmd_compare(args) -> int:
     return 0 if r["pass"] else 1
 
 
+def cmd_paper(args) -> int:
+    from harness.paper import reproduce
+    r = reproduce(args.out)
+    for c in r["claims"]:
+        print(f"[{'PASS' if c['pass'] else 'FAIL'}] {c['claim']}: {c['measured']}")
+    print(f"report: {args.out}/report.md")
+    return 0 if r["pass"] else 1
+
+
 def cmd_build(args) -> int:
     from harness.fmus import FMU_NAMES, ensure_fmu
     for name in FMU_NAMES:
@@ -136,6 +145,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_compare)
+    p = sub.add_parser("paper", help="reproduce the paper's figures and claims (PNG + report.md)")
+    p.add_argument("--out", metavar="DIR", default="out/paper", help="output folder (default out/paper)")
+    p.set_defaults(func=cmd_paper)
     p = sub.add_parser("build", help="build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)

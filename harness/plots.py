@@ -94,8 +94,9 @@ def compare_plots(r: dict, out: str | Path) -> list[Path]:
     ax.plot(np.degrees(xs), ts["V"] * 1e3, label="V = v1 + v2 (Eq. 24)")
     xcs, slip = _sorted(xc, rc["slip_speed"][mc])
     ax.plot(xcs, slip * 1e3, "k--", lw=1, label="|slip| at the contact, contact FMU")
-    ydot = np.gradient(rc["contact_y"], rc["time"])
-    ax.plot(*_sorted(xc, ydot[mc] * 1e3), ":", label="traverse speed d(contact_y)/dt, contact FMU")
+    # the roller centre sits (Rg - r)/Rg of the way out along the contact normal
+    ydot = np.gradient(rc["contact_y"], rc["time"]) * (sc["r_groove"] - sc["r_roller"]) / sc["r_groove"]
+    ax.plot(*_sorted(xc, ydot[mc] * 1e3), ":", label="traverse speed of the roller centre, contact FMU")
     ax.set(xlabel="whirl angle wt [deg]", ylabel="sliding velocity [mm/s]", xlim=(0, 360),
            title=f"Sliding velocities of the roller on the groove (Fig. 22)\n{title}")
     ax.grid(alpha=0.3)

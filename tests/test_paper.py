@@ -1,0 +1,34 @@
+"""tripod-thrust paper: figures and a claims table computed from runs."""
+import re
+
+import pytest
+
+import harness.paper as paper
+
+
+def test_paper_writes_figures_and_claims(tmp_path):
+    r = paper.reproduce(tmp_path)
+    pngs = sorted(tmp_path.glob("*.png"))
+    assert len(pngs) == 9
+    assert all(f.stat().st_size > 10_000 for f in pngs)
+    report = (tmp_path / "report.md").read_text()
+    assert report.count("| PASS |") + report.count("| FAIL |") == len(r["claims"]) == 8
+    assert r["pass"], [c for c in r["claims"] if not c["pass"]]
+
+
+def test_claims_follow_the_runs(tmp_path, monkeypatch):
+    # double the thrust of one run: the measured share must double and its verdict fail,
+    # which it cannot if the number were typed in
+    real = paper._run
+
+    def fake(sv, cycles=2.0):
+        r = real(sv, cycles)
+        if sv.get("bearing") == 1 and sv.get("friction_needle") is False:
+            r = dict(r, Fz_mod=2 * r["Fz_mod"])
+        return r
+
+    monkeypatch.setattr(paper, "_run", fake)
+    r = paper.reproduce(tmp_path)
+    c = next(c for c in r["claims"] if c["claim"].startswith("Section 4.2"))
+    share = float(re.match(r"(\d+) %", c["measured"]).group(1))
+    assert 190 < share < 215 and not c["pass"] and not r["pass"]
