@@ -49,6 +49,7 @@ def test_bad_input_one_line(args, needle):
 
 def test_readme_parameter_table_is_generated():
     from pathlib import Path
-    from reduced_model.docs import params_markdown
+    from reduced_model.docs import outputs_markdown, params_markdown
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
     assert params_markdown() in readme, "README parameter table is stale: paste `tripod-thrust params`"
+    assert outputs_markdown() in readme, "README output table is stale: paste `tripod-thrust params`"
