@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test venv fmu bench clean
+.PHONY: demo test venv fmu bench docs clean
 
 venv: $(STAMP)
 
@@ -27,6 +27,10 @@ bench: $(STAMP)
 
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
+
+# regenerate the variable tables in README.md from the parameter table
+docs: $(STAMP)
+	$(BIN)/python -m reduced_model.docs README.md
 
 clean:
 	rm -rf build out .pytest_cache

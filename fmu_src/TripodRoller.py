@@ -3,7 +3,9 @@
 Variables are generated from the parameter table (reduced_model.scene) and the output list
 (reduced_model.scene.OUTPUTS); units, ranges and display units are added by fmu_src/build.py.
 """
+import copy
 import math
+import pickle
 import traceback
 
 from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
@@ -11,10 +13,11 @@ from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, F
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model.scene import check_value, params_for
-from tripod_model.model import OUTPUTS, ContactModel
+from reduced_model.scene import OUTPUTS
+from tripod_model.model import JointModel
 
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
-_INPUTS = ("theta", "omega", "F_press")
+_INPUTS = ("theta", "omega", "F_press", "torque")
 
 
 class TripodRoller(Fmi2Slave):
@@ -52,12 +55,33 @@ class TripodRoller(Fmi2Slave):
 
     def exit_initialization_mode(self):
         try:
-            self.model = ContactModel(self._param_values())
+            self.model = JointModel(self._param_values())
+            self.log(self.model.info(self.theta, self.omega, self.F_press, self.torque),
+                     Fmi2Status.ok, "logAll")
         except ValueError as e:
             # rejected parameters: log the reason, then fail initialisation (non-OK status)
             self.log(f"invalid parameter: {e}", Fmi2Status.error)
             self.model = None
             raise RuntimeError(f"invalid parameter: {e}") from None
+
+    # FMU state: the registered variables plus the model's internal arrays, deep-copied, so a
+    # rollback (get state, run, set state, run) reproduces the outputs bit for bit
+    def _get_fmu_state(self):
+        return {"vars": super()._get_fmu_state(),
+                "model": None if self.model is None else self.model.get_state()}
+
+    def _set_fmu_state(self, state):
+        super()._set_fmu_state(state["vars"])
+        if state["model"] is not None and self.model is not None:
+            self.model.set_state(copy.deepcopy(state["model"]))
+
+    @staticmethod
+    def _fmu_state_to_bytes(state):
+        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+
+    @staticmethod
+    def _fmu_state_from_bytes(data):
+        return pickle.loads(data)
 
     def do_step(self, current_time, step_size):
         if self.model is None:
@@ -67,7 +91,7 @@ class TripodRoller(Fmi2Slave):
             for name in _INPUTS:
                 check_value(name, getattr(self, name))
             out = self.model.step(step_size, float(self.theta), float(self.omega),
-                                  float(self.F_press))
+                                  float(self.F_press), float(self.torque))
             if not all(math.isfinite(v) for v in out.values()):
                 self.log(f"non-finite output at t = {current_time:g} s; step rejected",
                          Fmi2Status.error)

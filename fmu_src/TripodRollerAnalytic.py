@@ -3,21 +3,23 @@
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
 """
+import copy
 import math
+import pickle
 import traceback
 
 import numpy as np
 from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
-                       Fmi2Variability, Real)
+                       Fmi2Variability, Integer, Real)
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import OUTPUTS, check_value, params_for, validate
+from reduced_model.scene import OUTPUTS, check_value, params_for, pressing_load, validate
 from reduced_model.thrust import time_series
 
-_TYPES = {"real": Real, "bool": Boolean}
-_INPUTS = ("theta", "omega", "F_press")
+_TYPES = {"real": Real, "bool": Boolean, "int": Integer}
+_INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
-_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed")
+_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
 
 
 class TripodRollerAnalytic(Fmi2Slave):
@@ -47,7 +49,7 @@ class TripodRollerAnalytic(Fmi2Slave):
                                             variability=Fmi2Variability.continuous,
                                             initial=Fmi2Initial.exact, description=desc))
         self._scene = None
-        self._x = np.zeros(1)   # whirl angle [rad]
+        self._x = np.zeros(1)   # whirl angle of each roller [rad]
 
     def exit_initialization_mode(self):
         try:
@@ -55,7 +57,25 @@ class TripodRollerAnalytic(Fmi2Slave):
         except ValueError as e:
             self.log(f"invalid parameter: {e}", Fmi2Status.error)
             raise RuntimeError(f"invalid parameter: {e}") from None
-        self._x[0] = 0.0
+        n = self._scene["n_rollers"]
+        self._x = 2.0 * math.pi * np.arange(n) / 3.0   # rollers at 0, 120, 240 deg
+
+    def _get_fmu_state(self):
+        return {"vars": super()._get_fmu_state(), "x": self._x.copy(),
+                "scene": copy.deepcopy(self._scene)}
+
+    def _set_fmu_state(self, state):
+        super()._set_fmu_state(state["vars"])
+        self._x = state["x"].copy()
+        self._scene = copy.deepcopy(state["scene"])
+
+    @staticmethod
+    def _fmu_state_to_bytes(state):
+        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+
+    @staticmethod
+    def _fmu_state_from_bytes(data):
+        return pickle.loads(data)
 
     def do_step(self, current_time, step_size):
         if self._scene is None:
@@ -65,10 +85,14 @@ class TripodRollerAnalytic(Fmi2Slave):
             for name in _INPUTS:
                 check_value(name, getattr(self, name))
                 self._scene[name] = float(getattr(self, name))
-            self._x[0] += self._scene["omega"] * step_size
+            self._x += self._scene["omega"] * step_size
             ts = time_series(self._scene, self._x)
-            F = self._scene["F_press"]
-            self.Fz = float(ts["Fz"][0])
+            F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
+            fz = ts["Fz"]
+            self.Fz = float(fz[0])
+            self.Fz_joint = float(fz.sum())
+            self.Fz_2 = float(fz[1]) if fz.size > 1 else 0.0
+            self.Fz_3 = float(fz[2]) if fz.size > 2 else 0.0
             self.Fy = float(ts["ft"][0] * math.cos(ts["phi"][0]))
             self.Fx = F
             self.dFx = 0.0

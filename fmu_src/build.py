@@ -85,7 +85,8 @@ def build(name="TripodRoller", force=False) -> Path:
     BUILD.mkdir(exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         raw = FmuBuilder.build_FMU(SLAVES[name], dest=tmp, project_files=list(BUNDLE[name]),
-                                   needsExecutionTool=False)
+                                   needsExecutionTool=False, canGetAndSetFMUstate=True,
+                                   canSerializeFMUstate=True)
         tmp_fmu = Path(tmp) / "patched.fmu"
         with zipfile.ZipFile(raw) as zin, zipfile.ZipFile(tmp_fmu, "w", zipfile.ZIP_DEFLATED) as zout:
             for item in zin.infolist():

@@ -55,6 +55,11 @@ PARAMS: tuple[Param, ...] = (
           causality="input"),
     Param("F_press", 1000.0, "N", 0.0, 1.0e6, "pressing load of the roller on the groove",
           causality="input"),
+    Param("torque", 0.0, "N.m", 0.0, 1.0e5,
+          "transmitted torque; when > 0 it sets the pressing load per roller, torque/(3 s), "
+          "instead of F_press", causality="input"),
+    Param("n_rollers", 1, "1", 1, 3, "rollers simulated: 1, or 3 at whirl phases 0/120/240 deg",
+          kind="int"),
     Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove"),
     Param("v_st", 0.0, "m/s", 0.0, 10.0,
           "transition velocity of the tanh friction law; 0 = automatic, sqrt(A^2+B^2)/4"),
@@ -121,6 +126,9 @@ OUTPUTS = (
     ("contact_z", "m", "contact point on the groove along the groove"),
     ("slip_speed", "m/s", "sliding speed of the roller on the groove at the contact"),
     ("roller_spin", "rad/s", "absolute spin rate of the roller about the trunnion axis"),
+    ("Fz_joint", "N", "housing axial force: sum of Fz over the rollers (= Fz with n_rollers = 1)"),
+    ("Fz_2", "N", "thrust of roller 2 (whirl phase 120 deg; 0 with n_rollers = 1)"),
+    ("Fz_3", "N", "thrust of roller 3 (whirl phase 240 deg; 0 with n_rollers = 1)"),
 )
 
 
@@ -131,6 +139,12 @@ def params_for(model: str) -> tuple[Param, ...]:
 
 def defaults(model: str = "analytic") -> dict:
     return {p.name: p.default for p in params_for(model)}
+
+
+def pressing_load(F_press: float, torque: float, s: float) -> float:
+    """Pressing load per roller [N]: torque / (3 s) when a torque [N m] > 0 is given (it wins),
+    else F_press.  s [m] is the pitch-circle radius."""
+    return torque / (3.0 * s) if torque > 0 else F_press
 
 
 _TRUE = {"1", "true", "yes", "on"}
@@ -203,6 +217,8 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
     if scene["r_groove"] <= scene["r_roller"]:
         raise ValueError(f"r_groove = {scene['r_groove']:g} m must exceed r_roller = "
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
+    if scene.get("n_rollers", 1) not in (1, 3):
+        raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(f"r_bore = {scene['r_bore']:g} m must be below r_roller = "
                          f"{scene['r_roller']:g} m (range (0, r_roller) m)")

@@ -8,6 +8,11 @@ from scipy.integrate import quad
 from . import kinematics, sliding
 from .friction import mu_tanh, v_st_auto
 from .orders import wrap_deg
+from .scene import pressing_load
+
+
+def _load(scene):
+    return pressing_load(scene["F_press"], scene.get("torque", 0.0), scene["s"])
 
 
 def spin_inertia(m, r, r_bore):
@@ -57,7 +62,7 @@ def time_series(scene, x):
     v1, v2 = sliding.v1(x, A), sliding.v2(x, B)
     V = v1 + v2
     mu = mu_tanh(V, scene["mu_groove"], vst)
-    ft = mu * scene["F_press"]                    # Eq. (11) with Eq. (25)'s ft
+    ft = mu * _load(scene)                        # Eq. (11) with Eq. (25)'s ft
     ftz = ft * np.sin(phi)                        # Eq. (26)
     F_spin = np.zeros_like(x)
     if scene["spin_inertia"] and scene["pitch"]:
@@ -93,7 +98,7 @@ def closed_form(scene):
     A, B = amplitudes(scene)
     R = float(np.hypot(A, B))
     vst = transition_velocity(scene)
-    C = second_order_amplitude(scene["F_press"], scene["mu_groove"], R, vst)
+    C = second_order_amplitude(_load(scene), scene["mu_groove"], R, vst)
     th = scene["theta"] if scene["pitch"] else 0.0
     bet = np.degrees(sliding.beta(A, B)) if R > 0 else 0.0
     half = C * th / 2.0

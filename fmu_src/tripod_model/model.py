@@ -25,7 +25,8 @@ class ContactModel:
     so a bad value raises ValueError naming the parameter and its range.
     """
 
-    def __init__(self, params: dict | None = None):
+    def __init__(self, params: dict | None = None, phase: float = 0.0):
+        self.phase = phase
         self.p = scene_mod.validate(params, "contact")
         p = self.p
         self.Kh, self.a1, _ = hertz.hertz_point(p["r_roller"], p["r_groove"], p["E"], p["nu"])
@@ -130,11 +131,16 @@ class ContactModel:
         return max(h, 1e-7)
 
     def start(self, theta, omega, F_press=0.0):
-        """Initial state: roller at the groove bottom, rolling without slip (fewer transients)."""
+        """Initial state: roller at the groove bottom, rolling without slip (fewer transients),
+        at whirl angle ``self.phase`` [rad] (0, 2 pi/3, 4 pi/3 for the rollers of a joint)."""
         p = self.p
         self.Y[:] = 0.0
+        self.Y[K.Y_X] = self.phase
         T = math.tan(theta) if p["pitch"] else 0.0
-        self.Y[K.Y_OM] = p["s"] * T * omega / p["r_roller"]   # dz/dt / r at wt = 0
+        # dz/dt / r with z = s tan(phi), tan(phi) = T sin(x)
+        c = math.cos(self.phase)
+        sec2 = 1.0 + (T * math.sin(self.phase)) ** 2
+        self.Y[K.Y_OM] = p["s"] * T * c * omega / p["r_roller"] / math.sqrt(sec2)
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
         self._started = True
 
@@ -155,6 +161,17 @@ class ContactModel:
         self.substeps += n
         self.time += dt
         return self.outputs(F_press)
+
+    def get_state(self) -> dict:
+        """A deep copy of everything a step depends on (for FMU state rollback)."""
+        return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
+                "time": self.time, "substeps": self.substeps, "started": self._started}
+
+    def set_state(self, st: dict) -> None:
+        self.Y[:] = st["Y"]
+        self.out[:] = st["out"]
+        self.P[K.P_VST] = st["vst"]
+        self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 
     def outputs(self, F_press):
         o = self.out
@@ -177,7 +194,7 @@ def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1
     omega = d["omega"] if omega is None else omega
     F_press = d["F_press"] if F_press is None else F_press
     params = {k: v for k, v in (params or {}).items() if k not in ("theta", "omega", "F_press")}
-    m = ContactModel(dict(params, theta=theta, omega=omega, F_press=F_press))
+    m = JointModel(dict(params, theta=theta, omega=omega, F_press=F_press))
     if duration is None:
         duration = cycles * 2 * math.pi / omega
     nsteps = int(round(duration / dt))
@@ -189,5 +206,52 @@ def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1
             rec[k][i] = o[k]
     rec["t"] = t
     rec["whirl"] = omega * t
-    rec["substeps"] = m.substeps
+    rec["substeps"] = m.rollers[0].substeps
     return rec
+
+
+class JointModel:
+    """``n_rollers`` (1 or 3) rollers of one joint at whirl phases 0, 120, 240 deg.
+
+    Each roller is an independent ContactModel in its own groove (the paper's one-roller model
+    repeated); the housing thrust Fz_joint is the sum of their Fz.  Pressing per roller is
+    F_press, or torque / (3 s) when a transmitted torque [N m] is given (torque wins if > 0).
+    """
+
+    def __init__(self, params: dict | None = None):
+        params = dict(params or {})
+        p = scene_mod.validate(params, "contact")
+        self.p = p
+        self.rollers = [ContactModel(params, phase=2 * math.pi * i / 3)
+                        for i in range(p["n_rollers"])]
+
+    def pressing(self, F_press, torque):
+        """Pressing load per roller [N]: torque / (3 s) when torque > 0, else F_press."""
+        return scene_mod.pressing_load(F_press, torque, self.p["s"])
+
+    def step(self, dt, theta, omega, F_press, torque=0.0):
+        """Advance every roller by dt [s]; returns roller 1's outputs plus Fz_joint, Fz_2, Fz_3."""
+        F = self.pressing(F_press, torque)
+        outs = [r.step(dt, theta, omega, F) for r in self.rollers]
+        o = dict(outs[0])
+        o["Fz_joint"] = sum(x["Fz"] for x in outs)
+        o["Fz_2"] = outs[1]["Fz"] if len(outs) > 1 else 0.0
+        o["Fz_3"] = outs[2]["Fz"] if len(outs) > 2 else 0.0
+        return o
+
+    def get_state(self) -> list:
+        return [r.get_state() for r in self.rollers]
+
+    def set_state(self, st: list) -> None:
+        for r, s in zip(self.rollers, st):
+            r.set_state(s)
+
+    def info(self, theta, omega, F_press, torque=0.0) -> str:
+        """One line for the FMU log: the operating point the integrator chose."""
+        r = self.rollers[0]
+        F = self.pressing(F_press, torque)
+        vst = r.v_st(theta, omega)
+        h = r.substep(theta, omega, F, vst)
+        return (f"{len(self.rollers)} roller(s), bearing {self.p['bearing']}, traverse "
+                f"{self.p['traverse']}; pressing {F:.6g} N per roller, v_st {vst:.4g} m/s, "
+                f"substep {h:.3g} s, pressing offset {r.pressing_offset(F):.6g} m")
