@@ -28,9 +28,10 @@ bench: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
-# regenerate the variable tables in README.md from the parameter table
+# regenerate README.md tables and docs/ (per-FMU variables, reference CSV, plot)
 docs: $(STAMP)
 	$(BIN)/python -m reduced_model.docs README.md
+	$(BIN)/python -m harness.reference
 
 clean:
 	rm -rf build out .pytest_cache

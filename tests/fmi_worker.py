@@ -1,0 +1,74 @@
+"""Runs FMI-level checks on a built FMU in its own process (called by test_driveline.py).
+
+Usage: python fmi_worker.py FMU CHECK; prints one JSON object; exits without freeing the
+instance (upstream pythonfmu teardown issue, see harness/fmu_worker.py).
+"""
+import json
+import os
+import sys
+
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+
+fmu, check = sys.argv[1], sys.argv[2]
+md = read_model_description(fmu)
+d = extract(fmu)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+OUT = ["Fx", "Fy", "Fz", "Fz_mod", "Fz_joint"] + [n for n in ("contact_y", "roller_spin") if n in vr]
+
+
+def make(name="a", theta=None):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName=name)
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    if theta is not None:
+        s.setReal([vr["theta"]], [theta])
+    s.exitInitializationMode()
+    return s
+
+
+def run(s, n, t0=0.0, dt=1e-4):
+    rows = []
+    for i in range(n):
+        s.doStep(t0 + i * dt, dt)
+        rows.append(s.getReal([vr[k] for k in OUT]))
+    return rows
+
+
+res = {}
+if check == "state":
+    s = make()
+    run(s, 500)
+    st = s.getFMUstate()
+    a = run(s, 300, 0.05)
+    s.setFMUstate(st)
+    b = run(s, 300, 0.05)
+    blob = s.serializeFMUstate(st)
+    st2 = s.deSerializeFMUstate(blob)
+    s.setFMUstate(st2)
+    c = run(s, 300, 0.05)
+    res = {"rollback_identical": a == b, "serialized_identical": a == c, "n": len(a),
+           "differs_from_start": a[0] != run(make("fresh"), 1)[0]}
+elif check == "instances":
+    a1 = run(make("solo_a", theta=0.10), 400)
+    b1 = run(make("solo_b", theta=0.20), 400)
+    x, y = make("x", theta=0.10), make("y", theta=0.20)
+    a2, b2 = [], []
+    for i in range(400):
+        a2 += run(x, 1, i * 1e-4)
+        b2 += run(y, 1, i * 1e-4)
+    res = {"a_identical": a1 == a2, "b_identical": b1 == b2, "a_differs_b": a1 != b1}
+elif check == "reset":
+    s = make()
+    a = run(s, 300)
+    s.reset()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    s.exitInitializationMode()
+    b = run(s, 300)
+    res = {"reset_identical": a == b}
+print(json.dumps(res))
+sys.stdout.flush()
+os._exit(0)
