@@ -126,6 +126,25 @@ def cmd_paper(args) -> int:
     return 0 if r["pass"] else 1
 
 
+def cmd_sweep(args) -> int:
+    from pathlib import Path
+    from harness import sweep as sw
+    if not args.grid:
+        raise ValueError("--grid NAME=START:STOP:N is required (repeat it for more parameters)")
+    grid = dict(sw.parse_grid(g) for g in args.grid)
+    base = overrides_from(args)
+    rows = sw.sweep(grid, base, model=args.model, cycles=args.cycles, dt=args.dt,
+                    scheduler=args.scheduler, workers=args.workers, progress=True)
+    out = Path(args.out)
+    csv_path = sw.write_csv(rows, out / "sweep.csv")
+    png = sw.plot(rows, grid, out / "sweep_order3.png")
+    bad = [r for r in rows if r["error"]]
+    print(f"{len(rows)} points, {len(bad)} failed; {csv_path}, {png}")
+    for r in bad[:5]:
+        print(f"  failed: {r}")
+    return 1 if bad else 0
+
+
 def cmd_build(args) -> int:
     from harness.fmus import FMU_NAMES, ensure_fmu
     for name in FMU_NAMES:
@@ -145,6 +164,18 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_compare)
+    p = sub.add_parser("sweep", help="run an FMU over a parameter grid in parallel (dask)")
+    _scene_args(p, "contact")
+    p.add_argument("--grid", metavar="NAME=START:STOP:N", action="append", default=[],
+                   help="a swept parameter in SI units (repeat for a grid)")
+    p.add_argument("--model", choices=("contact", "analytic"), default="contact")
+    p.add_argument("--scheduler", metavar="ADDRESS",
+                   help="address of a running dask.distributed scheduler (default: local processes)")
+    p.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    p.add_argument("--cycles", type=float, default=2.0)
+    p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
+    p.add_argument("--out", metavar="DIR", default="out/sweep")
+    p.set_defaults(func=cmd_sweep)
     p = sub.add_parser("paper", help="reproduce the paper's figures and claims (PNG + report.md)")
     p.add_argument("--out", metavar="DIR", default="out/paper", help="output folder (default out/paper)")
     p.set_defaults(func=cmd_paper)
