@@ -8,13 +8,12 @@ import math
 import pickle
 import traceback
 
-import numpy as np
 from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
                        Fmi2Variability, Integer, Real)
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model.scene import OUTPUTS, check_value, params_for, pressing_load, validate
-from reduced_model.thrust import time_series
+from reduced_model.thrust import Thrust
 
 _TYPES = {"real": Real, "bool": Boolean, "int": Integer}
 _INPUTS = ("theta", "omega", "F_press", "torque")
@@ -49,7 +48,7 @@ class TripodRollerAnalytic(Fmi2Slave):
                                             variability=Fmi2Variability.continuous,
                                             initial=Fmi2Initial.exact, description=desc))
         self._scene = None
-        self._x = np.zeros(1)   # whirl angle of each roller [rad]
+        self._x = [0.0]   # whirl angle of each roller [rad]
 
     def exit_initialization_mode(self):
         try:
@@ -58,16 +57,19 @@ class TripodRollerAnalytic(Fmi2Slave):
             self.log(f"invalid parameter: {e}", Fmi2Status.error)
             raise RuntimeError(f"invalid parameter: {e}") from None
         n = self._scene["n_rollers"]
-        self._x = 2.0 * math.pi * np.arange(n) / 3.0   # rollers at 0, 120, 240 deg
+        self._x = [2.0 * math.pi * i / 3.0 for i in range(n)]   # rollers at 0, 120, 240 deg
+        self._key = None
+        self._thrust = None
 
     def _get_fmu_state(self):
-        return {"vars": super()._get_fmu_state(), "x": self._x.copy(),
+        return {"vars": super()._get_fmu_state(), "x": list(self._x),
                 "scene": copy.deepcopy(self._scene)}
 
     def _set_fmu_state(self, state):
         super()._set_fmu_state(state["vars"])
-        self._x = state["x"].copy()
+        self._x = list(state["x"])
         self._scene = copy.deepcopy(state["scene"])
+        self._key = None
 
     @staticmethod
     def _fmu_state_to_bytes(state):
@@ -82,22 +84,30 @@ class TripodRollerAnalytic(Fmi2Slave):
             self.log("doStep before a successful initialisation", Fmi2Status.error)
             return False
         try:
-            for name in _INPUTS:
-                check_value(name, getattr(self, name))
-                self._scene[name] = float(getattr(self, name))
-            self._x += self._scene["omega"] * step_size
-            ts = time_series(self._scene, self._x)
+            key = (self.theta, self.omega, self.F_press, self.torque)
+            if key != self._key:       # operating point changed: check and re-derive constants
+                for name, value in zip(_INPUTS, key):
+                    check_value(name, value)
+                    self._scene[name] = float(value)
+                self._thrust = Thrust(self._scene)
+                self._key = key
+            w = self._scene["omega"] * step_size
+            at = self._thrust.at
+            fz = []
+            for i in range(len(self._x)):
+                self._x[i] += w
+                fz.append(at(self._x[i])[0])
+            _, _, ft, V, phi, _ = at(self._x[0])
             F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
-            fz = ts["Fz"]
-            self.Fz = float(fz[0])
-            self.Fz_joint = float(fz.sum())
-            self.Fz_2 = float(fz[1]) if fz.size > 1 else 0.0
-            self.Fz_3 = float(fz[2]) if fz.size > 2 else 0.0
-            self.Fy = float(ts["ft"][0] * math.cos(ts["phi"][0]))
+            self.Fz = fz[0]
+            self.Fz_joint = sum(fz)
+            self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
+            self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
+            self.Fy = ft * math.cos(phi)
             self.Fx = F
             self.dFx = 0.0
             self.Fz_mod = self.Fz          # Fx = F_press in the reduced model
-            self.slip_speed = float(abs(ts["V"][0]))
+            self.slip_speed = abs(V)
             return True
         except ValueError as e:
             self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)

@@ -2,11 +2,13 @@
 
 ``scene`` is a validated dict (see ``scene.validate``), SI units.  Whirl angle x = w t [rad].
 """
+import math
+
 import numpy as np
 from scipy.integrate import quad
 
-from . import kinematics, sliding
-from .friction import mu_tanh, v_st_auto
+from . import sliding
+from .friction import v_st_auto
 from .orders import wrap_deg
 from .scene import pressing_load
 
@@ -47,6 +49,38 @@ def second_order_amplitude(F, mu_s, R, v_st):
     return F * mu_s * 2.0 / np.pi * val
 
 
+class Thrust:
+    """The reduced model's thrust of one roller for one operating point (scene).
+
+    Constants are computed once; ``at(x, m)`` evaluates Eqs. (2), (18)-(26) and the spin term at
+    whirl angle x [rad] with the math module ``m``: ``math`` for a scalar (the analytic FMU's
+    per-step path, no numpy overhead) or ``numpy`` for arrays (time_series).  One code path.
+    """
+
+    def __init__(self, scene):
+        self.A, self.B = amplitudes(scene)
+        vst = transition_velocity(scene)
+        self.k = 3.0 / vst if vst > 0 else 1e300          # tanh(3V/v_st); Coulomb at v_st = 0
+        self.muF = scene["mu_groove"] * _load(scene)      # Eq. (11): ft = mu(V) F
+        self.th = scene["theta"] if scene["pitch"] else 0.0
+        self.zamp = scene["s"] * self.th                   # Eq. (18): z = s theta sin wt
+        self.kspin = 0.0
+        if scene["spin_inertia"] and scene["pitch"]:
+            I = spin_inertia(scene["m_roller"], scene["r_roller"], scene["r_bore"])
+            # (I/r^2) d2z/dt2 with d2z/dt2 = -w^2 s theta sin wt (constant w)
+            self.kspin = -I / scene["r_roller"] ** 2 * scene["omega"] ** 2 * self.zamp
+
+    def at(self, x, m=math):
+        """(Fz, ftz, ft, V, phi, F_spin) at whirl angle x; N, N, N, m/s, rad, N."""
+        sx = m.sin(x)
+        V = self.A * m.sin(2.0 * x) + self.B * m.cos(2.0 * x)   # Eq. (24)
+        ft = self.muF * m.tanh(self.k * V)                      # Eqs. (11), (25), Fig. 8
+        phi = self.th * sx                                      # Eq. (2)
+        ftz = ft * m.sin(phi)                                   # Eq. (26)
+        fs = self.kspin * sx
+        return ftz + fs, ftz, ft, V, phi, fs
+
+
 def time_series(scene, x):
     """All reduced-model signals at whirl angles ``x`` [rad] (array).
 
@@ -54,23 +88,12 @@ def time_series(scene, x):
     Fz = ftz (+ F_spin when scene['spin_inertia']), the thrust on the groove.
     """
     x = np.asarray(x, dtype=float)
-    th = scene["theta"]
-    A, B = amplitudes(scene)
-    vst = transition_velocity(scene)
-    phi = kinematics.pitch_small(x, th) if scene["pitch"] else np.zeros_like(x)
-    z = sliding.groove_travel(x, scene["s"], th) if scene["pitch"] else np.zeros_like(x)
-    v1, v2 = sliding.v1(x, A), sliding.v2(x, B)
-    V = v1 + v2
-    mu = mu_tanh(V, scene["mu_groove"], vst)
-    ft = mu * _load(scene)                        # Eq. (11) with Eq. (25)'s ft
-    ftz = ft * np.sin(phi)                        # Eq. (26)
-    F_spin = np.zeros_like(x)
-    if scene["spin_inertia"] and scene["pitch"]:
-        I = spin_inertia(scene["m_roller"], scene["r_roller"], scene["r_bore"])
-        zdd = -scene["omega"]**2 * z              # d2z/dt2 of z = s theta sin wt at constant w
-        F_spin = I / scene["r_roller"]**2 * zdd
-    return dict(phi=phi, z=z, v1=v1, v2=v2, V=V, mu=mu, ft=ft, ftz=ftz,
-                F_spin=F_spin, Fz=ftz + F_spin)
+    th = Thrust(scene)
+    Fz, ftz, ft, V, phi, fs = th.at(x, np)
+    load = _load(scene)
+    return dict(phi=phi, z=th.zamp * np.sin(x), v1=sliding.v1(x, th.A), v2=sliding.v2(x, th.B),
+                V=V, mu=ft / load if load > 0 else np.zeros_like(x), ft=ft, ftz=ftz,
+                F_spin=fs, Fz=Fz)
 
 
 def three_roller_thrust(scene, x):
