@@ -145,6 +145,41 @@ def cmd_sweep(args) -> int:
     return 1 if bad else 0
 
 
+def cmd_bench(args) -> int:
+    from pathlib import Path
+    from harness import bench
+    out = Path(args.out)
+    out.mkdir(parents=True, exist_ok=True)
+    lines = ["# Benchmark", "", "## Cost per doStep (+ getReal of Fz), 1e-4 s steps", "",
+             "| FMU, scene | us per step | ratio to the bare boundary |", "|---|---|---|"]
+    costs = bench.step_costs(runs=args.runs)
+    for name, us in costs:
+        lines.append(f"| {name} | {us:.1f} | {us / costs[0][1]:.2f} |")
+    lines += ["", "## Where one run goes (default contact scene, two cycles)", "",
+              "| part | seconds |", "|---|---|"]
+    for k, v in bench.breakdown(runs=args.runs).items():
+        lines.append(f"| {k} | {v:.4f} |")
+    print("\n".join(lines), flush=True)
+    rows, detail = bench.work_precision(out, runs=args.runs, fresh=not args.quick,
+                                        log=lambda m: print(m, flush=True))
+    lines += ["", "## Work-precision", "", (out / "work_precision.md").read_text()]
+    (out / "bench.md").write_text("\n".join(lines) + "\n")
+    off = [r for r in rows if r["default"] and not r["pareto"]]
+    print(f"written: {out}/bench.md, work_precision.csv, work_precision.png")
+    for r in off:
+        print(f"default setting off the Pareto front: {r['model']} {r['setting']}")
+    return 1 if off else 0
+
+
+def cmd_stress(args) -> int:
+    from harness.stress import stress, write_report
+    rows = stress(quick=args.quick, log=lambda m: print(m, flush=True))
+    path = write_report(rows, args.out)
+    bad = sum(not r["pass"] for r in rows)
+    print(f"{len(rows) - bad} passed, {bad} failed; report {path}")
+    return 1 if bad else 0
+
+
 def cmd_build(args) -> int:
     from harness.fmus import FMU_NAMES, ensure_fmu
     for name in FMU_NAMES:
@@ -176,6 +211,15 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
     p.add_argument("--out", metavar="DIR", default="out/sweep")
     p.set_defaults(func=cmd_sweep)
+    p = sub.add_parser("bench", help="work-precision benchmark, cost per step, run breakdown")
+    p.add_argument("--out", metavar="DIR", default="out/bench")
+    p.add_argument("--runs", type=int, default=5, help="timed runs per setting (median)")
+    p.add_argument("--quick", action="store_true", help="skip the whole-process timings")
+    p.set_defaults(func=cmd_bench)
+    p = sub.add_parser("stress", help="run the contact FMU far outside the paper's scene")
+    p.add_argument("--out", metavar="DIR", default="out/stress")
+    p.add_argument("--quick", action="store_true", help="the small subset CI runs")
+    p.set_defaults(func=cmd_stress)
     p = sub.add_parser("paper", help="reproduce the paper's figures and claims (PNG + report.md)")
     p.add_argument("--out", metavar="DIR", default="out/paper", help="output folder (default out/paper)")
     p.set_defaults(func=cmd_paper)

@@ -24,12 +24,19 @@ def main():
             logs.append(message.decode("utf-8", "replace") if isinstance(message, bytes) else str(message))
 
         md = read_model_description(req["fmu"])
+        inp = None
+        if req.get("inputs"):
+            cols = req["inputs"]
+            names = ["time"] + [k for k in cols if k != "time"]
+            inp = np.zeros(len(cols["time"]), dtype=[(n, np.float64) for n in names])
+            for n in names:
+                inp[n] = cols[n]
         t0 = time.perf_counter()
         res = simulate_fmu(req["fmu"], model_description=md,
                            start_values=req.get("start_values", {}),
                            stop_time=req["stop_time"], output_interval=req["output_interval"],
                            output=req.get("outputs"), debug_logging=True, logger=logger,
-                           terminate=True)
+                           terminate=True, input=inp)
         wall = time.perf_counter() - t0
         np.savez(req["out"], **{n: res[n] for n in res.dtype.names})
         status = {"ok": True, "wall_s": wall, "log": logs[-50:]}

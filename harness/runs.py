@@ -17,10 +17,11 @@ class FmuRunError(RuntimeError):
 
 def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float = 0.2,
             output_interval: float = 1e-4, outputs: list[str] | None = None,
-            timeout: float = 900.0) -> dict:
+            timeout: float = 900.0, inputs: dict | None = None) -> dict:
     """Simulate ``fmu`` with FMPy in a new Python process.
 
     start_values: {name: value} in SI units; stop_time, output_interval [s].
+    inputs: time-varying inputs {"time": [...], name: [...]} (FMPy interpolates between rows).
     Returns {"time": array, <output>: array, ..., "wall_s": simulate time [s] in the worker,
     "log": the FMU's last log lines}.  Raises FmuRunError with the FMU's log on failure.
     """
@@ -28,7 +29,8 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
         out = os.path.join(tmp, "result.npz")
         req = {"fmu": str(Path(fmu).resolve()), "start_values": start_values or {},
                "stop_time": stop_time, "output_interval": output_interval,
-               "outputs": outputs, "out": out}
+               "outputs": outputs, "out": out,
+               "inputs": {k: [float(x) for x in v] for k, v in (inputs or {}).items()}}
         env = dict(os.environ)
         p = subprocess.run([sys.executable, "-m", "harness.fmu_worker"], input=json.dumps(req),
                            capture_output=True, text=True, timeout=timeout, env=env,

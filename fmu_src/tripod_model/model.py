@@ -69,6 +69,8 @@ class ContactModel:
         self.time = 0.0
         self.substeps = 0
         self._started = False
+        self._key = None   # inputs of the last step, and what was derived from them
+        self._op = None
 
     # --- inputs that set the operating point ---
     def v_st(self, theta, omega):
@@ -151,13 +153,17 @@ class ContactModel:
         """
         if not self._started:
             self.start(theta, omega, F_press)
-        vst = self.v_st(theta, omega)
+        key = (dt, theta, omega, F_press)
+        if key != self._key:   # operating point changed: re-derive v_st, substep, offset
+            vst = self.v_st(theta, omega)
+            h = self.substep(theta, omega, F_press, vst)
+            n = max(1, int(math.ceil(dt / h - 1e-9)))
+            self._op = (vst, n, dt / n, self.pressing_offset(F_press))
+            self._key = key
+        vst, n, h, x0 = self._op
         self.P[K.P_VST] = vst
-        h = self.substep(theta, omega, F_press, vst)
-        n = max(1, int(math.ceil(dt / h - 1e-9)))
-        x0 = self.pressing_offset(F_press)
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
-                       dt / n, n, self.out, self._L, self._res, self._Y1, self._Y2)
+                       h, n, self.out, self._L, self._res, self._Y1, self._Y2)
         self.substeps += n
         self.time += dt
         return self.outputs(F_press)

@@ -1,0 +1,295 @@
+"""Run time against error: the work-precision benchmark, the cost per doStep against the bare
+pythonfmu boundary, and where one run's time goes.  Measurements run in fresh subprocesses
+that load the built FMUs, as a user's host would."""
+from __future__ import annotations
+
+import json
+import math
+import os
+import statistics
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+
+from .fmus import ROOT, ensure_fmu
+
+BUILD = ROOT / "build"
+W = 20 * math.pi
+STOP = 0.2                      # two whirl cycles of the paper's scene [s]
+
+
+def bare_fmu() -> Path:
+    """build/BareSlave.fmu: the trivial slave (built when missing)."""
+    dest = BUILD / "BareSlave.fmu"
+    src = ROOT / "benchmarks" / "BareSlave.py"
+    if not dest.exists() or dest.stat().st_mtime < src.stat().st_mtime:
+        from pythonfmu import FmuBuilder
+        BUILD.mkdir(exist_ok=True)
+        FmuBuilder.build_FMU(src, dest=dest, needsExecutionTool=False)
+    return dest
+
+
+# One worker script: loads an FMU once, warms up, then times whole runs and per-step costs.
+_WORKER = r'''
+import json, math, os, statistics, sys, time
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+req = json.loads(sys.stdin.read())
+md = read_model_description(req["fmu"]); d = extract(req["fmu"])
+vr = {v.name: v for v in md.modelVariables}
+out_vr = [vr[n].valueReference for n in req["read"]]
+
+def instance(sv):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName="bench")
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for k, v in sv.items():
+        t = vr[k].type
+        if t == "Real": s.setReal([vr[k].valueReference], [float(v)])
+        elif t == "Integer": s.setInteger([vr[k].valueReference], [int(v)])
+        else: s.setBoolean([vr[k].valueReference], [bool(v)])
+    s.exitInitializationMode()
+    return s
+
+def run(sv, dt, n):
+    s = instance(sv)
+    ys = np.empty((n, len(out_vr)))
+    t0 = time.perf_counter()
+    for i in range(n):
+        s.doStep(i * dt, dt)
+        ys[i] = s.getReal(out_vr)
+    wall = time.perf_counter() - t0
+    return wall, ys
+
+res = []
+for case in req["cases"]:
+    n = int(round(case["stop"] / case["dt"]))
+    run(case["sv"], case["dt"], min(n, 200))            # warm-up (numba cache load, imports)
+    walls, ys = [], None
+    for _ in range(req["runs"]):
+        w, ys = run(case["sv"], case["dt"], n)
+        walls.append(w)
+    res.append({"wall": statistics.median(walls), "walls": walls, "n": n,
+                "y": ys[:, 0].tolist()})
+print(json.dumps(res))
+sys.stdout.flush(); os._exit(0)
+'''
+
+
+def time_runs(fmu, cases, runs=5, read=("Fz_mod",)):
+    """In one fresh process: per case, median wall time of ``runs`` runs after a warm-up, and
+    the recorded signal.  cases: [{"sv": start values, "dt": comm step, "stop": s}]."""
+    req = {"fmu": str(fmu), "cases": cases, "runs": runs, "read": list(read)}
+    p = subprocess.run([sys.executable, "-c", _WORKER], input=json.dumps(req),
+                       capture_output=True, text=True, timeout=7200)
+    if p.returncode != 0:
+        raise RuntimeError(p.stderr[-3000:])
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def fresh_process_time(fmu, sv, dt, runs=5) -> float:
+    """Median wall time of `fmpy simulate` in a new process (import, extract, init, run)."""
+    exe = str(Path(sys.executable).with_name("fmpy"))
+    args = [exe, "simulate", str(fmu), "--output-interval", str(dt), "--stop-time", str(STOP),
+            "--output-file", os.devnull]
+    if sv:
+        args += ["--start-values"] + [str(x) for kv in sv.items() for x in
+                                      (kv[0], int(kv[1]) if isinstance(kv[1], bool) else kv[1])]
+    ts = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        subprocess.run(args, capture_output=True, timeout=600)
+        ts.append(time.perf_counter() - t0)
+    return statistics.median(ts)
+
+
+def orders_of(y, dt, ks=(1, 3)):
+    from reduced_model.orders import last_cycle_orders
+    t = dt * np.arange(1, len(y) + 1)
+    o = last_cycle_orders(t, np.asarray(y), W * t, ks)
+    return o
+
+
+def rel_err(o, ref):
+    """Error of orders 1 and 3 against a reference: |complex difference| / reference amplitude."""
+    e = {}
+    for k in (1, 3):
+        a = o[k][0] * np.exp(1j * np.radians(o[k][1]))
+        b = ref[k][0] * np.exp(1j * np.radians(ref[k][1]))
+        e[k] = float(abs(a - b) / abs(b)) if abs(b) > 0 else float(abs(a))
+    return e
+
+
+def pareto(points):
+    """Indices of the non-dominated (time, error) points (smaller is better in both)."""
+    idx = []
+    for i, (t, e) in enumerate(points):
+        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for t2, e2 in points):
+            idx.append(i)
+    return idx
+
+
+def step_costs(runs=5, n=2000, dt=1e-4):
+    """Cost per doStep + getReal(Fz) [us] of the bare boundary and the cheapest scenes."""
+    rows = []
+    cases = [("bare pythonfmu slave", bare_fmu(), {}),
+             ("analytic FMU", ensure_fmu("TripodRollerAnalytic"), {}),
+             ("contact FMU, ideal bearing, no traverse", ensure_fmu("TripodRoller"),
+              {"traverse": False}),
+             ("contact FMU, ideal bearing, traverse (default)", ensure_fmu("TripodRoller"), {})]
+    for name, fmu, sv in cases:
+        r = time_runs(fmu, [{"sv": sv, "dt": dt, "stop": n * dt}], runs, read=("Fz",))[0]
+        rows.append((name, r["wall"] / r["n"] * 1e6))
+    return rows
+
+
+def ladder():
+    """(model label, fmu name, start values, comm step, default?) for the work-precision grid."""
+    rows = []
+    for dt in (1e-3, 5e-4, 2e-4, 1e-4):
+        rows.append(("analytic", "TripodRollerAnalytic", {}, dt, dt == 1e-4))
+    for bearing in (0, 1):
+        lab = f"contact bearing {bearing}"
+        rows.append((f"{lab}, integrator 1", "TripodRoller", {"bearing": bearing}, 1e-4, True))
+        rows.append((f"{lab}, integrator 1", "TripodRoller", {"bearing": bearing}, 1e-3, False))
+        for h in (2e-5, 1e-5, 5e-6, 1.25e-6):
+            rows.append((f"{lab}, integrator 1", "TripodRoller",
+                         {"bearing": bearing, "max_substep": h}, 1e-4, False))
+        for h in (1e-5, 5e-6, 2.5e-6, 1.25e-6, 6.25e-7):
+            rows.append((f"{lab}, integrator 0", "TripodRoller",
+                         {"bearing": bearing, "integrator": 0, "max_substep": h}, 1e-4, False))
+    return rows
+
+
+REFERENCES = {  # converged reference of each model: the finest setting, not a ladder member
+    "analytic": ("TripodRollerAnalytic", {}, 1e-5),
+    "contact bearing 0": ("TripodRoller", {"bearing": 0, "max_substep": 3.125e-7}, 1e-4),
+    "contact bearing 1": ("TripodRoller", {"bearing": 1, "max_substep": 3.125e-7}, 1e-4),
+}
+
+
+def work_precision(out, runs=5, fresh=True, log=print):
+    """Run the ladder; write work_precision.{md,csv,png}; returns the rows."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    refs = {}
+    for model, (name, sv, dt) in REFERENCES.items():
+        r = time_runs(ensure_fmu(name), [{"sv": sv, "dt": dt, "stop": STOP}], runs=1)[0]
+        refs[model] = orders_of(r["y"], dt)
+        log(f"reference {model}: order 3 {refs[model][3][0]:.4f} N at {refs[model][3][1]:.2f} deg")
+    rows = []
+    lad = ladder()
+    by_fmu = {}
+    for i, (label, name, sv, dt, default) in enumerate(lad):
+        by_fmu.setdefault(name, []).append(i)
+    timed = {}
+    for name, idx in by_fmu.items():
+        cases = [{"sv": lad[i][2], "dt": lad[i][3], "stop": STOP} for i in idx]
+        for i, r in zip(idx, time_runs(ensure_fmu(name), cases, runs=runs)):
+            timed[i] = r
+    for i, (label, name, sv, dt, default) in enumerate(lad):
+        model = label.split(",")[0]
+        r = timed[i]
+        o = orders_of(r["y"], dt)
+        err = rel_err(o, refs[model])
+        whole = fresh_process_time(ensure_fmu(name), sv, dt, runs) if fresh else float("nan")
+        setting = ", ".join(f"{k}={v:g}" for k, v in sv.items() if k != "bearing") or "defaults"
+        rows.append({"model": label, "setting": f"{setting}, dt={dt:g}", "default": default,
+                     "in_process_s": r["wall"], "whole_process_s": whole,
+                     "err_order1": err[1], "err_order3": err[3]})
+        log(f"{label:34s} {rows[-1]['setting']:34s} {r['wall']:.4f} s  err3 {err[3]:.2e}")
+    # Pareto front over every model and setting, per model family
+    for fam in sorted({r["model"].split(",")[0] for r in rows}):
+        mine = [r for r in rows if r["model"].startswith(fam)]
+        front = pareto([(r["in_process_s"], max(r["err_order3"], 1e-12)) for r in mine])
+        for j, r in enumerate(mine):
+            r["pareto"] = j in front
+    detail = {m: rel_err(refs[m], refs["contact bearing 1"])[3] for m in refs}
+    _write_wp(out, rows, detail)
+    return rows, detail
+
+
+def _write_wp(out, rows, detail):
+    import csv
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    keys = ["model", "setting", "default", "pareto", "in_process_s", "whole_process_s",
+            "err_order1", "err_order3"]
+    with open(out / "work_precision.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=keys)
+        w.writeheader()
+        w.writerows({k: r[k] for k in keys} for r in rows)
+    lines = ["| model | setting | default | Pareto | in-process [s] | whole process [s] | "
+             "error order 1 | error order 3 |", "|---|---|---|---|---|---|---|---|"]
+    for r in rows:
+        lines.append(f"| {r['model']} | {r['setting']} | {'yes' if r['default'] else ''} | "
+                     f"{'yes' if r['pareto'] else ''} | {r['in_process_s']:.4f} | "
+                     f"{r['whole_process_s']:.2f} | {r['err_order1']:.1e} | {r['err_order3']:.1e} |")
+    lines += ["", "Distance of each model's converged order 3 from the most detailed one "
+              "(lumped bearing): " + ", ".join(f"{m} {100 * e:.2f} %" for m, e in detail.items())]
+    (out / "work_precision.md").write_text("\n".join(lines) + "\n")
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    for label in dict.fromkeys(r["model"] for r in rows):
+        rs = [r for r in rows if r["model"] == label]
+        ax.loglog([r["in_process_s"] for r in rs], [max(r["err_order3"], 1e-7) for r in rs],
+                  "o-", label=label)
+    for r in rows:
+        if r["pareto"]:
+            ax.loglog(r["in_process_s"], max(r["err_order3"], 1e-7), "ks", mfc="none", ms=11)
+        if r["default"]:
+            ax.loglog(r["in_process_s"], max(r["err_order3"], 1e-7), "r*", ms=14)
+    ax.plot([], [], "ks", mfc="none", label="Pareto front (per model)")
+    ax.plot([], [], "r*", label="default settings")
+    ax.set(xlabel="wall time of two whirl cycles, in process after warm-up [s]",
+           ylabel="relative error of order 3 of Fz' [-]",
+           title="Work-precision: run time against order-3 error")
+    ax.grid(alpha=0.3, which="both")
+    ax.legend(fontsize=7)
+    fig.tight_layout()
+    fig.savefig(out / "work_precision.png", dpi=110)
+    plt.close(fig)
+
+
+def breakdown(runs=5, dt=1e-4):
+    """Where the time of one two-cycle run of the default contact scene goes [s]:
+    FMI boundary (bare slave), the slave adapter, the model's Python, the numba kernel."""
+    sys.path.insert(0, str(ROOT / "fmu_src"))
+    from tripod_model import kernel as K
+    from tripod_model.model import JointModel
+    n = int(round(STOP / dt))
+    bare = time_runs(bare_fmu(), [{"sv": {}, "dt": dt, "stop": STOP}], runs, read=("Fz",))[0]["wall"]
+    fmu = time_runs(ensure_fmu("TripodRoller"), [{"sv": {}, "dt": dt, "stop": STOP}], runs,
+                    read=("Fz",))[0]["wall"]
+    model_t, kernel_t = [], []
+    orig = K.run_substeps
+    for _ in range(runs + 1):
+        m = JointModel({})
+        p = m.p
+        acc = [0.0]
+
+        def timed(*a):
+            t0 = time.perf_counter()
+            orig(*a)
+            acc[0] += time.perf_counter() - t0
+        K.run_substeps = timed
+        try:
+            t0 = time.perf_counter()
+            for _ in range(n):
+                m.step(dt, p["theta"], p["omega"], p["F_press"])
+            model_t.append(time.perf_counter() - t0)
+            kernel_t.append(acc[0])
+        finally:
+            K.run_substeps = orig
+    model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
+    return {"FMI boundary (bare slave)": bare,
+            "slave adapter (inputs, outputs, checks)": max(fmu - model - bare, 0.0),
+            "model Python (per-step setup)": model - kernel,
+            "numba kernel": kernel, "total through FMPy": fmu}
