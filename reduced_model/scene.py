@@ -97,8 +97,9 @@ PARAMS: tuple[Param, ...] = (
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C),
-    Param("integrator", 1, "1", 0, 1,
-          "0 linearly implicit Euler, 1 the same extrapolated to 2nd order (Richardson)",
+    Param("integrator", 1, "1", 0, 2,
+          "1 linearly implicit Euler extrapolated to 2nd order (Richardson, default), "
+          "0 linearly implicit Euler, 2 explicit (symplectic) Euler for comparison",
           kind="int", models=_C),
     Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_C),
     Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_C),

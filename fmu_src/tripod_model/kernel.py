@@ -13,11 +13,14 @@ from .jit import njit
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_LEN) = range(27)
+ P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_LEN) = range(30)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
-# radial offset of the roller from the trunnion axis along x (lumped bearing), its rate
-(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_LEN) = range(7)
+# radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
+# lumped bearing only: radial offset w along e2 = a x e1 and tilts b1, b2 about e1, e2
+# (e1 = the pressing direction normal to the trunnion axis), with their rates
+(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
+NV = 5   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
 
@@ -173,12 +176,39 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
 
 
 @njit
-def substep(Y, P, theta, w, F_press, x0, h, L, res):
+def solve_small(A, b, n):
+    """Solve A x = b in place (b <- x) for the leading n x n block; Gaussian elimination with
+    partial pivoting (A is small and well conditioned: mass minus h times a friction Jacobian)."""
+    for k in range(n):
+        piv = k
+        for i in range(k + 1, n):
+            if abs(A[i, k]) > abs(A[piv, k]):
+                piv = i
+        if piv != k:
+            for j in range(n):
+                A[k, j], A[piv, j] = A[piv, j], A[k, j]
+            b[k], b[piv] = b[piv], b[k]
+        for i in range(k + 1, n):
+            f = A[i, k] / A[k, k]
+            for j in range(k, n):
+                A[i, j] -= f * A[k, j]
+            b[i] -= f * b[k]
+    for k in range(n - 1, -1, -1):
+        acc = b[k]
+        for j in range(k + 1, n):
+            acc -= A[k, j] * b[j]
+        b[k] = acc / A[k, k]
+
+
+@njit
+def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     """One linearly implicit Euler substep of h [s] on the state Y (in place).
 
-    Velocities: (M - h J) dv = h Q, with J the friction Jacobian (the friction slope
-    mu f_n / v_st against the roller's mass and spin inertia is the stiff part); positions then
-    move with the new velocities; the driving motion is taken at the end of the substep.
+    Velocities v = (ud, om[, wd, b1d, b2d]): (M - h J + h^2 K) dv = h (Q - h K v), with J the
+    friction Jacobian (the friction slope mu f_n / v_st against the roller's mass and inertia is
+    the stiff part) and K the needle row's stiffness (lumped bearing); positions then move with
+    the new velocities; the driving motion is taken at the end of the substep.
+    G (NV x 3), A (NV x NV), b (NV) are work arrays.
     """
     m = P[P_M]
     Is = P[P_IS]
@@ -196,32 +226,44 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res):
     ud = Y[Y_UD]
     e = Y[Y_E]
     ed = Y[Y_ED]
-    # roller centre c = Q + u a (+ e x_hat, the lumped bearing's radial give)
-    cx = x0 + u * ax + e
-    cy = u * ay
-    cz = L[9] + u * az
-    vx = ud * ax + u * adx + ed
-    vy = ud * ay + u * ady
-    vz = L[10] + ud * az + u * adz
-    # roller angular velocity: trunnion's tilt rate a x da/dt plus the spin about a
     om = Y[Y_OM]
-    wx = ay * adz - az * ady + om * ax
-    wy = az * adx - ax * adz + om * ay
-    wz = ax * ady - ay * adx + om * az
+    # e1: pressing direction normal to the trunnion axis; e2 = a x e1
+    e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
+    ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+    e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
+    e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
+    wo, wod = Y[Y_W], Y[Y_WD]
+    b1d, b2d = Y[Y_B1D], Y[Y_B2D]
+    # roller centre c = Q + u a + e x_hat + w e2 (e, w: the lumped bearing's radial give)
+    cx = x0 + u * ax + e + wo * e2x
+    cy = u * ay + wo * e2y
+    cz = L[9] + u * az + wo * e2z
+    vx = ud * ax + u * adx + ed + wod * e2x
+    vy = ud * ay + u * ady + wod * e2y
+    vz = L[10] + ud * az + u * adz + wod * e2z
+    # roller angular velocity: trunnion's tilt rate a x da/dt, spin about a, own tilt rates
+    wx = ay * adz - az * ady + om * ax + b1d * e1x + b2d * e2x
+    wy = az * adx - ax * adz + om * ay + b1d * e1y + b2d * e2y
+    wz = ax * ady - ay * adx + om * az + b1d * e1z + b2d * e2z
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     fx, fy, fz = res[0], res[1], res[2]
+    mx, my, mz = res[3], res[4], res[5]
     nx, ny = res[6], res[7]
-    # generalized forces on (u, om): Q_u = f.a, Q_om = M.a
-    Qu = fx * ax + fy * ay + fz * az
-    Qo = res[3] * ax + res[4] * ay + res[5] * az
-    # slip sensitivities: d v_t/d ud = P_t a, d v_t/d om = a x (r n)
+    rnx, rny = r * nx, r * ny
+    # slip sensitivities of the unknowns (rows of G): d v_t / d v_i
     an = ax * nx + ay * ny
-    gux = ax - an * nx
-    guy = ay - an * ny
-    guz = az
-    gox = -az * r * ny
-    goy = az * r * nx
-    goz = r * (ax * ny - ay * nx)
+    G[0, 0], G[0, 1], G[0, 2] = ax - an * nx, ay - an * ny, az          # ud: P_t a
+    G[1, 0], G[1, 1], G[1, 2] = -az * rny, az * rnx, ax * rny - ay * rnx  # om: a x r n
+    e2n = e2x * nx + e2y * ny
+    G[2, 0], G[2, 1], G[2, 2] = e2x - e2n * nx, e2y - e2n * ny, e2z      # wd: P_t e2
+    G[3, 0], G[3, 1], G[3, 2] = -e1z * rny, e1z * rnx, e1x * rny - e1y * rnx  # b1d: e1 x r n
+    G[4, 0], G[4, 1], G[4, 2] = -e2z * rny, e2z * rnx, e2x * rny - e2y * rnx  # b2d: e2 x r n
+    # generalized forces
+    b[0] = fx * ax + fy * ay + fz * az
+    b[1] = mx * ax + my * ay + mz * az
+    b[2] = fx * e2x + fy * e2y + fz * e2z
+    b[3] = mx * e1x + my * e1y + mz * e1z
+    b[4] = mx * e2x + my * e2y + mz * e2z
     # friction Jacobian D = -(slope t t^T + mu fn g/|v_t| (I - t t^T)), t = v_t/|v_t|
     vt = res[13]
     fn = res[9]
@@ -232,11 +274,20 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res):
         iso = res[15]
         tx, ty, tz = 0.0, 0.0, 0.0
     aniso = res[15] - iso
-    gu_t = gux * tx + guy * ty + guz * tz
-    go_t = gox * tx + goy * ty + goz * tz
-    Juu = -(iso * (gux * gux + guy * guy + guz * guz) + aniso * gu_t * gu_t)
-    Joo = -(iso * (gox * gox + goy * goy + goz * goz) + aniso * go_t * go_t)
-    Juo = -(iso * (gux * gox + guy * goy + guz * goz) + aniso * gu_t * go_t)
+    if P[P_INTEG] == 2.0:
+        iso = 0.0      # explicit (symplectic) Euler, for comparison: no friction Jacobian
+        aniso = 0.0
+    nv = 5 if lumped else 2
+    for i in range(nv):
+        gi_t = G[i, 0] * tx + G[i, 1] * ty + G[i, 2] * tz
+        for j in range(nv):
+            gj_t = G[j, 0] * tx + G[j, 1] * ty + G[j, 2] * tz
+            gg = G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2]
+            A[i, j] = h * (iso * gg + aniso * gi_t * gj_t)      # -h J
+    A[0, 0] += m
+    A[1, 1] += Is
+    # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
+    b[0] -= m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
     # needle bearing (lumped): the row as a compliant joint (section 2.4.2 lumped)
     Fr = 0.0
     kr = 0.0
@@ -251,33 +302,56 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res):
         if P[P_FRICN] > 0.5 and q > 0.0:
             # axial sliding of the roller on the needles, mu_needle, tanh law
             gn = math.tanh(3.0 * (ud - L[12]) / P[P_VST])
-            Qu -= P[P_MUN] * q * gn
-            Juu -= P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
+            b[0] -= P[P_MUN] * q * gn
+            if P[P_INTEG] != 2.0:
+                A[0, 0] += h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
         if P[P_ROLLR] > 0.5 and q > 0.0:
             # Eq. (12): rolling force mu_r P per needle, acting on the bore (radius r_bore)
             # against the roller's spin relative to the trunnion
             vr = (om - L[13]) * P[P_RB]
             grl = math.tanh(3.0 * vr / P[P_VST])
-            Qo -= P[P_MUR] * q * P[P_RB] * grl
-            Joo -= P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
-    # velocity update (M - h J) dv = h Q
+            b[1] -= P[P_MUR] * q * P[P_RB] * grl
+            if P[P_INTEG] != 2.0:
+                A[1, 1] += h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
+        # tangent stiffness of the row: across the load (w) and in tilt (line contacts of
+        # length l: radial stiffness times l^2/12), implicit like the friction
+        kw = kr * P[P_KWR]
+        kt2 = kr * P[P_LT]
+        kt1 = kt2 * P[P_KWR]
+        It = P[P_IT]
+        # the trunnion's angular acceleration a x a'' drags the roller through the tilt springs
+        alx = ay * L[8] - az * L[7]
+        aly = az * L[6] - ax * L[8]
+        alz = ax * L[7] - ay * L[6]
+        b[2] -= kw * (wo + h * wod)
+        b[3] -= kt1 * (Y[Y_B1] + h * b1d) + It * (alx * e1x + aly * e1y + alz * e1z)
+        b[4] -= kt2 * (Y[Y_B2] + h * b2d) + It * (alx * e2x + aly * e2y + alz * e2z)
+        A[2, 2] += m + h * h * kw
+        A[3, 3] += It + h * h * kt1
+        A[4, 4] += It + h * h * kt2
+    if not trav:
+        # the slide along the axis is held: drop ud from the system
+        for j in range(nv):
+            A[0, j] = 0.0
+            A[j, 0] = 0.0
+        A[0, 0] = 1.0
+        b[0] = 0.0
+    for i in range(nv):
+        b[i] *= h
+    solve_small(A, b, nv)
     if trav:
-        # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
-        Qu_eff = Qu - m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
-        a11 = m - h * Juu
-        a22 = Is - h * Joo
-        a12 = -h * Juo
-        det = a11 * a22 - a12 * a12
-        dud = h * (a22 * Qu_eff - a12 * Qo) / det
-        dom = h * (a11 * Qo - a12 * Qu_eff) / det
-        Y[Y_UD] = ud + dud
-        Y[Y_OM] = om + dom
+        Y[Y_UD] = ud + b[0]
         Y[Y_U] = u + h * Y[Y_UD]
-    else:
-        Y[Y_OM] = om + h * Qo / (Is - h * Joo)
+    Y[Y_OM] = om + b[1]
     if lumped:
-        # radial: the groove pushes the roller in -x, the needles push it back in +x.
-        # Linearly implicit in position and velocity (Hertz + row stiffness), so the stiff
+        Y[Y_WD] = wod + b[2]
+        Y[Y_W] = wo + h * Y[Y_WD]
+        Y[Y_B1D] = b1d + b[3]
+        Y[Y_B1] = Y[Y_B1] + h * Y[Y_B1D]
+        Y[Y_B2D] = b2d + b[4]
+        Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
+        # radial along the pressing direction: the groove pushes the roller in -x, the
+        # needles push it back. Linearly implicit with Hertz + row stiffness, so the stiff
         # radial mode (about 1e4 Hz) needs no artificial damping.
         kh = 0.0
         delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
@@ -289,43 +363,49 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res):
         Y[Y_ED] = ed + ded
         Y[Y_E] = e + h * Y[Y_ED]
 
+
 @njit
-def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2):
+def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b):
     """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
 
     theta [rad], w [rad/s], F_press [N], x0 [m] the pressing offset of the trunnion axis.
     P[P_INTEG] = 1: each substep is extrapolated (Richardson) from one step of h and two of
     h/2, which makes the linearly implicit Euler second order and keeps it L-stable
     (the scheme of LIMEX/SEULEX with two stages); 0: plain linearly implicit Euler.
-    L (14), res (19), Y1, Y2 (Y_LEN) are work arrays.
+    L (14), res (19), Y1, Y2 (Y_LEN), G (NV x 3), A (NV x NV), b (NV) are work arrays.
     """
-    extrap = P[P_INTEG] > 0.5
+    extrap = P[P_INTEG] == 1.0
     for _ in range(n):
         if extrap:
             for i in range(Y_LEN):
                 Y1[i] = Y[i]
-            substep(Y1, P, theta, w, F_press, x0, h, L, res)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res)
+            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b)
             for i in range(Y_LEN):
                 Y[i] = 2.0 * Y[i] - Y1[i]
         else:
-            substep(Y, P, theta, w, F_press, x0, h, L, res)
+            substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b)
     # outputs at the end of the step (forces on the groove = minus those on the roller)
     x = Y[Y_X]
     line_kinematics(x, w, theta, P, L)
     ax, ay, az = L[0], L[1], L[2]
     u = Y[Y_U]
     om = Y[Y_OM]
-    cx = x0 + u * ax + Y[Y_E]
-    cy = u * ay
-    cz = L[9] + u * az
-    vx = Y[Y_UD] * ax + u * L[3] + Y[Y_ED]
-    vy = Y[Y_UD] * ay + u * L[4]
-    vz = L[10] + Y[Y_UD] * az + u * L[5]
-    wx = ay * L[5] - az * L[4] + om * ax
-    wy = az * L[3] - ax * L[5] + om * ay
-    wz = ax * L[4] - ay * L[3] + om * az
+    e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
+    ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+    e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
+    e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
+    wo, wod, b1d, b2d = Y[Y_W], Y[Y_WD], Y[Y_B1D], Y[Y_B2D]
+    cx = x0 + u * ax + Y[Y_E] + wo * e2x
+    cy = u * ay + wo * e2y
+    cz = L[9] + u * az + wo * e2z
+    vx = Y[Y_UD] * ax + u * L[3] + Y[Y_ED] + wod * e2x
+    vy = Y[Y_UD] * ay + u * L[4] + wod * e2y
+    vz = L[10] + Y[Y_UD] * az + u * L[5] + wod * e2z
+    wx = ay * L[5] - az * L[4] + om * ax + b1d * e1x + b2d * e2x
+    wy = az * L[3] - ax * L[5] + om * ay + b1d * e1y + b2d * e2y
+    wz = ax * L[4] - ay * L[3] + om * az + b1d * e1z + b2d * e2z
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     out[O_FX] = -res[0]
     out[O_FY] = -res[1]

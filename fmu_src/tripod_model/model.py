@@ -58,6 +58,12 @@ class ContactModel:
         P[K.P_QSUM] = s10 / s19                                 # sum of needle loads / F_r
         P[K.P_RB] = p["r_bore"]
         P[K.P_CLR] = p["needle_clearance"]
+        # across the load and in tilt (lumped row): stiffness ratios to the radial one
+        s_a = float(np.sum(c ** (1 / 9) * (1 - c * c)))
+        P[K.P_KWR] = s_a / s19                                  # across / along the load
+        P[K.P_LT] = p["l_needle"] ** 2 / 12.0                   # tilt = radial x l^2/12
+        P[K.P_IT] = p["m_roller"] * (3 * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
+                                     + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
         self.P = P
         self.Y = np.zeros(K.Y_LEN)
@@ -66,6 +72,9 @@ class ContactModel:
         self._res = np.zeros(19)
         self._Y1 = np.zeros(K.Y_LEN)
         self._Y2 = np.zeros(K.Y_LEN)
+        self._G = np.zeros((K.NV, 3))
+        self._A = np.zeros((K.NV, K.NV))
+        self._b = np.zeros(K.NV)
         self.time = 0.0
         self.substeps = 0
         self._started = False
@@ -163,7 +172,8 @@ class ContactModel:
         vst, n, h, x0 = self._op
         self.P[K.P_VST] = vst
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
-                       h, n, self.out, self._L, self._res, self._Y1, self._Y2)
+                       h, n, self.out, self._L, self._res, self._Y1, self._Y2,
+                       self._G, self._A, self._b)
         self.substeps += n
         self.time += dt
         return self.outputs(F_press)
