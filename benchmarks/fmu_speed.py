@@ -49,13 +49,20 @@ import os; sys.stdout.flush(); os._exit(0)
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     import json
     rows = json.loads(out.stdout.strip().splitlines()[-1])
-    fresh = []
-    for _ in range(args.runs):
+    def fresh_run(env=None):
         t0 = time.perf_counter()
         subprocess.run([str(Path(sys.executable).parent / "fmpy"), "simulate", fmu,
                         "--output-interval", "1e-4", "--output-file", "/dev/null"],
-                       capture_output=True)
-        fresh.append(time.perf_counter() - t0)
+                       capture_output=True, env=env)
+        return time.perf_counter() - t0
+
+    fresh = [fresh_run() for _ in range(args.runs)]
+    # an empty numba cache: the first fresh process compiles, the second must not
+    import os
+    import tempfile
+    with tempfile.TemporaryDirectory() as cache:
+        env = dict(os.environ, TRIPOD_NUMBA_CACHE=cache)
+        cold, warm = fresh_run(env), fresh_run(env)
     print(f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
           f"{args.runs} runs each, median [min-max]\n")
     print("| case | wall time in one process after warm-up |")
@@ -64,6 +71,8 @@ import os; sys.stdout.flush(); os._exit(0)
         print(f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |")
     print(f"| fresh `fmpy simulate` process, default scene | {statistics.median(fresh):.2f} s "
           f"[{min(fresh):.2f}-{max(fresh):.2f}] |")
+    print(f"| fresh process, empty numba cache: first run (compiles) | {cold:.2f} s |")
+    print(f"| fresh process, same cache: second run (FMPy extracts anew) | {warm:.2f} s |")
 
 
 if __name__ == "__main__":

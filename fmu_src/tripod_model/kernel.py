@@ -227,11 +227,14 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     e = Y[Y_E]
     ed = Y[Y_ED]
     om = Y[Y_OM]
-    # e1: pressing direction normal to the trunnion axis; e2 = a x e1
-    e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
-    ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
-    e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
-    e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
+    # e1: pressing direction normal to the trunnion axis; e2 = a x e1 (lumped bearing only:
+    # with the ideal bearing these freedoms are locked and cost nothing)
+    e1x = e1y = e1z = e2x = e2y = e2z = 0.0
+    if lumped:
+        e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
+        ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+        e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
+        e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
     wo, wod = Y[Y_W], Y[Y_WD]
     b1d, b2d = Y[Y_B1D], Y[Y_B2D]
     # roller centre c = Q + u a + e x_hat + w e2 (e, w: the lumped bearing's radial give)
@@ -254,16 +257,17 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     an = ax * nx + ay * ny
     G[0, 0], G[0, 1], G[0, 2] = ax - an * nx, ay - an * ny, az          # ud: P_t a
     G[1, 0], G[1, 1], G[1, 2] = -az * rny, az * rnx, ax * rny - ay * rnx  # om: a x r n
-    e2n = e2x * nx + e2y * ny
-    G[2, 0], G[2, 1], G[2, 2] = e2x - e2n * nx, e2y - e2n * ny, e2z      # wd: P_t e2
-    G[3, 0], G[3, 1], G[3, 2] = -e1z * rny, e1z * rnx, e1x * rny - e1y * rnx  # b1d: e1 x r n
-    G[4, 0], G[4, 1], G[4, 2] = -e2z * rny, e2z * rnx, e2x * rny - e2y * rnx  # b2d: e2 x r n
     # generalized forces
     b[0] = fx * ax + fy * ay + fz * az
     b[1] = mx * ax + my * ay + mz * az
-    b[2] = fx * e2x + fy * e2y + fz * e2z
-    b[3] = mx * e1x + my * e1y + mz * e1z
-    b[4] = mx * e2x + my * e2y + mz * e2z
+    if lumped:
+        e2n = e2x * nx + e2y * ny
+        G[2, 0], G[2, 1], G[2, 2] = e2x - e2n * nx, e2y - e2n * ny, e2z      # wd: P_t e2
+        G[3, 0], G[3, 1], G[3, 2] = -e1z * rny, e1z * rnx, e1x * rny - e1y * rnx  # b1d
+        G[4, 0], G[4, 1], G[4, 2] = -e2z * rny, e2z * rnx, e2x * rny - e2y * rnx  # b2d
+        b[2] = fx * e2x + fy * e2y + fz * e2z
+        b[3] = mx * e1x + my * e1y + mz * e1z
+        b[4] = mx * e2x + my * e2y + mz * e2z
     # friction Jacobian D = -(slope t t^T + mu fn g/|v_t| (I - t t^T)), t = v_t/|v_t|
     vt = res[13]
     fn = res[9]
