@@ -28,27 +28,14 @@ def main():
     ap.add_argument("--runs", type=int, default=5)
     args = ap.parse_args()
     fmu = str(ensure_fmu())
-    # in-process timing needs the FMU's own copy: run this loop in a child that imports fmpy
-    code = f"""
-import json, statistics, sys, time
-from fmpy import simulate_fmu, read_model_description, extract
-md = read_model_description({fmu!r}); d = extract({fmu!r})
-cases = {CASES!r}
-res = []
-for name, sv in cases:
-    simulate_fmu(d, model_description=md, start_values=sv, stop_time=0.2, output_interval=1e-4)
-    ts = []
-    for _ in range({args.runs}):
-        t0 = time.perf_counter()
-        simulate_fmu(d, model_description=md, start_values=sv, stop_time=0.2, output_interval=1e-4)
-        ts.append(time.perf_counter() - t0)
-    res.append((name, statistics.median(ts), min(ts), max(ts)))
-print(json.dumps(res))
-import os; sys.stdout.flush(); os._exit(0)
-"""
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    import json
-    rows = json.loads(out.stdout.strip().splitlines()[-1])
+    # one fresh process loads the built FMU, warms up (numba cache load), then times whole
+    # two-cycle runs: instantiate, initialise, 2000 x (doStep + getReal of every output)
+    from harness.bench import time_runs
+    outs = ["Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
+            "roller_spin"]
+    res = time_runs(fmu, [{"sv": sv, "dt": 1e-4, "stop": 0.2} for _, sv in CASES],
+                    runs=args.runs, read=outs)
+    rows = [(name, r["wall"], min(r["walls"]), max(r["walls"])) for (name, _), r in zip(CASES, res)]
     def fresh_run(env=None):
         t0 = time.perf_counter()
         subprocess.run([str(Path(sys.executable).parent / "fmpy"), "simulate", fmu,

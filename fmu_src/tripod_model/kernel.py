@@ -68,9 +68,15 @@ def line_kinematics(x, w, theta, P, out):
     """Q, a and their first and second time derivatives at whirl angle x, whirl rate w.
 
     out[0:3] a, [3:6] da/dt, [6:9] d2a/dt2, [9] Qz, [10] dQz/dt, [11] d2Qz/dt2,
-    [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a.
+    [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a,
+    [14:17] the (x, w, theta) they were computed for (a one-entry cache; NaN = empty).
     Central differences in x (step HX), chain rule with constant w within a substep.
     """
+    if out[14] == x and out[15] == w and out[16] == theta:
+        return   # same whirl angle as the last call (the extrapolated step visits x + h twice)
+    out[14] = x
+    out[15] = w
+    out[16] = theta
     s = P[P_S]
     pitch = P[P_PITCH] > 0.5
     roll = P[P_ROLL] > 0.5
@@ -91,10 +97,14 @@ def line_kinematics(x, w, theta, P, out):
     out[9] = q0
     out[10] = (qp - qm) * i1
     out[11] = (qp - 2.0 * q0 + qm) * i2
-    ax = P[P_AXIAL] > 0.5
-    out[12] = (trunnion_axial(x + HX, theta, s, ax) - trunnion_axial(x - HX, theta, s, ax)) * i1
-    yw = P[P_YAW] > 0.5
-    out[13] = (trunnion_yaw(x + HX, theta, yw) - trunnion_yaw(x - HX, theta, yw)) * i1
+    if P[P_BEAR] > 0.5:   # the trunnion's own slide and spin matter only to the needles
+        ax = P[P_AXIAL] > 0.5
+        out[12] = (trunnion_axial(x + HX, theta, s, ax) - trunnion_axial(x - HX, theta, s, ax)) * i1
+        yw = P[P_YAW] > 0.5
+        out[13] = (trunnion_yaw(x + HX, theta, yw) - trunnion_yaw(x - HX, theta, yw)) * i1
+    else:
+        out[12] = 0.0
+        out[13] = 0.0
 
 
 @njit
@@ -376,7 +386,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     P[P_INTEG] = 1: each substep is extrapolated (Richardson) from one step of h and two of
     h/2, which makes the linearly implicit Euler second order and keeps it L-stable
     (the scheme of LIMEX/SEULEX with two stages); 0: plain linearly implicit Euler.
-    L (14), res (19), Y1, Y2 (Y_LEN), G (NV x 3), A (NV x NV), b (NV) are work arrays.
+    L (17), res (19), Y1, Y2 (Y_LEN), G (NV x 3), A (NV x NV), b (NV) are work arrays.
     """
     extrap = P[P_INTEG] == 1.0
     for _ in range(n):

@@ -68,7 +68,7 @@ class ContactModel:
         self.P = P
         self.Y = np.zeros(K.Y_LEN)
         self.out = np.zeros(K.O_LEN)
-        self._L = np.zeros(14)
+        self._L = np.full(17, np.nan)   # line kinematics + its cache key
         self._res = np.zeros(19)
         self._Y1 = np.zeros(K.Y_LEN)
         self._Y2 = np.zeros(K.Y_LEN)
@@ -121,8 +121,9 @@ class ContactModel:
         - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
           substeps across it keep order 3 converged to about 0.02 % (2nd-order integrator);
         - traverse: the roller's slide along the trunnion is locked by the friction slope
-          3 mu F / v_st against its mass; the extrapolated step keeps h * rate <= 1 to stay in
-          its asymptotic (2nd-order) range, which the convergence test needs;
+          3 mu F / v_st against its mass; the extrapolated step must stay near
+          its asymptotic range: h * rate <= 1.5 keeps halving h below a 0.1 % change in
+          order 3 (measured 0.07 % at 1.6, 0.06 % at 1.33);
         - at least 2000 substeps a whirl cycle.
         """
         p = self.p
@@ -138,7 +139,7 @@ class ContactModel:
                 h = min(h, v_st / (2 * omega * R) / 80.0)
         if p["traverse"] and F_press > 0 and p["friction_groove"] and p["mu_groove"] > 0:
             rate = 3.0 * p["mu_groove"] * F_press / (v_st * p["m_roller"])
-            h = min(h, 1.0 / rate)
+            h = min(h, 1.5 / rate)
         return max(h, 1e-7)
 
     def start(self, theta, omega, F_press=0.0):
