@@ -5,22 +5,19 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 """
 import copy
 import math
-import pickle
 import traceback
 
-from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
-                       Fmi2Variability, Integer, Real)
+from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import check_value, params_for
-from reduced_model.scene import OUTPUTS
+from reduced_model.scene import check_value
+from slavekit import PickleState, register_table
 from tripod_model.model import JointModel
 
-_TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 _INPUTS = ("theta", "omega", "F_press", "torque")
 
 
-class TripodRoller(Fmi2Slave):
+class TripodRoller(PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
                    "trunnion motions as driving constraints, Hertz contact, tanh friction, "
@@ -31,23 +28,7 @@ class TripodRoller(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self._params = params_for("contact")
-        for p in self._params:
-            setattr(self, p.name, p.default)
-            if p.causality == "input":
-                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.input,
-                                     variability=Fmi2Variability.continuous,
-                                     description=p.description)
-            else:
-                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.parameter,
-                                     variability=Fmi2Variability.fixed,
-                                     description=p.description)
-            self.register_variable(var)
-        for name, _unit, desc in OUTPUTS:
-            setattr(self, name, 0.0)
-            self.register_variable(Real(name, causality=Fmi2Causality.output,
-                                        variability=Fmi2Variability.continuous,
-                                        initial=Fmi2Initial.exact, description=desc))
+        self._params = register_table(self, "contact")
         self.model = None
         self._checked = None
 
@@ -75,14 +56,6 @@ class TripodRoller(Fmi2Slave):
         super()._set_fmu_state(state["vars"])
         if state["model"] is not None and self.model is not None:
             self.model.set_state(copy.deepcopy(state["model"]))
-
-    @staticmethod
-    def _fmu_state_to_bytes(state):
-        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
-
-    @staticmethod
-    def _fmu_state_from_bytes(data):
-        return pickle.loads(data)
 
     def do_step(self, current_time, step_size):
         if self.model is None:

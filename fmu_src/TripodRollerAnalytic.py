@@ -5,23 +5,21 @@ contact FMU when only the thrust excitation is needed.  The whirl angle integrat
 """
 import copy
 import math
-import pickle
 import traceback
 
-from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Slave,
-                       Fmi2Variability, Integer, Real)
+from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import OUTPUTS, check_value, params_for, pressing_load, validate
+from reduced_model.scene import check_value, pressing_load, validate
 from reduced_model.thrust import Thrust
+from slavekit import PickleState, register_table
 
-_TYPES = {"real": Real, "bool": Boolean, "int": Integer}
 _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
 
 
-class TripodRollerAnalytic(Fmi2Slave):
+class TripodRollerAnalytic(PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
                    "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), plus the "
@@ -30,23 +28,7 @@ class TripodRollerAnalytic(Fmi2Slave):
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self._params = params_for("analytic")
-        for p in self._params:
-            setattr(self, p.name, p.default)
-            if p.causality == "input":
-                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.input,
-                                     variability=Fmi2Variability.continuous,
-                                     description=p.description)
-            else:
-                var = _TYPES[p.kind](p.name, causality=Fmi2Causality.parameter,
-                                     variability=Fmi2Variability.fixed, description=p.description)
-            self.register_variable(var)
-        for name, _unit, desc in OUTPUTS:
-            if name in _OUT:
-                setattr(self, name, 0.0)
-                self.register_variable(Real(name, causality=Fmi2Causality.output,
-                                            variability=Fmi2Variability.continuous,
-                                            initial=Fmi2Initial.exact, description=desc))
+        self._params = register_table(self, "analytic", _OUT)
         self._scene = None
         self._x = [0.0]   # whirl angle of each roller [rad]
 
@@ -70,14 +52,6 @@ class TripodRollerAnalytic(Fmi2Slave):
         self._x = list(state["x"])
         self._scene = copy.deepcopy(state["scene"])
         self._key = None
-
-    @staticmethod
-    def _fmu_state_to_bytes(state):
-        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
-
-    @staticmethod
-    def _fmu_state_from_bytes(data):
-        return pickle.loads(data)
 
     def do_step(self, current_time, step_size):
         if self._scene is None:

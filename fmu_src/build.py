@@ -17,13 +17,15 @@ PACKAGES = (FMU_SRC / "tripod_model", ROOT / "reduced_model")
 SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
           "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py"}
 # the analytic FMU needs the reduced model only
-BUNDLE = {"TripodRoller": PACKAGES, "TripodRollerAnalytic": (ROOT / "reduced_model",)}
+KIT = FMU_SRC / "slavekit.py"      # what both slaves share
+BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
+          "TripodRollerAnalytic": (ROOT / "reduced_model", KIT)}
 
 
 def _sources(name):
     files = [SLAVES[name], Path(__file__)]
     for pkg in BUNDLE[name]:
-        files += [f for f in pkg.rglob("*.py")]
+        files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
     return files
 
 

@@ -211,6 +211,36 @@ def solve_small(A, b, n):
 
 
 @njit
+def roller_motion(Y, x0, L, lumped):
+    """Roller centre c [m], its velocity v [m/s] and angular velocity w [rad/s] from the state
+    and the trunnion line L, plus the row axes e1 (pressing direction normal to the trunnion
+    axis) and e2 = a x e1 (zero with the ideal bearing, whose extra freedoms are locked).
+
+    c = Q + u a + e x_hat + w_o e2; w = a x da/dt + om a + b1' e1 + b2' e2.
+    """
+    ax, ay, az = L[0], L[1], L[2]
+    adx, ady, adz = L[3], L[4], L[5]
+    e1x = e1y = e1z = e2x = e2y = e2z = 0.0
+    if lumped:
+        e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
+        ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
+        e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
+        e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
+    u, ud, om = Y[Y_U], Y[Y_UD], Y[Y_OM]
+    wo, wod, b1d, b2d = Y[Y_W], Y[Y_WD], Y[Y_B1D], Y[Y_B2D]
+    cx = x0 + u * ax + Y[Y_E] + wo * e2x
+    cy = u * ay + wo * e2y
+    cz = L[9] + u * az + wo * e2z
+    vx = ud * ax + u * adx + Y[Y_ED] + wod * e2x
+    vy = ud * ay + u * ady + wod * e2y
+    vz = L[10] + ud * az + u * adz + wod * e2z
+    wx = ay * adz - az * ady + om * ax + b1d * e1x + b2d * e2x
+    wy = az * adx - ax * adz + om * ay + b1d * e1y + b2d * e2y
+    wz = ax * ady - ay * adx + om * az + b1d * e1z + b2d * e2z
+    return cx, cy, cz, vx, vy, vz, wx, wy, wz, e1x, e1y, e1z, e2x, e2y, e2z
+
+
+@njit
 def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     """One linearly implicit Euler substep of h [s] on the state Y (in place).
 
@@ -231,33 +261,15 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     Y[Y_X] = x
     line_kinematics(x, w, theta, P, L)
     ax, ay, az = L[0], L[1], L[2]
-    adx, ady, adz = L[3], L[4], L[5]
     u = Y[Y_U]
     ud = Y[Y_UD]
     e = Y[Y_E]
     ed = Y[Y_ED]
     om = Y[Y_OM]
-    # e1: pressing direction normal to the trunnion axis; e2 = a x e1 (lumped bearing only:
-    # with the ideal bearing these freedoms are locked and cost nothing)
-    e1x = e1y = e1z = e2x = e2y = e2z = 0.0
-    if lumped:
-        e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
-        ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
-        e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
-        e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
     wo, wod = Y[Y_W], Y[Y_WD]
     b1d, b2d = Y[Y_B1D], Y[Y_B2D]
-    # roller centre c = Q + u a + e x_hat + w e2 (e, w: the lumped bearing's radial give)
-    cx = x0 + u * ax + e + wo * e2x
-    cy = u * ay + wo * e2y
-    cz = L[9] + u * az + wo * e2z
-    vx = ud * ax + u * adx + ed + wod * e2x
-    vy = ud * ay + u * ady + wod * e2y
-    vz = L[10] + ud * az + u * adz + wod * e2z
-    # roller angular velocity: trunnion's tilt rate a x da/dt, spin about a, own tilt rates
-    wx = ay * adz - az * ady + om * ax + b1d * e1x + b2d * e2x
-    wy = az * adx - ax * adz + om * ay + b1d * e1y + b2d * e2y
-    wz = ax * ady - ay * adx + om * az + b1d * e1z + b2d * e2z
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, lumped)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     fx, fy, fz = res[0], res[1], res[2]
     mx, my, mz = res[3], res[4], res[5]
@@ -401,25 +413,10 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
         else:
             substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b)
     # outputs at the end of the step (forces on the groove = minus those on the roller)
-    x = Y[Y_X]
-    line_kinematics(x, w, theta, P, L)
-    ax, ay, az = L[0], L[1], L[2]
-    u = Y[Y_U]
+    line_kinematics(Y[Y_X], w, theta, P, L)
     om = Y[Y_OM]
-    e1x, e1y, e1z = 1.0 - ax * ax, -ax * ay, -ax * az
-    ne = math.sqrt(e1x * e1x + e1y * e1y + e1z * e1z)
-    e1x, e1y, e1z = e1x / ne, e1y / ne, e1z / ne
-    e2x, e2y, e2z = ay * e1z - az * e1y, az * e1x - ax * e1z, ax * e1y - ay * e1x
-    wo, wod, b1d, b2d = Y[Y_W], Y[Y_WD], Y[Y_B1D], Y[Y_B2D]
-    cx = x0 + u * ax + Y[Y_E] + wo * e2x
-    cy = u * ay + wo * e2y
-    cz = L[9] + u * az + wo * e2z
-    vx = Y[Y_UD] * ax + u * L[3] + Y[Y_ED] + wod * e2x
-    vy = Y[Y_UD] * ay + u * L[4] + wod * e2y
-    vz = L[10] + Y[Y_UD] * az + u * L[5] + wod * e2z
-    wx = ay * L[5] - az * L[4] + om * ax + b1d * e1x + b2d * e2x
-    wy = az * L[3] - ax * L[5] + om * ay + b1d * e1y + b2d * e2y
-    wz = ax * L[4] - ay * L[3] + om * az + b1d * e1z + b2d * e2z
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, P[P_BEAR] > 0.5)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     out[O_FX] = -res[0]
     out[O_FY] = -res[1]

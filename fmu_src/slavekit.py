@@ -1,0 +1,43 @@
+"""What both pythonfmu slaves share: variables generated from the parameter table, and an FMU
+state serialised with pickle (numpy arrays included).  Bundled into each FMU's resources/."""
+import pickle
+
+from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
+
+from reduced_model.scene import OUTPUTS, params_for
+
+_TYPES = {"real": Real, "int": Integer, "bool": Boolean}
+
+
+def register_table(slave, model, outputs=None):
+    """Register the ``model``'s parameters (inputs continuous, parameters fixed) with their
+    defaults, and the outputs named in ``outputs`` (all of OUTPUTS if None), on ``slave``.
+    Returns the parameter declarations."""
+    params = params_for(model)
+    for p in params:
+        setattr(slave, p.name, p.default)
+        if p.causality == "input":
+            caus, var = Fmi2Causality.input, Fmi2Variability.continuous
+        else:
+            caus, var = Fmi2Causality.parameter, Fmi2Variability.fixed
+        slave.register_variable(_TYPES[p.kind](p.name, causality=caus, variability=var,
+                                               description=p.description))
+    for name, _unit, desc in OUTPUTS:
+        if outputs is None or name in outputs:
+            setattr(slave, name, 0.0)
+            slave.register_variable(Real(name, causality=Fmi2Causality.output,
+                                         variability=Fmi2Variability.continuous,
+                                         initial=Fmi2Initial.exact, description=desc))
+    return params
+
+
+class PickleState:
+    """FMU state to and from bytes with pickle (pythonfmu's default JSON drops numpy arrays)."""
+
+    @staticmethod
+    def _fmu_state_to_bytes(state):
+        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
+
+    @staticmethod
+    def _fmu_state_from_bytes(data):
+        return pickle.loads(data)
