@@ -8,7 +8,7 @@ import numpy as np
 
 from reduced_model import scene as scene_mod
 from reduced_model.analysis import analytic_report
-from reduced_model.orders import last_cycle_orders, order_spectrum
+from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
 from .runs import run_fmu

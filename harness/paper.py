@@ -13,7 +13,7 @@ import numpy as np
 from reduced_model import scene as scene_mod
 from reduced_model.analysis import analytic_report
 from reduced_model.friction import mu_tanh
-from reduced_model.orders import last_cycle_orders, order_spectrum
+from reduced_model.orders import order_spectrum
 from reduced_model.thrust import time_series, transition_velocity
 
 from .fmus import ensure_fmu

@@ -2,7 +2,6 @@
 result CSV and a plot, generated into docs/ (make docs); a test re-runs and checks the CSV."""
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import numpy as np

@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from reduced_model import scene as scene_mod
-from reduced_model.orders import last_cycle_orders, order_spectrum
+from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
 from .runs import FmuRunError, run_fmu

@@ -1,7 +1,6 @@
 """tripod-thrust paper: figures and a claims table computed from runs."""
 import re
 
-import pytest
 
 import harness.paper as paper
 

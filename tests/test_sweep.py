@@ -1,5 +1,4 @@
 """Sweeps on dask give exactly the serial results, locally and on a distributed cluster."""
-import math
 import subprocess
 import sys
 

@@ -6,7 +6,6 @@ direction, y = trunnion axis (nominal).  Forces are reported from the roller on 
 """
 import math
 
-import numpy as np
 
 from .jit import njit
 
