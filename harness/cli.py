@@ -6,6 +6,7 @@ import json
 import math
 import sys
 
+from harness.runs import FmuRunError
 from reduced_model import scene as scene_mod
 
 
@@ -240,14 +241,8 @@ def main(argv=None) -> int:
     args = ap.parse_args(argv)
     try:
         return args.func(args)
-    except (ValueError, CliError) as e:
-        print(f"tripod-thrust {args.command}: error: {e}", file=sys.stderr)
-        return 2
-    except Exception as e:   # an FMU run that failed: one line with its logged reason
-        from harness.runs import FmuRunError
-        if not isinstance(e, FmuRunError):
-            raise
-        print(f"tripod-thrust {args.command}: error: {e}", file=sys.stderr)
+    except (ValueError, CliError, FmuRunError) as e:   # bad input, or an FMU run that failed
+        print(f"tripod-thrust {args.command}: error: {' '.join(str(e).split())}", file=sys.stderr)
         return 2
 
 
