@@ -5,19 +5,18 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 """
 import copy
 import math
-import traceback
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model.scene import check_value
-from slavekit import PickleState, register_table
+from slavekit import Guarded, PickleState, register_table
 from tripod_model.model import JointModel
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
 
 
-class TripodRoller(PickleState, Fmi2Slave):
+class TripodRoller(Guarded, PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
                    "trunnion motions as driving constraints, Hertz contact, tanh friction, "
@@ -35,16 +34,10 @@ class TripodRoller(PickleState, Fmi2Slave):
     def _param_values(self):
         return {p.name: getattr(self, p.name) for p in self._params}
 
-    def exit_initialization_mode(self):
-        try:
-            self.model = JointModel(self._param_values())
-            self.log(self.model.info(self.theta, self.omega, self.F_press, self.torque),
-                     Fmi2Status.ok, "logAll")
-        except ValueError as e:
-            # rejected parameters: log the reason, then fail initialisation (non-OK status)
-            self.log(f"invalid parameter: {e}", Fmi2Status.error)
-            self.model = None
-            raise RuntimeError(f"invalid parameter: {e}") from None
+    def _initialise(self):
+        self.model = JointModel(self._param_values())
+        self.log(self.model.info(self.theta, self.omega, self.F_press, self.torque),
+                 Fmi2Status.ok, "logAll")
 
     # FMU state: the registered variables plus the model's internal arrays, deep-copied, so a
     # rollback (get state, run, set state, run) reproduces the outputs bit for bit
@@ -57,28 +50,18 @@ class TripodRoller(PickleState, Fmi2Slave):
         if state["model"] is not None and self.model is not None:
             self.model.set_state(copy.deepcopy(state["model"]))
 
-    def do_step(self, current_time, step_size):
-        if self.model is None:
-            self.log("doStep before a successful initialisation", Fmi2Status.error)
+    def _advance(self, current_time, step_size):
+        key = (self.theta, self.omega, self.F_press, self.torque)
+        if key != self._checked:       # validate inputs only when they change
+            for name, value in zip(_INPUTS, key):
+                check_value(name, value)
+            self._checked = key
+        out = self.model.step(step_size, float(self.theta), float(self.omega),
+                              float(self.F_press), float(self.torque))
+        if not math.isfinite(sum(out.values())):   # one test for every output
+            self.log(f"non-finite output at t = {current_time:g} s; step rejected",
+                     Fmi2Status.error)
             return False
-        try:
-            key = (self.theta, self.omega, self.F_press, self.torque)
-            if key != self._checked:       # validate inputs only when they change
-                for name, value in zip(_INPUTS, key):
-                    check_value(name, value)
-                self._checked = key
-            out = self.model.step(step_size, float(self.theta), float(self.omega),
-                                  float(self.F_press), float(self.torque))
-            if not math.isfinite(sum(out.values())):   # one test for every output
-                self.log(f"non-finite output at t = {current_time:g} s; step rejected",
-                         Fmi2Status.error)
-                return False
-            for k, v in out.items():
-                setattr(self, k, v)
-            return True
-        except ValueError as e:
-            self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
-            return False
-        except Exception:   # no exception may escape into the host
-            self.log(traceback.format_exc(), Fmi2Status.error)
-            return False
+        for k, v in out.items():
+            setattr(self, k, v)
+        return True

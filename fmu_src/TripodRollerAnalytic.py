@@ -5,21 +5,19 @@ contact FMU when only the thrust excitation is needed.  The whirl angle integrat
 """
 import copy
 import math
-import traceback
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
-from pythonfmu.enums import Fmi2Status
 
 from reduced_model.scene import check_value, pressing_load, validate
 from reduced_model.thrust import Thrust
-from slavekit import PickleState, register_table
+from slavekit import Guarded, PickleState, register_table
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
 
 
-class TripodRollerAnalytic(PickleState, Fmi2Slave):
+class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
                    "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), plus the "
@@ -32,12 +30,8 @@ class TripodRollerAnalytic(PickleState, Fmi2Slave):
         self._scene = None
         self._x = [0.0]   # whirl angle of each roller [rad]
 
-    def exit_initialization_mode(self):
-        try:
-            self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")
-        except ValueError as e:
-            self.log(f"invalid parameter: {e}", Fmi2Status.error)
-            raise RuntimeError(f"invalid parameter: {e}") from None
+    def _initialise(self):
+        self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")
         n = self._scene["n_rollers"]
         self._x = [2.0 * math.pi * i / 3.0 for i in range(n)]   # rollers at 0, 120, 240 deg
         self._key = None
@@ -53,39 +47,31 @@ class TripodRollerAnalytic(PickleState, Fmi2Slave):
         self._scene = copy.deepcopy(state["scene"])
         self._key = None
 
-    def do_step(self, current_time, step_size):
-        if self._scene is None:
-            self.log("doStep before a successful initialisation", Fmi2Status.error)
-            return False
-        try:
-            key = (self.theta, self.omega, self.F_press, self.torque)
-            if key != self._key:       # operating point changed: check and re-derive constants
-                for name, value in zip(_INPUTS, key):
-                    check_value(name, value)
-                    self._scene[name] = float(value)
-                self._thrust = Thrust(self._scene)
-                self._key = key
-            w = self._scene["omega"] * step_size
-            at = self._thrust.at
-            fz = []
-            for i in range(len(self._x)):
-                self._x[i] += w
-                fz.append(at(self._x[i])[0])
-            _, _, ft, V, phi, _ = at(self._x[0])
-            F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
-            self.Fz = fz[0]
-            self.Fz_joint = sum(fz)
-            self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
-            self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
-            self.Fy = ft * math.cos(phi)
-            self.Fx = F
-            self.dFx = 0.0
-            self.Fz_mod = self.Fz          # Fx = F_press in the reduced model
-            self.slip_speed = abs(V)
-            return True
-        except ValueError as e:
-            self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
-            return False
-        except Exception:
-            self.log(traceback.format_exc(), Fmi2Status.error)
-            return False
+    def _advance(self, current_time, step_size):
+        key = (self.theta, self.omega, self.F_press, self.torque)
+        if key != self._key:       # operating point changed: check and re-derive constants
+            for name, value in zip(_INPUTS, key):
+                check_value(name, value)
+                self._scene[name] = float(value)
+            self._thrust = Thrust(self._scene)
+            self._key = key
+        w = self._scene["omega"] * step_size
+        at = self._thrust.at
+        fz = []
+        for i in range(len(self._x)):
+            self._x[i] += w
+            r = at(self._x[i])
+            if i == 0:
+                _, _, ft, V, phi, _ = r
+            fz.append(r[0])
+        F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
+        self.Fz = fz[0]
+        self.Fz_joint = sum(fz)
+        self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
+        self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
+        self.Fy = ft * math.cos(phi)
+        self.Fx = F
+        self.dFx = 0.0
+        self.Fz_mod = self.Fz          # Fx = F_press in the reduced model
+        self.slip_speed = abs(V)
+        return True

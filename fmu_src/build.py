@@ -42,7 +42,7 @@ def is_stale(name="TripodRoller") -> bool:
     return any(s.stat().st_mtime > t for s in _sources(name))
 
 
-def _units_and_ranges(xml: bytes, model: str) -> bytes:
+def _units_and_ranges(xml: bytes) -> bytes:
     from reduced_model.scene import BY_NAME
     from reduced_model.scene import OUTPUTS
     out_units = {n: u for n, u, _ in OUTPUTS}
@@ -96,7 +96,7 @@ def build(name="TripodRoller", force=False) -> Path:
                     continue
                 data = zin.read(item.filename)
                 if item.filename == "modelDescription.xml":
-                    data = _units_and_ranges(data, name)
+                    data = _units_and_ranges(data)
                 zout.writestr(item, data)
         shutil.move(str(tmp_fmu), dest)
     return dest

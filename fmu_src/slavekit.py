@@ -1,8 +1,10 @@
 """What both pythonfmu slaves share: variables generated from the parameter table, and an FMU
 state serialised with pickle (numpy arrays included).  Bundled into each FMU's resources/."""
 import pickle
+import traceback
 
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
+from pythonfmu.enums import Fmi2Status
 
 from reduced_model.scene import OUTPUTS, params_for
 
@@ -29,6 +31,39 @@ def register_table(slave, model, outputs=None):
                                          variability=Fmi2Variability.continuous,
                                          initial=Fmi2Initial.exact, description=desc))
     return params
+
+
+class Guarded:
+    """The project's error contract for a slave; subclasses supply ``_initialise()`` (raise
+    ValueError on a bad parameter) and ``_advance(t, h)`` (raise ValueError on a bad input).
+
+    A bad parameter is logged and fails initialisation (pythonfmu reports it as fatal); a bad
+    input or any other exception is logged and the step returns Discard.  Nothing escapes into
+    the host, and no output is changed by a failed step.
+    """
+    _ready = False
+
+    def exit_initialization_mode(self):
+        self._ready = False
+        try:
+            self._initialise()
+        except ValueError as e:
+            self.log(f"invalid parameter: {e}", Fmi2Status.error)
+            raise RuntimeError(f"invalid parameter: {e}") from None
+        self._ready = True
+
+    def do_step(self, current_time, step_size):
+        if not self._ready:
+            self.log("doStep before a successful initialisation", Fmi2Status.error)
+            return False
+        try:
+            return self._advance(current_time, step_size)
+        except ValueError as e:
+            self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
+            return False
+        except Exception:   # no exception may escape into the host
+            self.log(traceback.format_exc(), Fmi2Status.error)
+            return False
 
 
 class PickleState:

@@ -31,9 +31,8 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
                "stop_time": stop_time, "output_interval": output_interval,
                "outputs": outputs, "out": out,
                "inputs": {k: [float(x) for x in v] for k, v in (inputs or {}).items()}}
-        env = dict(os.environ)
         p = subprocess.run([sys.executable, "-m", "harness.fmu_worker"], input=json.dumps(req),
-                           capture_output=True, text=True, timeout=timeout, env=env,
+                           capture_output=True, text=True, timeout=timeout,
                            cwd=tmp)
         status_file = out + ".json"
         if not os.path.exists(status_file):

@@ -131,8 +131,9 @@ def run_case(name, sv, inputs, stop, dt, expect_ok):
         for k, v in inputs.items():
             if k != "time":
                 svb[k] = max(v)
-    if "torque" in svb and svb["torque"] > 0:
-        svb["F_press"] = svb["torque"] / (3 * 0.022)
+    if svb.get("torque", 0) > 0:
+        s = svb.get("s", scene_mod.BY_NAME["s"].default)
+        svb["F_press"] = scene_mod.pressing_load(svb.get("F_press", 0.0), svb["torque"], s)
     row["bound"] = bool(np.all(np.abs(r["Fz"]) <= _bound(svb, r["Fx"])))
     omega = sv.get("omega", scene_mod.BY_NAME["omega"].default)
     whirl = None

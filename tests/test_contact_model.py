@@ -51,4 +51,12 @@ def test_zero_angle_zero_speed_zero_load_finite():
         r = simulate(over, duration=0.05, **over)
         for k in ("Fx", "Fz", "Fz_mod", "slip_speed"):
             assert np.all(np.isfinite(r[k])), (over, k)
-        assert np.max(np.abs(r["Fz"])) < 1e-6 + 0.06 * np.max(np.abs(r["Fx"])), over
+        if "F_press" in over:
+            # no pressing load: only the free roller's own inertia reaches the groove, bounded
+            # by its mass times the largest acceleration along the groove, m s tan(theta) w^2
+            p = r["params"]
+            bound = p["m_roller"] * p["s"] * math.tan(p["theta"]) * p["omega"] ** 2
+            assert 0.0 < np.max(np.abs(r["Fz"])) < bound, (over, bound)
+        else:
+            # nothing moves the trunnion (theta = 0) or nothing moves at all (omega = 0)
+            assert np.max(np.abs(r["Fz"])) < 1e-9, over

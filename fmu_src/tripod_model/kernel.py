@@ -131,7 +131,6 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     if delta <= 0.0:
         return
     fn = P[P_K] * delta ** 1.5                # Eq. (10) with Table 1, n = 3/2
-    fn_d = fn
     # velocity of the roller material at the contact point p = c + r n
     px = vx + (wy * 0.0 - wz * r * ny)
     py = vy + (wz * r * nx - wx * 0.0)
@@ -143,8 +142,8 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     vt = math.sqrt(tx * tx + ty * ty + tz * tz)
     mu = P[P_MU]
     vst = P[P_VST]
-    fx = -fn_d * nx
-    fy = -fn_d * ny
+    fx = -fn * nx
+    fy = -fn * ny
     fz = 0.0
     mx = 0.0
     my = 0.0
@@ -175,7 +174,7 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     res[3] = mx
     res[4] = my
     res[5] = mz
-    res[9] = fn_d
+    res[9] = fn
     res[10] = tx
     res[11] = ty
     res[12] = tz

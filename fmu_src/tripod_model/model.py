@@ -224,6 +224,7 @@ def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1
     rec["t"] = t
     rec["whirl"] = omega * t
     rec["substeps"] = m.rollers[0].substeps
+    rec["params"] = m.p
     return rec
 
 
