@@ -4,7 +4,7 @@ Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
 
 numba keys its on-disk cache on the source file's folder, and FMPy extracts an FMU to a new
 temporary folder each run, so the bundled kernel would recompile (about 3 s) on every run.
-A cache locator keyed on the package name and the source's content hash (numba's own stamp)
+A cache locator keyed on the package name and the content hash of the package's sources
 keeps one cache for the source tree and every extracted copy: ~/.cache/tripod-thrust/numba,
 or TRIPOD_NUMBA_CACHE.
 """
@@ -27,6 +27,23 @@ CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
 
 
+_HASH = None
+
+
+def _package_hash():
+    """Content hash of every .py file of this package (the same in every extracted copy)."""
+    global _HASH
+    if _HASH is None:
+        import hashlib
+        h = hashlib.sha256()
+        for name in sorted(os.listdir(_PKG_DIR)):
+            if name.endswith(".py"):
+                with open(os.path.join(_PKG_DIR, name), "rb") as f:
+                    h.update(name.encode() + b"\0" + f.read())
+        _HASH = h.hexdigest()
+    return _HASH
+
+
 def _install_stable_locator():
     """Put a path-independent cache locator first for this package's functions only."""
     try:
@@ -46,6 +63,11 @@ def _install_stable_locator():
 
         def get_cache_path(self):
             return self._cache_path
+
+        def get_source_stamp(self):
+            # numba stamps only the function's own file; a kernel calls into other files of
+            # the package (needles.py, linalg.py), so stamp the whole package's source
+            return _package_hash()
 
         @classmethod
         def from_function(cls, py_func, py_file):

@@ -8,6 +8,8 @@ import math
 
 
 from .jit import njit
+from .linalg import solve_small  # noqa: F401  (re-exported)
+from . import needles as NDL
 
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
@@ -19,7 +21,7 @@ from .jit import njit
 # lumped bearing only: radial offset w along e2 = a x e1 and tilts b1, b2 about e1, e2
 # (e1 = the pressing direction normal to the trunnion axis), with their rates
 (Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
-NV = 5   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d
+NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
 
@@ -184,31 +186,6 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
 
 
 @njit
-def solve_small(A, b, n):
-    """Solve A x = b in place (b <- x) for the leading n x n block; Gaussian elimination with
-    partial pivoting (A is small and well conditioned: mass minus h times a friction Jacobian)."""
-    for k in range(n):
-        piv = k
-        for i in range(k + 1, n):
-            if abs(A[i, k]) > abs(A[piv, k]):
-                piv = i
-        if piv != k:
-            for j in range(n):
-                A[k, j], A[piv, j] = A[piv, j], A[k, j]
-            b[k], b[piv] = b[piv], b[k]
-        for i in range(k + 1, n):
-            f = A[i, k] / A[k, k]
-            for j in range(k, n):
-                A[i, j] -= f * A[k, j]
-            b[i] -= f * b[k]
-    for k in range(n - 1, -1, -1):
-        acc = b[k]
-        for j in range(k + 1, n):
-            acc -= A[k, j] * b[j]
-        b[k] = acc / A[k, k]
-
-
-@njit
 def roller_motion(Y, x0, L, lumped):
     """Roller centre c [m], its velocity v [m/s] and angular velocity w [rad/s] from the state
     and the trunnion line L, plus the row axes e1 (pressing direction normal to the trunnion
@@ -239,7 +216,28 @@ def roller_motion(Y, x0, L, lumped):
 
 
 @njit
-def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
+def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
+    """Needle-resolved bearing: the roller's pose and velocity and the trunnion's motion in the
+    trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]."""
+    NP, SP, FN, AN, FR, AR, ND, G6, gn, gt = NW[0], NW[1], NW[2], NW[3], NW[4], NW[5], NW[6], NW[7], NW[8], NW[9]
+    ax, az = L[0], L[2]
+    E, W, u = Y[Y_E], Y[Y_W], Y[Y_U]
+    Ed, Wd, ud = Y[Y_ED], Y[Y_WD], Y[Y_UD]
+    # roller centre: u a + E x_hat + W e2 from Q; x_hat = e1x e1 + ax a in T
+    o1, o2, o3 = E * e1x, W, u + E * ax
+    vo1, vo2, vo3 = Ed * e1x, Wd, ud + Ed * ax
+    b1, b2 = Y[Y_B1], Y[Y_B2]
+    ib = 1.0 / math.sqrt(1.0 + b1 * b1 + b2 * b2)
+    d_tr = trunnion_axial(x, theta, P[P_S], P[P_AXIAL] > 0.5)
+    g = L[11]   # the frame origin Q accelerates along the groove (z) only
+    NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, o1, o2, o3, vo1, vo2, vo3,
+                      b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
+                      d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
+                      SP, FN, AN, FR, AR, ND, G6, gn, gt)
+
+
+@njit
+def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     """One linearly implicit Euler substep of h [s] on the state Y (in place).
 
     Velocities v = (ud, om[, wd, b1d, b2d]): (M - h J + h^2 K) dv = h (Q - h K v), with J the
@@ -252,7 +250,9 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     Is = P[P_IS]
     r = P[P_R]
     trav = P[P_TRAV] > 0.5
-    lumped = P[P_BEAR] > 0.5
+    lumped = P[P_BEAR] == 1.0
+    resolved = P[P_BEAR] == 2.0
+    sixdof = lumped or resolved
     # driving motion at the end of the substep (backward in the driving terms, so the
     # rolling target is not lagged by a whole substep)
     x = Y[Y_X] + h * w
@@ -267,7 +267,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     wo, wod = Y[Y_W], Y[Y_WD]
     b1d, b2d = Y[Y_B1D], Y[Y_B2D]
     (cx, cy, cz, vx, vy, vz, wx, wy, wz,
-     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, lumped)
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, sixdof)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     fx, fy, fz = res[0], res[1], res[2]
     mx, my, mz = res[3], res[4], res[5]
@@ -280,7 +280,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     # generalized forces
     b[0] = fx * ax + fy * ay + fz * az
     b[1] = mx * ax + my * ay + mz * az
-    if lumped:
+    if sixdof:
         e2n = e2x * nx + e2y * ny
         G[2, 0], G[2, 1], G[2, 2] = e2x - e2n * nx, e2y - e2n * ny, e2z      # wd: P_t e2
         G[3, 0], G[3, 1], G[3, 2] = -e1z * rny, e1z * rnx, e1x * rny - e1y * rnx  # b1d
@@ -288,6 +288,9 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
         b[2] = fx * e2x + fy * e2y + fz * e2z
         b[3] = mx * e1x + my * e1y + mz * e1z
         b[4] = mx * e2x + my * e2y + mz * e2z
+    if resolved:
+        G[5, 0], G[5, 1], G[5, 2] = 1.0 - nx * nx, -nx * ny, 0.0             # ed: P_t x_hat
+        b[5] = fx
     # friction Jacobian D = -(slope t t^T + mu fn g/|v_t| (I - t t^T)), t = v_t/|v_t|
     vt = res[13]
     fn = res[9]
@@ -301,7 +304,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
     if P[P_INTEG] == 2.0:
         iso = 0.0      # explicit (symplectic) Euler, for comparison: no friction Jacobian
         aniso = 0.0
-    nv = 5 if lumped else 2
+    nv = 6 if resolved else 5 if lumped else 2
     for i in range(nv):
         gi_t = G[i, 0] * tx + G[i, 1] * ty + G[i, 2] * tz
         for j in range(nv):
@@ -353,6 +356,30 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
         A[2, 2] += m + h * h * kw
         A[3, 3] += It + h * h * kt1
         A[4, 4] += It + h * h * kt2
+    if resolved:
+        # needle-resolved bearing: every needle contact on the roller, with its tangent,
+        # evaluated at the start of the substep (needles and roller step on the same state)
+        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        FR, AR = NW[4], NW[5]
+        It = P[P_IT]
+        alx = ay * L[8] - az * L[7]
+        aly = az * L[6] - ax * L[8]
+        alz = ax * L[7] - ay * L[6]
+        b[3] -= It * (alx * e1x + aly * e1y + alz * e1z)
+        b[4] -= It * (alx * e2x + aly * e2y + alz * e2z)
+        kh = 0.0
+        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
+        if delta > 0.0:
+            kh = 1.5 * fn / delta * nx * nx       # the groove's Hertz stiffness along x
+        b[5] -= h * kh * ed
+        A[2, 2] += m
+        A[3, 3] += It
+        A[4, 4] += It
+        A[5, 5] += m + h * h * kh
+        for i in range(6):
+            b[i] += FR[i]
+            for j in range(6):
+                A[i, j] += AR[i, j]
     if not trav:
         # the slide along the axis is held: drop ud from the system
         for j in range(nv):
@@ -367,6 +394,16 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
         Y[Y_UD] = ud + b[0]
         Y[Y_U] = u + h * Y[Y_UD]
     Y[Y_OM] = om + b[1]
+    if resolved:
+        Y[Y_WD] = wod + b[2]
+        Y[Y_W] = wo + h * Y[Y_WD]
+        Y[Y_B1D] = b1d + b[3]
+        Y[Y_B1] = Y[Y_B1] + h * Y[Y_B1D]
+        Y[Y_B2D] = b2d + b[4]
+        Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
+        Y[Y_ED] = ed + b[5]
+        Y[Y_E] = e + h * Y[Y_ED]
+        NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[10])
     if lumped:
         Y[Y_WD] = wod + b[2]
         Y[Y_W] = wo + h * Y[Y_WD]
@@ -389,33 +426,37 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b):
 
 
 @njit
-def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b):
+def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW):
     """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
 
     theta [rad], w [rad/s], F_press [N], x0 [m] the pressing offset of the trunnion axis.
     P[P_INTEG] = 1: each substep is extrapolated (Richardson) from one step of h and two of
     h/2, which makes the linearly implicit Euler second order and keeps it L-stable
     (the scheme of LIMEX/SEULEX with two stages); 0: plain linearly implicit Euler.
-    L (17), res (19), Y1, Y2 (Y_LEN), G (NV x 3), A (NV x NV), b (NV) are work arrays.
+    L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
+    NW the needle work arrays (model.ContactModel; used by the resolved bearing only).
     """
+    ny = Y.shape[0]
     extrap = P[P_INTEG] == 1.0
     for _ in range(n):
         if extrap:
-            for i in range(Y_LEN):
+            for i in range(ny):
                 Y1[i] = Y[i]
-            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b)
-            for i in range(Y_LEN):
+            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+            for i in range(ny):
                 Y[i] = 2.0 * Y[i] - Y1[i]
         else:
-            substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b)
+            substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
     # outputs at the end of the step (forces on the groove = minus those on the roller)
     line_kinematics(Y[Y_X], w, theta, P, L)
     om = Y[Y_OM]
     (cx, cy, cz, vx, vy, vz, wx, wy, wz,
      e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, P[P_BEAR] > 0.5)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    if P[P_BEAR] == 2.0:   # needle loads at the output instant (diagnostics)
+        resolved_forces(Y, P, NW, theta, Y[Y_X], 0.0, L, e1x, e1y, e1z, e2x, e2y, e2z)
     out[O_FX] = -res[0]
     out[O_FY] = -res[1]
     out[O_FZ] = -res[2]

@@ -13,7 +13,7 @@ from reduced_model import scene as scene_mod
 from reduced_model.friction import v_st_auto
 from reduced_model.sliding import amplitude_A, amplitude_B
 
-from . import hertz, kernel as K
+from . import hertz, kernel as K, needles as NDL
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 
@@ -66,12 +66,14 @@ class ContactModel:
                                      + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
         self.P = P
-        self.Y = np.zeros(K.Y_LEN)
+        self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
+        self.NW = self._needle_work(C_line)
+        self.Y = np.zeros(K.Y_LEN + NDL.N_F * self.n_needle_bodies)
         self.out = np.zeros(K.O_LEN)
         self._L = np.full(17, np.nan)   # line kinematics + its cache key
         self._res = np.zeros(19)
-        self._Y1 = np.zeros(K.Y_LEN)
-        self._Y2 = np.zeros(K.Y_LEN)
+        self._Y1 = np.zeros_like(self.Y)
+        self._Y2 = np.zeros_like(self.Y)
         self._G = np.zeros((K.NV, 3))
         self._A = np.zeros((K.NV, K.NV))
         self._b = np.zeros(K.NV)
@@ -80,6 +82,52 @@ class ContactModel:
         self._started = False
         self._key = None   # inputs of the last step, and what was derived from them
         self._op = None
+
+    def _needle_work(self, C_line):
+        """Parameter vector and work arrays of the needle-resolved bearing (needles.py);
+        one-element placeholders when the scene does not resolve the needles."""
+        p = self.p
+        n = max(self.n_needle_bodies, 1)
+        ns = p["n_spheres"]
+        NP = np.zeros(NDL.N_LEN)
+        rn = 0.5 * p["d_needle"]
+        NP[NDL.N_N] = self.n_needle_bodies
+        NP[NDL.N_NS] = ns
+        NP[NDL.N_RN] = rn
+        NP[NDL.N_RT] = p["r_trunnion"]
+        NP[NDL.N_RBR] = self.row_bore_radius()
+        NP[NDL.N_LN] = p["l_needle"]
+        mn = p["rho_needle"] * math.pi * rn ** 2 * p["l_needle"]
+        NP[NDL.N_MN] = mn
+        NP[NDL.N_I1] = mn * (3 * rn ** 2 + p["l_needle"] ** 2) / 12.0   # cylinder, transverse
+        NP[NDL.N_I3] = 0.5 * mn * rn ** 2                                  # about its axis
+        NP[NDL.N_CS] = C_line / ns               # Table 1: C = 8.15e4 l^(8/9) / N_s per sphere
+        NP[NDL.N_DC] = self.neighbour_distance()
+        NP[NDL.N_ZAX] = p["needle_axial_clearance"]
+        NP[NDL.N_HW] = 0.5 * p["roller_width"]
+        NP[NDL.N_MU] = p["mu_needle"]
+        NP[NDL.N_MUR] = p["mu_rolling"]
+        NP[NDL.N_FRIC] = 1.0 if p["friction_needle"] else 0.0
+        NP[NDL.N_ROLLR] = 1.0 if p["rolling_resistance"] else 0.0
+        return (NP, np.zeros((n, ns, 3)), np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros(6),
+                np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((6, 3)), np.zeros(6),
+                np.zeros(6), np.zeros(6))
+
+    def row_bore_radius(self):
+        """Radius of the needles' outer race [m]: trunnion + needle diameter + the row's radial
+        clearance (r_bore sets the roller's inertia; model.md's 12.5 mm leaves no clearance)."""
+        p = self.p
+        return p["r_trunnion"] + p["d_needle"] + p["needle_clearance"]
+
+    def neighbour_distance(self):
+        """Centre distance [m] at which two neighbouring needles touch: the needle diameter, or
+        less where n_needles of that diameter would over-fill the pitch circle without the
+        row's circumferential play (model.md's 46 x 1.6 mm on 11.705 mm over-fill it by
+        0.11 mm); then the chord of equal spacing less the play shared out."""
+        p = self.p
+        n = p["n_needles"]
+        Rp = p["r_trunnion"] + 0.5 * p["d_needle"] + 0.5 * p["needle_clearance"]
+        return min(p["d_needle"], 2 * Rp * math.sin(math.pi / n) - p["needle_circ_clearance"] / n)
 
     # --- inputs that set the operating point ---
     def v_st(self, theta, omega):
@@ -97,19 +145,39 @@ class ContactModel:
         with the roller at the groove bottom (Hertz approach, plus the needle row if lumped)."""
         p = self.p
         x0 = p["r_groove"] - p["r_roller"] + (max(F_press, 0.0) / self.Kh) ** (2.0 / 3.0)
-        if p["bearing"] == 1:
+        if p["bearing"] >= 1:
             x0 -= self.radial_offset(F_press)
         return x0
 
     def radial_offset(self, F):
         """Static x offset of the roller from the trunnion axis [m] under a radial load F [N]
-        (lumped bearing): the clearance plus the row's approach (F/K_row)^0.9, negative."""
-        if self.p["bearing"] != 1:
+        (lumped bearing; the same estimate starts the resolved one): the clearance plus the
+        row's approach (F/K_row)^0.9, negative."""
+        p = self.p
+        if p["bearing"] == 0:
             return 0.0
-        return -(self.p["needle_clearance"] + (max(F, 0.0) / self.K_row) ** 0.9)
+        if p["bearing"] == 1:
+            return -(p["needle_clearance"] + (max(F, 0.0) / self.K_row) ** 0.9)
+        # resolved: needle j at psi_j is squeezed by -E cos(psi_j) - clearance across its two
+        # races in series; solve sum_j C_line (approach_j / 2)^(10/9) cos(psi_j) = F for E
+        psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
+        c = np.cos(psi)
+        Cl = hertz.needle_line_stiffness(p["n_spheres"], p["l_needle"])
+
+        def load(g):   # g = -E > 0
+            ap = np.maximum(g * c - p["needle_clearance"], 0.0)
+            return float(np.sum(Cl * (0.5 * ap) ** (10 / 9) * c))
+        lo, hi = 0.0, p["needle_clearance"] + 1e-3
+        for _ in range(100):   # bisection: load(g) is monotonic
+            mid = 0.5 * (lo + hi)
+            lo, hi = (mid, hi) if load(mid) < F else (lo, mid)
+        return -0.5 * (lo + hi)
 
     def bearing_load(self):
-        """Radial load carried by the needle row now [N] (lumped bearing; 0 otherwise)."""
+        """Radial load carried by the needle row now [N]: along the pressing direction, the sum
+        over the needles at the last output (resolved), the row law (lumped), 0 (ideal)."""
+        if self.p["bearing"] == 2:
+            return float(np.sum(self.NW[6][:, NDL.D_R1]))
         if self.p["bearing"] != 1:
             return 0.0
         g = -self.Y[K.Y_E] - self.p["needle_clearance"]
@@ -154,7 +222,41 @@ class ContactModel:
         sec2 = 1.0 + (T * math.sin(self.phase)) ** 2
         self.Y[K.Y_OM] = p["s"] * T * c * omega / p["r_roller"] / math.sqrt(sec2)
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
+        if self.n_needle_bodies:
+            self._start_needles(theta)
         self._started = True
+
+    def _start_needles(self, theta):
+        """Needles equally spaced from the pressing direction, each midway between trunnion and
+        bore (equal approach on both races), rolling without slip on both races."""
+        p = self.p
+        n = self.n_needle_bodies
+        Rt, Rb = p["r_trunnion"], self.row_bore_radius()
+        rn = 0.5 * p["d_needle"]
+        E = self.Y[K.Y_E]
+        om = self.Y[K.Y_OM]
+        d0 = K.trunnion_axial(self.phase, theta, p["s"], p["axial"])
+        for j in range(n):
+            psi = 2 * math.pi * j / n
+            c, s = math.cos(psi), math.sin(psi)
+            rho_b = E * c + math.sqrt(Rb ** 2 - (E * s) ** 2)   # bore surface along psi
+            rho = 0.5 * (Rt + rho_b)
+            vc = 0.5 * om * Rb
+            q = K.Y_LEN + NDL.N_F * j
+            self.Y[q:q + NDL.N_F] = (rho * c, rho * s, d0, 0.0, 0.0, -vc * s, vc * c, 0.0,
+                                     0.0, 0.0, om * Rb / (2 * rn))
+
+    def needle_loads(self):
+        """Needle diagnostics at the last output [N], one row per needle: normal loads on the
+        bore, trunnion, neighbours, flange/retainer, and the needle's force on the roller
+        along e1, e2, e3 of the trunnion frame (needles.D_*); positions from needle_positions."""
+        return self.NW[6][:self.n_needle_bodies].copy()
+
+    def needle_positions(self):
+        """(n, 3) needle centres in the trunnion frame (e1 = pressing direction, e3 = the
+        trunnion axis, origin on it at the groove mid-plane) [m]."""
+        q = K.Y_LEN + NDL.N_F * np.arange(self.n_needle_bodies)
+        return np.stack([self.Y[q], self.Y[q + 1], self.Y[q + 2]], axis=1)
 
     def step(self, dt, theta, omega, F_press):
         """Advance by one communication step dt [s] at the given inputs; returns the outputs.
@@ -174,7 +276,7 @@ class ContactModel:
         self.P[K.P_VST] = vst
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
                        h, n, self.out, self._L, self._res, self._Y1, self._Y2,
-                       self._G, self._A, self._b)
+                       self._G, self._A, self._b, self.NW)
         self.substeps += n
         self.time += dt
         return self.outputs(F_press)
@@ -182,11 +284,13 @@ class ContactModel:
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
+                "ND": self.NW[6].copy(),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
     def set_state(self, st: dict) -> None:
         self.Y[:] = st["Y"]
         self.out[:] = st["out"]
+        self.NW[6][:] = st["ND"]
         self.P[K.P_VST] = st["vst"]
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 

@@ -1,0 +1,337 @@
+"""Needle-resolved bearing (bearing = 2): every needle a 6-DOF rigid body of N_s spheres
+(section 2.4.2, Fig. 10), contacts to the trunnion, the roller bore, the neighbouring needles,
+the trunnion flange and the retainer.  Scalar math for numba (see jit.py).
+
+Frame T (the trunnion frame): origin Q (trunnion axis at the groove mid-plane), e3 = a the
+trunnion axis, e1 the pressing direction normal to a, e2 = a x e1.  Relative velocities of two
+bodies are frame-independent, so contacts are evaluated with velocities relative to T; the
+needles feel T's translational acceleration as an inertial force (its rotation, about
+theta w = 11 rad/s, gives forces below 1e-3 of the needle loads and is neglected).
+
+Needle j state, N_F = 11 floats from Y_LEN + 11 j: centre p1, p2, p3 [m], axis tilts t1, t2
+(axis direction ~ (t1, t2, 1)), velocity v1..v3 [m/s], angular velocity w1..w3 [rad/s].
+
+Integration (see kernel.substep): one contact evaluation per substep gives each body its own
+forces and its own tangent (stiffness and friction slope) with the other bodies held; each
+needle then takes a linearly implicit step in its own 6 velocities (6 x 6 solve), the roller
+in its 6.  The needles are 300 times lighter than the roller and their contact modes are at
+about 300 kHz; the implicit step damps those modes instead of resolving them (L-stable), so
+unloaded needles rattling in the clearance stay bounded without any contact damping.
+"""
+import math
+
+from .jit import njit
+from .linalg import solve_small
+
+N_F = 11   # floats per needle in the state vector
+# needle parameter vector NP
+(N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
+ N_MU, N_MUR, N_FRIC, N_ROLLR, N_LEN) = range(18)
+# diagnostics per needle, ND[j, :]
+(D_BORE, D_TRUN, D_NEIGH, D_FLANGE, D_R1, D_R2, D_R3, D_LEN) = range(8)
+# D_BORE, D_TRUN, D_NEIGH, D_FLANGE: summed normal loads [N] on the bore, trunnion, next
+# needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
+
+E10_9 = 10.0 / 9.0
+C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, _accumulate)
+C_NEEDLE = 5.0
+C_PAIR = 2.0     # two needles (eps = 1); 1.0 (plain Jacobi) is unstable, measured
+
+
+@njit
+def _rows_needle(G, r1, r2, r3):
+    """Point-velocity sensitivities of a needle point at r (from the needle centre) to the
+    needle's velocities (v1, v2, v3, w1, w2, w3): rows of G (6 x 3)."""
+    G[0, 0], G[0, 1], G[0, 2] = 1.0, 0.0, 0.0
+    G[1, 0], G[1, 1], G[1, 2] = 0.0, 1.0, 0.0
+    G[2, 0], G[2, 1], G[2, 2] = 0.0, 0.0, 1.0
+    G[3, 0], G[3, 1], G[3, 2] = 0.0, -r3, r2
+    G[4, 0], G[4, 1], G[4, 2] = r3, 0.0, -r1
+    G[5, 0], G[5, 1], G[5, 2] = -r2, r1, 0.0
+
+
+@njit
+def _rows_roller(G, r1, r2, r3, e1x, ax):
+    """The same for a roller point at r from the roller centre, roller unknowns in the order
+    of kernel.substep: ud (along e3), om (about e3), wd (along e2), b1d, b2d (about e1, e2),
+    ed (along global x = e1x e1 + ax e3)."""
+    G[0, 0], G[0, 1], G[0, 2] = 0.0, 0.0, 1.0
+    G[1, 0], G[1, 1], G[1, 2] = -r2, r1, 0.0
+    G[2, 0], G[2, 1], G[2, 2] = 0.0, 1.0, 0.0
+    G[3, 0], G[3, 1], G[3, 2] = 0.0, -r3, r2
+    G[4, 0], G[4, 1], G[4, 2] = r3, 0.0, -r1
+    G[5, 0], G[5, 1], G[5, 2] = e1x, 0.0, ax
+
+
+@njit
+def _accumulate(G, F1, F2, F3, n1, n2, n3, vn, kn, cd, t1, t2, t3, iso, aniso, h, A, b, gn,
+                gt, c):
+    """Add one contact to a body's linearly implicit system (6 unknowns):
+    b += G F - c h kn g_n (n . v_point)   and   A += c (h D + (h^2 kn + h cd) g_n g_n^T),
+    with g_n = G n, cd the normal damping [N s/m], D the friction slope on the tangent plane (iso across the slip, iso +
+    aniso along it, t = slip direction).  F: contact force on this body [N].
+
+    c >= 1 scales the tangent this body takes implicitly.  Each body steps with the other held,
+    so for a contact between two moving bodies A and B the true tangent
+    [g_A; -g_B] k [g_A; -g_B]^T is bounded by (1 + eps) k g_A g_A^T + (1 + 1/eps) k g_B g_B^T;
+    with those factors the block-diagonal implicit matrix dominates the coupled one and the
+    split step stays stable however stiff the contact (eps = 1 between two needles: 2 and 2;
+    roller and needle: C_ROLLER and C_NEEDLE).  With c = 1 two touching needles go unstable."""
+    for i in range(6):
+        gn[i] = G[i, 0] * n1 + G[i, 1] * n2 + G[i, 2] * n3
+        gt[i] = G[i, 0] * t1 + G[i, 1] * t2 + G[i, 2] * t3
+        b[i] += G[i, 0] * F1 + G[i, 1] * F2 + G[i, 2] * F3 - c * h * kn * gn[i] * vn
+    hh = (h * h * kn + h * cd) * c
+    hc = h * c
+    for i in range(6):
+        for j in range(i, 6):
+            gg = G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2] - gn[i] * gn[j]
+            v = hc * (iso * gg + aniso * gt[i] * gt[j]) + hh * gn[i] * gn[j]
+            A[i, j] += v
+            if j != i:
+                A[j, i] += v
+
+
+@njit
+def _friction(f, s1, s2, s3, n1, n2, n3, mu, vst, on):
+    """tanh friction on the slip s projected on the tangent plane of normal n.
+    Returns (friction force on the body whose slip is s [N], unit slip direction t, the
+    implicit coefficients iso [N s/m] across and aniso extra along t)."""
+    sn = s1 * n1 + s2 * n2 + s3 * n3
+    t1, t2, t3 = s1 - sn * n1, s2 - sn * n2, s3 - sn * n3
+    vt = math.sqrt(t1 * t1 + t2 * t2 + t3 * t3)
+    if not on or mu <= 0.0 or f <= 0.0:
+        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+    g = math.tanh(3.0 * vt / vst)
+    if vt > 1e-12:
+        iso = mu * f * g / vt
+        t1, t2, t3 = t1 / vt, t2 / vt, t3 / vt
+    else:
+        iso = mu * f * 3.0 / vst
+        t1 = t2 = t3 = 0.0
+    # implicit part: the secant mu f g / |v_t| in every tangential direction, not the tangent.
+    # Saturated, the tangent along the slip is ~0 and the step would apply the full friction
+    # impulse explicitly: h mu f r_n / I_3 is about 500 rad/s a substep on a needle's spin,
+    # which flips the slip every step.  The secant (>= the tangent for tanh) cannot overshoot.
+    return (-mu * f * g * t1, -mu * f * g * t2, -mu * f * g * t3, t1, t2, t3, iso, 0.0)
+
+
+@njit
+def _normal(f, kn, m, sn):
+    """Normal force [N] with contact damping: elastic f plus cd times the approach rate -sn,
+    cd = 2 sqrt(kn m) (critical for mass m on the contact's tangent stiffness), never pulling.
+    Returns (force, cd); cd = 0 once the damping would pull (the contact then only lets go)."""
+    cd = 2.0 * math.sqrt(kn * m)
+    ft = f - cd * sn
+    if ft < 0.0:
+        return 0.0, 0.0
+    return ft, cd
+
+
+@njit
+def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
+                  wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
+                  SP, FN, AN, FR, AR, ND, G, gn, gt):
+    """Evaluate every needle contact once; fill each needle's system (FN, AN) and the roller's
+    (FR, AR) for a linearly implicit step of h [s] (h = 0: forces only), and ND diagnostics.
+
+    Y[y0:] the needle states; o, vo: roller centre and its velocity in T [m, m/s]; ob: bore axis
+    direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
+    (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
+    om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
+    [m/s^2].  SP (N x N_s x 3) scratch sphere centres; G (6 x 3), gn, gt (6) scratch.
+    """
+    n = int(NP[N_N])
+    ns = int(NP[N_NS])
+    rn = NP[N_RN]
+    Rt = NP[N_RT]
+    Rb = NP[N_RBR]
+    ln = NP[N_LN]
+    mn = NP[N_MN]
+    Cs = NP[N_CS]
+    dc = NP[N_DC]
+    zax = NP[N_ZAX]
+    hw = NP[N_HW]
+    mu = NP[N_MU]
+    mur = NP[N_MUR]
+    fric = NP[N_FRIC] > 0.5
+    ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
+    rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
+    for i in range(6):
+        FR[i] = 0.0
+        for k in range(6):
+            AR[i, k] = 0.0
+    for j in range(n):
+        q = y0 + N_F * j
+        for i in range(6):
+            FN[j, i] = 0.0
+            for k in range(6):
+                AN[j, i, k] = 0.0
+        for i in range(D_LEN):
+            ND[j, i] = 0.0
+        # inertial force of the moving frame
+        FN[j, 0] = -mn * g1
+        FN[j, 1] = -mn * g2
+        FN[j, 2] = -mn * g3
+        t1, t2 = Y[q + 3], Y[q + 4]
+        inv = 1.0 / math.sqrt(1.0 + t1 * t1 + t2 * t2)
+        d1, d2, d3 = t1 * inv, t2 * inv, inv
+        for k in range(ns):
+            sk = ((k + 0.5) / ns - 0.5) * ln
+            SP[j, k, 0] = Y[q] + sk * d1
+            SP[j, k, 1] = Y[q + 1] + sk * d2
+            SP[j, k, 2] = Y[q + 2] + sk * d3
+    for j in range(n):
+        q = y0 + N_F * j
+        p1, p2, p3 = Y[q], Y[q + 1], Y[q + 2]
+        v1, v2, v3 = Y[q + 5], Y[q + 6], Y[q + 7]
+        w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
+        jn = j + 1 if j + 1 < n else 0
+        qn = y0 + N_F * jn
+        for k in range(ns):
+            P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
+            # --- trunnion (convex cylinder about e3, radius Rt) ---
+            rho = math.sqrt(P1 * P1 + P2 * P2)
+            delta = Rt + rn - rho
+            if delta > 0.0:
+                n1, n2 = P1 / rho, P2 / rho                  # onto the needle
+                f = Cs * delta ** E10_9                     # Table 1, n = 10/9
+                kn = E10_9 * f / delta
+                X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3
+                r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+                u1 = v1 + w2 * r3 - w3 * r2                  # needle point velocity
+                u2 = v2 + w3 * r1 - w1 * r3
+                u3 = v3 + w1 * r2 - w2 * r1
+                s1 = u1 + om_tr * X2                         # minus the trunnion's
+                s2 = u2 - om_tr * X1
+                s3 = u3 - dd_tr
+                F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(f, s1, s2, s3, n1, n2, 0.0,
+                                                                mu, vst, fric)
+                fd, cd = _normal(f, kn, ms, s1 * n1 + s2 * n2)
+                F1 += fd * n1
+                F2 += fd * n2
+                _rows_needle(G, r1, r2, r3)
+                _accumulate(G, F1, F2, F3, n1, n2, 0.0, u1 * n1 + u2 * n2, kn, cd,
+                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, 1.0)
+                if rollr:   # Eq. (12), half of mu_r P D/2 at each of the needle's two races
+                    gr = math.tanh(3.0 * rn * (w3 - om_tr) / vst)
+                    FN[j, 5] -= 0.5 * mur * f * rn * gr
+                    AN[j, 5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+                ND[j, D_TRUN] += f
+            # --- roller bore (concave cylinder about the bore axis, radius Rb) ---
+            e1_, e2_, e3_ = P1 - o1, P2 - o2, P3 - o3
+            al = e1_ * ob1 + e2_ * ob2 + e3_ * ob3
+            if abs(al) <= hw:
+                q1, q2, q3 = e1_ - al * ob1, e2_ - al * ob2, e3_ - al * ob3
+                rb = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+                delta = rb + rn - Rb
+                if delta > 0.0:
+                    n1, n2, n3 = -q1 / rb, -q2 / rb, -q3 / rb   # onto the needle
+                    f = Cs * delta ** E10_9
+                    kn = E10_9 * f / delta
+                    X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3 - rn * n3
+                    r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+                    u1 = v1 + w2 * r3 - w3 * r2
+                    u2 = v2 + w3 * r1 - w1 * r3
+                    u3 = v3 + w1 * r2 - w2 * r1
+                    R1, R2, R3 = X1 - o1, X2 - o2, X3 - o3
+                    z1 = vo1 + wr2 * R3 - wr3 * R2            # roller point velocity
+                    z2 = vo2 + wr3 * R1 - wr1 * R3
+                    z3 = vo3 + wr1 * R2 - wr2 * R1
+                    F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(
+                        f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
+                    fd, cd = _normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
+                    F1 += fd * n1
+                    F2 += fd * n2
+                    F3 += fd * n3
+                    _rows_needle(G, r1, r2, r3)
+                    _accumulate(G, F1, F2, F3, n1, n2, n3, u1 * n1 + u2 * n2 + u3 * n3, kn, cd,
+                                tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, C_NEEDLE)
+                    _rows_roller(G, R1, R2, R3, e1x, ax)
+                    _accumulate(G, -F1, -F2, -F3, n1, n2, n3, z1 * n1 + z2 * n2 + z3 * n3,
+                                kn, cd, tt1, tt2, tt3, iso, ani, h, AR, FR, gn, gt, C_ROLLER)
+                    if rollr:
+                        wrel = w3 - wr3
+                        gr = math.tanh(3.0 * rn * wrel / vst)
+                        mr = 0.5 * mur * f * rn * gr
+                        cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+                        FN[j, 5] -= mr
+                        AN[j, 5, 5] += C_NEEDLE * cr
+                        FR[1] += mr
+                        AR[1, 1] += C_ROLLER * cr
+                    ND[j, D_BORE] += f
+                    ND[j, D_R1] -= F1
+                    ND[j, D_R2] -= F2
+                    ND[j, D_R3] -= F3
+            # --- next needle, same sphere index ---
+            Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
+            dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
+            delta = dc - dist
+            if delta > 0.0 and jn != j:
+                n1, n2, n3 = -Q1 / dist, -Q2 / dist, -Q3 / dist   # onto needle j
+                f = Cs * delta ** E10_9
+                kn = E10_9 * f / delta
+                X1, X2, X3 = P1 + 0.5 * Q1, P2 + 0.5 * Q2, P3 + 0.5 * Q3
+                r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+                u1 = v1 + w2 * r3 - w3 * r2
+                u2 = v2 + w3 * r1 - w1 * r3
+                u3 = v3 + w1 * r2 - w2 * r1
+                m1, m2, m3 = Y[qn], Y[qn + 1], Y[qn + 2]
+                R1, R2, R3 = X1 - m1, X2 - m2, X3 - m3
+                W1, W2, W3 = Y[qn + 8], Y[qn + 9], Y[qn + 10]
+                z1 = Y[qn + 5] + W2 * R3 - W3 * R2
+                z2 = Y[qn + 6] + W3 * R1 - W1 * R3
+                z3 = Y[qn + 7] + W1 * R2 - W2 * R1
+                F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(
+                    f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
+                fd, cd = _normal(f, kn, 0.5 * ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
+                F1 += fd * n1
+                F2 += fd * n2
+                F3 += fd * n3
+                _rows_needle(G, r1, r2, r3)
+                _accumulate(G, F1, F2, F3, n1, n2, n3, u1 * n1 + u2 * n2 + u3 * n3, kn, cd,
+                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, C_PAIR)
+                _rows_needle(G, R1, R2, R3)
+                _accumulate(G, -F1, -F2, -F3, n1, n2, n3, z1 * n1 + z2 * n2 + z3 * n3, kn, cd,
+                            tt1, tt2, tt3, iso, ani, h, AN[jn], FN[jn], gn, gt, C_PAIR)
+                ND[j, D_NEIGH] += f
+                ND[jn, D_NEIGH] += f
+        # --- flange (inner end) and retainer (outer end) on the trunnion: axial stops ---
+        z = p3 - d_tr
+        over = abs(z) - zax
+        if over > 0.0:
+            f = Cs * over ** E10_9
+            kn = E10_9 * f / over
+            sg = -1.0 if z > 0.0 else 1.0
+            fd, cd = _normal(f, kn, mn, sg * (v3 - dd_tr))
+            FN[j, 2] += sg * fd - h * kn * (v3 - dd_tr)
+            AN[j, 2, 2] += h * h * kn + h * cd
+            ND[j, D_FLANGE] += f
+
+
+@njit
+def needle_update(Y, y0, NP, h, FN, AN, b):
+    """Linearly implicit step of every needle's velocities and positions from (FN, AN) of
+    needle_forces: (M + h D + h^2 K) dv = h (F - h K v); positions move with the new
+    velocities (tilts: t1' = w2, t2' = -w1).  b (6) is scratch."""
+    n = int(NP[N_N])
+    mn, I1, I3 = NP[N_MN], NP[N_I1], NP[N_I3]
+    for j in range(n):
+        q = y0 + N_F * j
+        A = AN[j]
+        A[0, 0] += mn
+        A[1, 1] += mn
+        A[2, 2] += mn
+        A[3, 3] += I1
+        A[4, 4] += I1
+        A[5, 5] += I3
+        for i in range(6):
+            b[i] = h * FN[j, i]
+        solve_small(A, b, 6)
+        for i in range(6):
+            Y[q + 5 + i] += b[i]
+        Y[q] += h * Y[q + 5]
+        Y[q + 1] += h * Y[q + 6]
+        Y[q + 2] += h * Y[q + 7]
+        Y[q + 3] += h * Y[q + 9]
+        Y[q + 4] -= h * Y[q + 8]
