@@ -220,6 +220,7 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     """Needle-resolved bearing: the roller's pose and velocity and the trunnion's motion in the
     trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]."""
     NP, SP, FN, AN, FR, AR, ND, G6, gn, gt = NW[0], NW[1], NW[2], NW[3], NW[4], NW[5], NW[6], NW[7], NW[8], NW[9]
+    UN, G2, gn2 = NW[11], NW[12], NW[13]
     ax, az = L[0], L[2]
     E, W, u = Y[Y_E], Y[Y_W], Y[Y_U]
     Ed, Wd, ud = Y[Y_ED], Y[Y_WD], Y[Y_UD]
@@ -233,7 +234,7 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, o1, o2, o3, vo1, vo2, vo3,
                       b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
                       d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
-                      SP, FN, AN, FR, AR, ND, G6, gn, gt)
+                      SP, FN, AN, UN, FR, AR, ND, G6, G2, gn, gn2, gt)
 
 
 @njit
@@ -403,7 +404,8 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
         Y[Y_ED] = ed + b[5]
         Y[Y_E] = e + h * Y[Y_ED]
-        NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[10])
+        NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[11], NW[14], NW[15], NW[16],
+                          NW[17])
     if lumped:
         Y[Y_WD] = wod + b[2]
         Y[Y_W] = wo + h * Y[Y_WD]

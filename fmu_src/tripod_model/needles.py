@@ -35,7 +35,6 @@ N_F = 11   # floats per needle in the state vector
 E10_9 = 10.0 / 9.0
 C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, _accumulate)
 C_NEEDLE = 5.0
-C_PAIR = 2.0     # two needles (eps = 1); 1.0 (plain Jacobi) is unstable, measured
 
 
 @njit
@@ -71,12 +70,13 @@ def _accumulate(G, F1, F2, F3, n1, n2, n3, vn, kn, cd, t1, t2, t3, iso, aniso, h
     with g_n = G n, cd the normal damping [N s/m], D the friction slope on the tangent plane (iso across the slip, iso +
     aniso along it, t = slip direction).  F: contact force on this body [N].
 
-    c >= 1 scales the tangent this body takes implicitly.  Each body steps with the other held,
-    so for a contact between two moving bodies A and B the true tangent
+    c >= 1 scales the tangent this body takes implicitly.  The roller and the needles step with
+    each other held, so for a roller-needle contact the true tangent
     [g_A; -g_B] k [g_A; -g_B]^T is bounded by (1 + eps) k g_A g_A^T + (1 + 1/eps) k g_B g_B^T;
-    with those factors the block-diagonal implicit matrix dominates the coupled one and the
-    split step stays stable however stiff the contact (eps = 1 between two needles: 2 and 2;
-    roller and needle: C_ROLLER and C_NEEDLE).  With c = 1 two touching needles go unstable."""
+    with those factors (C_ROLLER, C_NEEDLE) the split implicit matrix dominates the coupled one
+    and the step stays stable however stiff the contact.  Needle-needle contacts are not split
+    (c = 1 and a coupling block, ring_solve): scaled, a touching chain cannot move as one and
+    locks; plainly split, it goes unstable (both measured)."""
     for i in range(6):
         gn[i] = G[i, 0] * n1 + G[i, 1] * n2 + G[i, 2] * n3
         gt[i] = G[i, 0] * t1 + G[i, 1] * t2 + G[i, 2] * t3
@@ -131,7 +131,7 @@ def _normal(f, kn, m, sn):
 @njit
 def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                   wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
-                  SP, FN, AN, FR, AR, ND, G, gn, gt):
+                  SP, FN, AN, UN, FR, AR, ND, G, G2, gn, gn2, gt):
     """Evaluate every needle contact once; fill each needle's system (FN, AN) and the roller's
     (FR, AR) for a linearly implicit step of h [s] (h = 0: forces only), and ND diagnostics.
 
@@ -139,7 +139,8 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
     direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
     (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
     om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
-    [m/s^2].  SP (N x N_s x 3) scratch sphere centres; G (6 x 3), gn, gt (6) scratch.
+    [m/s^2].  UN (N x 6 x 6): coupling block of needle j to needle j+1 in the implicit
+    system.  SP (N x N_s x 3) scratch sphere centres; G, G2 (6 x 3), gn, gn2, gt (6) scratch.
     """
     n = int(NP[N_N])
     ns = int(NP[N_NS])
@@ -167,6 +168,7 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
             FN[j, i] = 0.0
             for k in range(6):
                 AN[j, i, k] = 0.0
+                UN[j, i, k] = 0.0
         for i in range(D_LEN):
             ND[j, i] = 0.0
         # inertial force of the moving frame
@@ -288,12 +290,21 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                 F1 += fd * n1
                 F2 += fd * n2
                 F3 += fd * n3
+                # both needles' own blocks, with the relative approach rate in the predictor,
+                # and the coupling block UN[j] (row j, column jn): the ring is solved
+                # together (ring_solve), so a touching chain moves as one
+                vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
+                _rows_needle(G2, R1, R2, R3)
+                _accumulate(G2, -F1, -F2, -F3, n1, n2, n3, -vrel, kn, cd,
+                            tt1, tt2, tt3, iso, ani, h, AN[jn], FN[jn], gn2, gt, 1.0)
                 _rows_needle(G, r1, r2, r3)
-                _accumulate(G, F1, F2, F3, n1, n2, n3, u1 * n1 + u2 * n2 + u3 * n3, kn, cd,
-                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, C_PAIR)
-                _rows_needle(G, R1, R2, R3)
-                _accumulate(G, -F1, -F2, -F3, n1, n2, n3, z1 * n1 + z2 * n2 + z3 * n3, kn, cd,
-                            tt1, tt2, tt3, iso, ani, h, AN[jn], FN[jn], gn, gt, C_PAIR)
+                _accumulate(G, F1, F2, F3, n1, n2, n3, vrel, kn, cd,
+                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, 1.0)
+                kk = h * h * kn + h * cd - h * iso
+                for i in range(6):
+                    for l in range(6):
+                        UN[j, i, l] -= (h * iso * (G[i, 0] * G2[l, 0] + G[i, 1] * G2[l, 1]
+                                                   + G[i, 2] * G2[l, 2]) + kk * gn[i] * gn2[l])
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
         # --- flange (inner end) and retainer (outer end) on the trunnion: axial stops ---
@@ -310,26 +321,125 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
 
 
 @njit
-def needle_update(Y, y0, NP, h, FN, AN, b):
-    """Linearly implicit step of every needle's velocities and positions from (FN, AN) of
-    needle_forces: (M + h D + h^2 K) dv = h (F - h K v); positions move with the new
-    velocities (tilts: t1' = w2, t2' = -w1).  b (6) is scratch."""
+def _solve6(A, B, nc):
+    """A X = B for a 6 x 6 A and nc columns of B, in place (B <- X); partial pivoting."""
+    for k in range(6):
+        piv = k
+        for i in range(k + 1, 6):
+            if abs(A[i, k]) > abs(A[piv, k]):
+                piv = i
+        if piv != k:
+            for j in range(6):
+                A[k, j], A[piv, j] = A[piv, j], A[k, j]
+            for j in range(nc):
+                B[k, j], B[piv, j] = B[piv, j], B[k, j]
+        inv = 1.0 / A[k, k]
+        for i in range(k + 1, 6):
+            f = A[i, k] * inv
+            if f != 0.0:
+                for j in range(k + 1, 6):
+                    A[i, j] -= f * A[k, j]
+                for j in range(nc):
+                    B[i, j] -= f * B[k, j]
+    for k in range(5, -1, -1):
+        inv = 1.0 / A[k, k]
+        for j in range(nc):
+            acc = B[k, j]
+            for i in range(k + 1, 6):
+                acc -= A[k, i] * B[i, j]
+            B[k, j] = acc * inv
+
+
+@njit
+def ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
+    """Solve the needles' coupled implicit system in place: block j has diagonal AN[j] (mass
+    included), coupling UN[j] to block j+1 (mod n, the ring closes) and UN[j-1]^T to block
+    j-1, right-hand side h FN[j]; the velocity increments replace FN.
+
+    Block tridiagonal elimination on blocks 0..n-2 bordered by block n-1 (which closes the
+    ring): x_j = y_j - Z_j x_{n-1}, then the border's 6 x 6 system.  About 1300 multiply-adds
+    a needle.  CW (n x 6 x 6), XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays.
+    """
+    M = n - 1
+    for k in range(M):
+        for i in range(6):
+            for l in range(6):
+                S[i, l] = AN[k, i, l]
+            for l in range(13):
+                T[i, l] = 0.0
+            if k < M - 1:
+                for l in range(6):
+                    T[i, l] = UN[k, i, l]
+            T[i, 6] = h * FN[k, i]
+            if k == 0:                       # A[0][n-1] = UN[n-1]^T
+                for l in range(6):
+                    T[i, 7 + l] += UN[n - 1, l, i]
+            if k == M - 1:                   # A[n-2][n-1] = UN[n-2]
+                for l in range(6):
+                    T[i, 7 + l] += UN[M - 1, i, l]
+        if k > 0:   # subtract L_k C_{k-1} and L_k X_{k-1}, L_k = UN[k-1]^T
+            for i in range(6):
+                for m in range(6):
+                    lim = UN[k - 1, m, i]
+                    if lim != 0.0:
+                        for l in range(6):
+                            S[i, l] -= lim * CW[k - 1, m, l]
+                        for l in range(7):
+                            T[i, 6 + l] -= lim * XW[k - 1, m, l]
+        _solve6(S, T, 13)
+        for i in range(6):
+            for l in range(6):
+                CW[k, i, l] = T[i, l]
+            for l in range(7):
+                XW[k, i, l] = T[i, 6 + l]
+    for k in range(M - 2, -1, -1):
+        for i in range(6):
+            for l in range(7):
+                acc = 0.0
+                for m in range(6):
+                    acc += CW[k, i, m] * XW[k + 1, m, l]
+                XW[k, i, l] -= acc
+    # border block n-1: A[n-1][0] = UN[n-1], A[n-1][n-2] = UN[n-2]^T
+    for i in range(6):
+        for l in range(6):
+            S[i, l] = AN[n - 1, i, l]
+        T[i, 0] = h * FN[n - 1, i]
+        for m in range(6):
+            a0 = UN[n - 1, i, m]
+            a1 = UN[M - 1, m, i]
+            for l in range(6):
+                S[i, l] -= a0 * XW[0, m, 1 + l] + a1 * XW[M - 1, m, 1 + l]
+            T[i, 0] -= a0 * XW[0, m, 0] + a1 * XW[M - 1, m, 0]
+    _solve6(S, T, 1)
+    for i in range(6):
+        FN[n - 1, i] = T[i, 0]
+    for j in range(M):
+        for i in range(6):
+            acc = XW[j, i, 0]
+            for m in range(6):
+                acc -= XW[j, i, 1 + m] * T[m, 0]
+            FN[j, i] = acc
+
+
+@njit
+def needle_update(Y, y0, NP, h, FN, AN, UN, CW, XW, S, T):
+    """Linearly implicit step of every needle's velocities and positions from needle_forces'
+    system: (M + h D + h^2 K) dv = h (F - h K v) over the whole ring (ring_solve); positions
+    move with the new velocities (tilts: t1' = w2, t2' = -w1)."""
     n = int(NP[N_N])
     mn, I1, I3 = NP[N_MN], NP[N_I1], NP[N_I3]
     for j in range(n):
+        AN[j, 0, 0] += mn
+        AN[j, 1, 1] += mn
+        AN[j, 2, 2] += mn
+        AN[j, 3, 3] += I1
+        AN[j, 4, 4] += I1
+        AN[j, 5, 5] += I3
+    ring_solve(AN, UN, FN, h, n, CW, XW, S, T)
+    for j in range(n):
         q = y0 + N_F * j
-        A = AN[j]
-        A[0, 0] += mn
-        A[1, 1] += mn
-        A[2, 2] += mn
-        A[3, 3] += I1
-        A[4, 4] += I1
-        A[5, 5] += I3
         for i in range(6):
-            b[i] = h * FN[j, i]
-        solve_small(A, b, 6)
-        for i in range(6):
-            Y[q + 5 + i] += b[i]
+            Y[q + 5 + i] += FN[j, i]
         Y[q] += h * Y[q + 5]
         Y[q + 1] += h * Y[q + 6]
         Y[q + 2] += h * Y[q + 7]
