@@ -219,8 +219,8 @@ def roller_motion(Y, x0, L, lumped):
 def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     """Needle-resolved bearing: the roller's pose and velocity and the trunnion's motion in the
     trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]."""
-    NP, SP, FN, AN, FR, AR, ND, G6, gn, gt = NW[0], NW[1], NW[2], NW[3], NW[4], NW[5], NW[6], NW[7], NW[8], NW[9]
-    UN, G2, gn2 = NW[11], NW[12], NW[13]
+    NP, SP, FN, AN, FR, AR, ND = NW[0], NW[1], NW[2], NW[3], NW[4], NW[5], NW[6]
+    MOM, gn, PM, RS, UN, MR, gn2 = NW[7], NW[8], NW[9], NW[10], NW[11], NW[12], NW[13]
     ax, az = L[0], L[2]
     E, W, u = Y[Y_E], Y[Y_W], Y[Y_U]
     Ed, Wd, ud = Y[Y_ED], Y[Y_WD], Y[Y_UD]
@@ -234,7 +234,7 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, o1, o2, o3, vo1, vo2, vo3,
                       b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
                       d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
-                      SP, FN, AN, UN, FR, AR, ND, G6, G2, gn, gn2, gt)
+                      SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2)
 
 
 @njit

@@ -109,11 +109,13 @@ class ContactModel:
         NP[NDL.N_MUR] = p["mu_rolling"]
         NP[NDL.N_FRIC] = 1.0 if p["friction_needle"] else 0.0
         NP[NDL.N_ROLLR] = 1.0 if p["rolling_resistance"] else 0.0
-        # NP, SP, FN, AN, FR, AR, ND, G, gn, gt, b, UN, G2, gn2, CW, XW, S, T (kernel, needles)
+        # NP, SP, FN, AN, FR, AR, ND, MOM, gn, PM, RS, UN, MR, gn2, CW, XW, S, T
+        # (kernel.resolved_forces, needles.needle_forces and needles.ring_solve)
         return (NP, np.zeros((n, ns, 3)), np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros(6),
-                np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((6, 3)), np.zeros(6),
-                np.zeros(6), np.zeros(6), np.zeros((n, 6, 6)), np.zeros((6, 3)), np.zeros(6),
-                np.zeros((n, 6, 6)), np.zeros((n, 6, 7)), np.zeros((6, 6)), np.zeros((6, 13)))
+                np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((n, 10)), np.zeros(6),
+                np.zeros((n, 10)), np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros(10),
+                np.zeros(6), np.zeros((n, 6, 6)), np.zeros((n, 6, 7)), np.zeros((6, 6)),
+                np.zeros((6, 13)))
 
     def row_bore_radius(self):
         """Radius of the needles' outer race [m]: trunnion + needle diameter + the row's radial

@@ -33,75 +33,100 @@ N_F = 11   # floats per needle in the state vector
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
 E10_9 = 10.0 / 9.0
-C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, _accumulate)
+C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, _contact)
 C_NEEDLE = 5.0
 
 
 @njit
-def _rows_needle(G, r1, r2, r3):
-    """Point-velocity sensitivities of a needle point at r (from the needle centre) to the
-    needle's velocities (v1, v2, v3, w1, w2, w3): rows of G (6 x 3)."""
-    G[0, 0], G[0, 1], G[0, 2] = 1.0, 0.0, 0.0
-    G[1, 0], G[1, 1], G[1, 2] = 0.0, 1.0, 0.0
-    G[2, 0], G[2, 1], G[2, 2] = 0.0, 0.0, 1.0
-    G[3, 0], G[3, 1], G[3, 2] = 0.0, -r3, r2
-    G[4, 0], G[4, 1], G[4, 2] = r3, 0.0, -r1
-    G[5, 0], G[5, 1], G[5, 2] = -r2, r1, 0.0
+def _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, coef, w, b, A, MOM, gn):
+    """Add one contact to one body's linearly implicit system in its standard velocities
+    (v1, v2, v3, w1, w2, w3 about its reference point; the contact point at r from it):
+    b += (F, r x F) - kp g_n,  A += coef g_n g_n^T,  MOM += w (1, r, r r^T), g_n = (n, r x n).
+
+    With the contact's tangent stiffness k, damping cd and friction secant iso (each body's
+    scale c, see C_ROLLER): kp = c h k (n . v_point), coef = c (h^2 k + h cd - h iso),
+    w = c h iso.  The friction part sum_c w G G^T = w (G G^T) over the contacts is built once a
+    substep from the moments MOM (_moment_block); only the rank-one normal part is per contact.
+    """
+    gn[0], gn[1], gn[2] = n1, n2, n3
+    gn[3] = r2 * n3 - r3 * n2
+    gn[4] = r3 * n1 - r1 * n3
+    gn[5] = r1 * n2 - r2 * n1
+    b[0] += F1 - kp * gn[0]
+    b[1] += F2 - kp * gn[1]
+    b[2] += F3 - kp * gn[2]
+    b[3] += r2 * F3 - r3 * F2 - kp * gn[3]
+    b[4] += r3 * F1 - r1 * F3 - kp * gn[4]
+    b[5] += r1 * F2 - r2 * F1 - kp * gn[5]
+    if coef != 0.0:
+        for i in range(6):
+            ci = coef * gn[i]
+            for l in range(6):
+                A[i, l] += ci * gn[l]
+    if w != 0.0:
+        MOM[0] += w
+        MOM[1] += w * r1
+        MOM[2] += w * r2
+        MOM[3] += w * r3
+        MOM[4] += w * r1 * r1
+        MOM[5] += w * r2 * r2
+        MOM[6] += w * r3 * r3
+        MOM[7] += w * r1 * r2
+        MOM[8] += w * r1 * r3
+        MOM[9] += w * r2 * r3
 
 
 @njit
-def _rows_roller(G, r1, r2, r3, e1x, ax):
-    """The same for a roller point at r from the roller centre, roller unknowns in the order
-    of kernel.substep: ud (along e3), om (about e3), wd (along e2), b1d, b2d (about e1, e2),
-    ed (along global x = e1x e1 + ax e3)."""
-    G[0, 0], G[0, 1], G[0, 2] = 0.0, 0.0, 1.0
-    G[1, 0], G[1, 1], G[1, 2] = -r2, r1, 0.0
-    G[2, 0], G[2, 1], G[2, 2] = 0.0, 1.0, 0.0
-    G[3, 0], G[3, 1], G[3, 2] = 0.0, -r3, r2
-    G[4, 0], G[4, 1], G[4, 2] = r3, 0.0, -r1
-    G[5, 0], G[5, 1], G[5, 2] = e1x, 0.0, ax
-
-
-@njit
-def _accumulate(G, F1, F2, F3, n1, n2, n3, vn, kn, cd, t1, t2, t3, iso, aniso, h, A, b, gn,
-                gt, c):
-    """Add one contact to a body's linearly implicit system (6 unknowns):
-    b += G F - c h kn g_n (n . v_point)   and   A += c (h D + (h^2 kn + h cd) g_n g_n^T),
-    with g_n = G n, cd the normal damping [N s/m], D the friction slope on the tangent plane (iso across the slip, iso +
-    aniso along it, t = slip direction).  F: contact force on this body [N].
-
-    c >= 1 scales the tangent this body takes implicitly.  The roller and the needles step with
-    each other held, so for a roller-needle contact the true tangent
-    [g_A; -g_B] k [g_A; -g_B]^T is bounded by (1 + eps) k g_A g_A^T + (1 + 1/eps) k g_B g_B^T;
-    with those factors (C_ROLLER, C_NEEDLE) the split implicit matrix dominates the coupled one
-    and the step stays stable however stiff the contact.  Needle-needle contacts are not split
-    (c = 1 and a coupling block, ring_solve): scaled, a touching chain cannot move as one and
-    locks; plainly split, it goes unstable (both measured)."""
-    for i in range(6):
-        gn[i] = G[i, 0] * n1 + G[i, 1] * n2 + G[i, 2] * n3
-        gt[i] = G[i, 0] * t1 + G[i, 1] * t2 + G[i, 2] * t3
-        b[i] += G[i, 0] * F1 + G[i, 1] * F2 + G[i, 2] * F3 - c * h * kn * gn[i] * vn
-    hh = (h * h * kn + h * cd) * c
-    hc = h * c
-    for i in range(6):
-        for j in range(i, 6):
-            gg = G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2] - gn[i] * gn[j]
-            v = hc * (iso * gg + aniso * gt[i] * gt[j]) + hh * gn[i] * gn[j]
-            A[i, j] += v
-            if j != i:
-                A[j, i] += v
+def _moment_block(A, MOM, d1, d2, d3):
+    """A += sum_c w_c G(r_c) G(R_c)^T from the moments MOM of r (MOM = (s0, s1, s2) as in
+    _contact) with R = r + d.  G(r) rows: e_i and e_i x r.  d = 0 for a body's own block; the
+    coupling block of two needles has d = p_j - p_jn."""
+    s0 = MOM[0]
+    if s0 == 0.0:
+        return
+    a1, a2, a3 = MOM[1], MOM[2], MOM[3]
+    # T-T
+    A[0, 0] += s0
+    A[1, 1] += s0
+    A[2, 2] += s0
+    # T(i)-R(l): -[s1 + s0 d]x ;  R(i)-T(l): [s1]x
+    c1, c2, c3 = a1 + s0 * d1, a2 + s0 * d2, a3 + s0 * d3
+    A[0, 4] += c3
+    A[0, 5] += -c2
+    A[1, 3] += -c3
+    A[1, 5] += c1
+    A[2, 3] += c2
+    A[2, 4] += -c1
+    A[3 + 0, 1] += -a3
+    A[3 + 0, 2] += a2
+    A[3 + 1, 0] += a3
+    A[3 + 1, 2] += -a1
+    A[3 + 2, 0] += -a2
+    A[3 + 2, 1] += a1
+    # R-R: (tr s2 + s1.d) I - (s2 + d s1^T)
+    xx, yy, zz, xy, xz, yz = MOM[4], MOM[5], MOM[6], MOM[7], MOM[8], MOM[9]
+    tr = xx + yy + zz + a1 * d1 + a2 * d2 + a3 * d3
+    A[3, 3] += tr - xx - d1 * a1
+    A[4, 4] += tr - yy - d2 * a2
+    A[5, 5] += tr - zz - d3 * a3
+    A[3, 4] += -xy - d1 * a2
+    A[3, 5] += -xz - d1 * a3
+    A[4, 3] += -xy - d2 * a1
+    A[4, 5] += -yz - d2 * a3
+    A[5, 3] += -xz - d3 * a1
+    A[5, 4] += -yz - d3 * a2
 
 
 @njit
 def _friction(f, s1, s2, s3, n1, n2, n3, mu, vst, on):
     """tanh friction on the slip s projected on the tangent plane of normal n.
-    Returns (friction force on the body whose slip is s [N], unit slip direction t, the
-    implicit coefficients iso [N s/m] across and aniso extra along t)."""
+    Returns (friction force on the body whose slip is s [N], the implicit coefficient iso
+    [N s/m], the same in every tangential direction)."""
     sn = s1 * n1 + s2 * n2 + s3 * n3
     t1, t2, t3 = s1 - sn * n1, s2 - sn * n2, s3 - sn * n3
     vt = math.sqrt(t1 * t1 + t2 * t2 + t3 * t3)
     if not on or mu <= 0.0 or f <= 0.0:
-        return 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0
     g = math.tanh(3.0 * vt / vst)
     if vt > 1e-12:
         iso = mu * f * g / vt
@@ -113,7 +138,7 @@ def _friction(f, s1, s2, s3, n1, n2, n3, mu, vst, on):
     # Saturated, the tangent along the slip is ~0 and the step would apply the full friction
     # impulse explicitly: h mu f r_n / I_3 is about 500 rad/s a substep on a needle's spin,
     # which flips the slip every step.  The secant (>= the tangent for tanh) cannot overshoot.
-    return (-mu * f * g * t1, -mu * f * g * t2, -mu * f * g * t3, t1, t2, t3, iso, 0.0)
+    return -mu * f * g * t1, -mu * f * g * t2, -mu * f * g * t3, iso
 
 
 @njit
@@ -131,16 +156,19 @@ def _normal(f, kn, m, sn):
 @njit
 def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                   wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
-                  SP, FN, AN, UN, FR, AR, ND, G, G2, gn, gn2, gt):
-    """Evaluate every needle contact once; fill each needle's system (FN, AN) and the roller's
-    (FR, AR) for a linearly implicit step of h [s] (h = 0: forces only), and ND diagnostics.
+                  SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2):
+    """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
+    coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
+    unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
+    ND diagnostics.
 
     Y[y0:] the needle states; o, vo: roller centre and its velocity in T [m, m/s]; ob: bore axis
     direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
     (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
     om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
-    [m/s^2].  UN (N x 6 x 6): coupling block of needle j to needle j+1 in the implicit
-    system.  SP (N x N_s x 3) scratch sphere centres; G, G2 (6 x 3), gn, gn2, gt (6) scratch.
+    [m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of
+    each needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its
+    standard velocities and its friction moments, gn, gn2 (6).
     """
     n = int(NP[N_N])
     ns = int(NP[N_NS])
@@ -158,10 +186,16 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
     fric = NP[N_FRIC] > 0.5
     ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
     rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
+    hh = h * h
+    # the roller's system in its standard velocities about its centre (b in RS[:, 0], A in
+    # RS[:, 1:7]), mapped to its unknowns at the end
     for i in range(6):
-        FR[i] = 0.0
-        for k in range(6):
-            AR[i, k] = 0.0
+        for k in range(13):
+            RS[i, k] = 0.0
+    for i in range(10):
+        MR[i] = 0.0
+    bR = RS[:, 0]
+    AR6 = RS[:, 1:7]
     for j in range(n):
         q = y0 + N_F * j
         for i in range(6):
@@ -169,6 +203,9 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
             for k in range(6):
                 AN[j, i, k] = 0.0
                 UN[j, i, k] = 0.0
+        for i in range(10):
+            MOM[j, i] = 0.0
+            PM[j, i] = 0.0
         for i in range(D_LEN):
             ND[j, i] = 0.0
         # inertial force of the moving frame
@@ -190,6 +227,9 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
         w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
         jn = j + 1 if j + 1 < n else 0
         qn = y0 + N_F * jn
+        Aj = AN[j]
+        Fj = FN[j]
+        Mj = MOM[j]
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
             # --- trunnion (convex cylinder about e3, radius Rt) ---
@@ -207,18 +247,15 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                 s1 = u1 + om_tr * X2                         # minus the trunnion's
                 s2 = u2 - om_tr * X1
                 s3 = u3 - dd_tr
-                F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(f, s1, s2, s3, n1, n2, 0.0,
-                                                                mu, vst, fric)
+                F1, F2, F3, iso = _friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, fric)
                 fd, cd = _normal(f, kn, ms, s1 * n1 + s2 * n2)
-                F1 += fd * n1
-                F2 += fd * n2
-                _rows_needle(G, r1, r2, r3)
-                _accumulate(G, F1, F2, F3, n1, n2, 0.0, u1 * n1 + u2 * n2, kn, cd,
-                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, 1.0)
+                _contact(F1 + fd * n1, F2 + fd * n2, F3, n1, n2, 0.0, r1, r2, r3,
+                         h * kn * (u1 * n1 + u2 * n2), hh * kn + h * cd - h * iso, h * iso,
+                         Fj, Aj, Mj, gn)
                 if rollr:   # Eq. (12), half of mu_r P D/2 at each of the needle's two races
                     gr = math.tanh(3.0 * rn * (w3 - om_tr) / vst)
-                    FN[j, 5] -= 0.5 * mur * f * rn * gr
-                    AN[j, 5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+                    Fj[5] -= 0.5 * mur * f * rn * gr
+                    Aj[5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
                 ND[j, D_TRUN] += f
             # --- roller bore (concave cylinder about the bore axis, radius Rb) ---
             e1_, e2_, e3_ = P1 - o1, P2 - o2, P3 - o3
@@ -240,27 +277,27 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                     z1 = vo1 + wr2 * R3 - wr3 * R2            # roller point velocity
                     z2 = vo2 + wr3 * R1 - wr1 * R3
                     z3 = vo3 + wr1 * R2 - wr2 * R1
-                    F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(
-                        f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
+                    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3,
+                                                mu, vst, fric)
                     fd, cd = _normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
                     F1 += fd * n1
                     F2 += fd * n2
                     F3 += fd * n3
-                    _rows_needle(G, r1, r2, r3)
-                    _accumulate(G, F1, F2, F3, n1, n2, n3, u1 * n1 + u2 * n2 + u3 * n3, kn, cd,
-                                tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, C_NEEDLE)
-                    _rows_roller(G, R1, R2, R3, e1x, ax)
-                    _accumulate(G, -F1, -F2, -F3, n1, n2, n3, z1 * n1 + z2 * n2 + z3 * n3,
-                                kn, cd, tt1, tt2, tt3, iso, ani, h, AR, FR, gn, gt, C_ROLLER)
+                    kq = hh * kn + h * cd - h * iso
+                    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3,
+                             C_NEEDLE * h * kn * (u1 * n1 + u2 * n2 + u3 * n3), C_NEEDLE * kq,
+                             C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
+                    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3,
+                             C_ROLLER * h * kn * (z1 * n1 + z2 * n2 + z3 * n3), C_ROLLER * kq,
+                             C_ROLLER * h * iso, bR, AR6, MR, gn2)
                     if rollr:
-                        wrel = w3 - wr3
-                        gr = math.tanh(3.0 * rn * wrel / vst)
+                        gr = math.tanh(3.0 * rn * (w3 - wr3) / vst)
                         mr = 0.5 * mur * f * rn * gr
                         cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-                        FN[j, 5] -= mr
-                        AN[j, 5, 5] += C_NEEDLE * cr
-                        FR[1] += mr
-                        AR[1, 1] += C_ROLLER * cr
+                        Fj[5] -= mr
+                        Aj[5, 5] += C_NEEDLE * cr
+                        bR[5] += mr
+                        AR6[5, 5] += C_ROLLER * cr
                     ND[j, D_BORE] += f
                     ND[j, D_R1] -= F1
                     ND[j, D_R2] -= F2
@@ -278,33 +315,42 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                 u1 = v1 + w2 * r3 - w3 * r2
                 u2 = v2 + w3 * r1 - w1 * r3
                 u3 = v3 + w1 * r2 - w2 * r1
-                m1, m2, m3 = Y[qn], Y[qn + 1], Y[qn + 2]
-                R1, R2, R3 = X1 - m1, X2 - m2, X3 - m3
+                R1, R2, R3 = X1 - Y[qn], X2 - Y[qn + 1], X3 - Y[qn + 2]
                 W1, W2, W3 = Y[qn + 8], Y[qn + 9], Y[qn + 10]
                 z1 = Y[qn + 5] + W2 * R3 - W3 * R2
                 z2 = Y[qn + 6] + W3 * R1 - W1 * R3
                 z3 = Y[qn + 7] + W1 * R2 - W2 * R1
-                F1, F2, F3, tt1, tt2, tt3, iso, ani = _friction(
-                    f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
-                fd, cd = _normal(f, kn, 0.5 * ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
+                F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3,
+                                            mu, vst, fric)
+                vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
+                fd, cd = _normal(f, kn, 0.5 * ms, vrel)
                 F1 += fd * n1
                 F2 += fd * n2
                 F3 += fd * n3
-                # both needles' own blocks, with the relative approach rate in the predictor,
-                # and the coupling block UN[j] (row j, column jn): the ring is solved
-                # together (ring_solve), so a touching chain moves as one
-                vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
-                _rows_needle(G2, R1, R2, R3)
-                _accumulate(G2, -F1, -F2, -F3, n1, n2, n3, -vrel, kn, cd,
-                            tt1, tt2, tt3, iso, ani, h, AN[jn], FN[jn], gn2, gt, 1.0)
-                _rows_needle(G, r1, r2, r3)
-                _accumulate(G, F1, F2, F3, n1, n2, n3, vrel, kn, cd,
-                            tt1, tt2, tt3, iso, ani, h, AN[j], FN[j], gn, gt, 1.0)
-                kk = h * h * kn + h * cd - h * iso
+                # both needles' own blocks (relative approach rate in the predictor) and the
+                # coupling block UN[j] (row j, column jn): the ring is solved together
+                # (ring_solve), so a touching chain moves as one
+                kq = hh * kn + h * cd - h * iso
+                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, h * kn * vrel, kq, h * iso,
+                         Fj, Aj, Mj, gn)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -h * kn * vrel, kq, h * iso,
+                         FN[jn], AN[jn], MOM[jn], gn2)
+                wp = h * iso
+                Pj = PM[j]
+                Pj[0] += wp
+                Pj[1] += wp * r1
+                Pj[2] += wp * r2
+                Pj[3] += wp * r3
+                Pj[4] += wp * r1 * r1
+                Pj[5] += wp * r2 * r2
+                Pj[6] += wp * r3 * r3
+                Pj[7] += wp * r1 * r2
+                Pj[8] += wp * r1 * r3
+                Pj[9] += wp * r2 * r3
                 for i in range(6):
+                    ci = kq * gn[i]
                     for l in range(6):
-                        UN[j, i, l] -= (h * iso * (G[i, 0] * G2[l, 0] + G[i, 1] * G2[l, 1]
-                                                   + G[i, 2] * G2[l, 2]) + kk * gn[i] * gn2[l])
+                        UN[j, i, l] -= ci * gn2[l]
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
         # --- flange (inner end) and retainer (outer end) on the trunnion: axial stops ---
@@ -315,9 +361,42 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
             kn = E10_9 * f / over
             sg = -1.0 if z > 0.0 else 1.0
             fd, cd = _normal(f, kn, mn, sg * (v3 - dd_tr))
-            FN[j, 2] += sg * fd - h * kn * (v3 - dd_tr)
-            AN[j, 2, 2] += h * h * kn + h * cd
+            Fj[2] += sg * fd - h * kn * (v3 - dd_tr)
+            Aj[2, 2] += hh * kn + h * cd
             ND[j, D_FLANGE] += f
+    # friction parts from the moments: each needle's own block, each pair's coupling block
+    for j in range(n):
+        _moment_block(AN[j], MOM[j], 0.0, 0.0, 0.0)
+        if PM[j, 0] != 0.0:
+            jn = j + 1 if j + 1 < n else 0
+            q, qn = y0 + N_F * j, y0 + N_F * jn
+            for i in range(10):        # UN -= sum w G_j G_jn^T
+                PM[j, i] = -PM[j, i]
+            _moment_block(UN[j], PM[j], Y[q] - Y[qn], Y[q + 1] - Y[qn + 1], Y[q + 2] - Y[qn + 2])
+    _moment_block(AR6, MR, 0.0, 0.0, 0.0)
+    # roller unknowns from its standard velocities (t1..t3, r1..r3): ud = t3, om = r3, wd = t2,
+    # b1d = r1, b2d = r2, ed = e1x t1 + ax t3 (rows of the map TM in RS[:, 7:13])
+    TM = RS[:, 7:13]
+    TM[0, 2] = 1.0
+    TM[1, 5] = 1.0
+    TM[2, 1] = 1.0
+    TM[3, 3] = 1.0
+    TM[4, 4] = 1.0
+    TM[5, 0] = e1x
+    TM[5, 2] = ax
+    for a in range(6):
+        acc = 0.0
+        for k in range(6):
+            acc += TM[a, k] * bR[k]
+        FR[a] = acc
+        for c in range(6):
+            acc = 0.0
+            for k in range(6):
+                tak = TM[a, k]
+                if tak != 0.0:
+                    for l in range(6):
+                        acc += tak * AR6[k, l] * TM[c, l]
+            AR[a, c] = acc
 
 
 @njit
