@@ -120,7 +120,7 @@ def cmd_compare(args) -> int:
 
 def cmd_paper(args) -> int:
     from harness.paper import reproduce
-    r = reproduce(args.out)
+    r = reproduce(args.out, share_bearing=args.share_bearing)
     for c in r["claims"]:
         print(f"[{'PASS' if c['pass'] else 'FAIL'}] {c['claim']}: {c['measured']}")
     print(f"report: {args.out}/report.md")
@@ -223,6 +223,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.set_defaults(func=cmd_stress)
     p = sub.add_parser("paper", help="reproduce the paper's figures and claims (PNG + report.md)")
     p.add_argument("--out", metavar="DIR", default="out/paper", help="output folder (default out/paper)")
+    p.add_argument("--share-bearing", type=int, choices=(1, 2), default=2,
+                   help="bearing of the section 4.2 friction study: 2 needle-resolved (default, "
+                        "about 2 min), 1 lumped (seconds)")
     p.set_defaults(func=cmd_paper)
     p = sub.add_parser("build", help="build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")

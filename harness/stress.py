@@ -57,7 +57,7 @@ def _bound(sv, Fx):
     th = p["theta"] if np.isscalar(p["theta"]) else max(p["theta"])
     w = p["omega"] if np.isscalar(p["omega"]) else max(p["omega"])
     spin = I / p["r_roller"] ** 2 * p["s"] * math.tan(th) * w ** 2
-    mu = p["mu_groove"] + (p["mu_needle"] if p["bearing"] == 1 else 0.0)
+    mu = p["mu_groove"] + (p["mu_needle"] if p["bearing"] >= 1 else 0.0)
     return 1.05 * (mu * Fx + spin) + 1e-6
 
 
@@ -78,6 +78,8 @@ def cases(quick=False):
     for dt in (1e-6, 1e-3, 1e-2):
         add(f"communication step {dt:g} s", {}, None, 0.02 if dt < 1e-5 else 0.2, dt, True)
     add("lumped bearing", {"bearing": 1}, None, 0.2, 1e-4, True)
+    add("needle-resolved bearing, 46 needles", {"bearing": 2}, None, 0.2, 1e-4, True)
+    add("needle-resolved bearing, 5 kN", {"bearing": 2, "F_press": 5000.0}, None, 0.1, 1e-4, True)
     t = [0.0, 0.099, 0.1, 0.3]
     add("torque step 0 -> 200 N m at 0.1 s", {}, {"time": t, "torque": [0.0, 0.0, 200.0, 200.0]},
         0.3, 1e-4, True)

@@ -5,8 +5,10 @@ import re
 import harness.paper as paper
 
 
+# the section 4.2 study runs on the lumped bearing here (seconds, not minutes); the
+# needle-resolved default is measured in the README and tests/test_needles.py checks its physics
 def test_paper_writes_figures_and_claims(tmp_path):
-    r = paper.reproduce(tmp_path)
+    r = paper.reproduce(tmp_path, share_bearing=1)
     pngs = sorted(tmp_path.glob("*.png"))
     assert len(pngs) == 9
     assert all(f.stat().st_size > 10_000 for f in pngs)
@@ -27,7 +29,7 @@ def test_claims_follow_the_runs(tmp_path, monkeypatch):
         return r
 
     monkeypatch.setattr(paper, "_run", fake)
-    r = paper.reproduce(tmp_path)
+    r = paper.reproduce(tmp_path, share_bearing=1)
     c = next(c for c in r["claims"] if c["claim"].startswith("Section 4.2"))
     share = float(re.match(r"(\d+) %", c["measured"]).group(1))
     assert 190 < share < 215 and not c["pass"] and not r["pass"]
