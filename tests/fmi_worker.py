@@ -1,7 +1,8 @@
 """Runs FMI-level checks on a built FMU in its own process (called by test_driveline.py).
 
-Usage: python fmi_worker.py FMU CHECK; prints one JSON object; exits without freeing the
-instance (upstream pythonfmu teardown issue, see harness/fmu_worker.py).
+Usage: python fmi_worker.py FMU CHECK [INTEGER_START_VALUES_JSON]; prints one JSON object;
+exits without freeing the instance (upstream pythonfmu teardown issue, see
+harness/fmu_worker.py).
 """
 import json
 import os
@@ -11,6 +12,7 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 
 fmu, check = sys.argv[1], sys.argv[2]
+INTS = json.loads(sys.argv[3]) if len(sys.argv) > 3 else {}
 md = read_model_description(fmu)
 d = extract(fmu)
 vr = {v.name: v.valueReference for v in md.modelVariables}
@@ -25,6 +27,8 @@ def make(name="a", theta=None):
     s.enterInitializationMode()
     if theta is not None:
         s.setReal([vr["theta"]], [theta])
+    for k, v in INTS.items():
+        s.setInteger([vr[k]], [int(v)])
     s.exitInitializationMode()
     return s
 

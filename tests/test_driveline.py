@@ -46,9 +46,10 @@ def test_torque_drives_pressing_and_wins(name):
     assert np.allclose(tq["Fx"], base["Fx"], rtol=1e-9)
 
 
-def _worker(name, check):
+def _worker(name, check, ints=None):
     p = subprocess.run([sys.executable, str(Path(__file__).with_name("fmi_worker.py")),
-                        str(ensure_fmu(name)), check], capture_output=True, text=True, timeout=300)
+                        str(ensure_fmu(name)), check, json.dumps(ints or {})],
+                       capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-2000:]
     return json.loads(p.stdout.strip().splitlines()[-1])
 
@@ -56,6 +57,12 @@ def _worker(name, check):
 @pytest.mark.parametrize("name", NAMES)
 def test_state_rollback_is_bitwise_exact(name):
     r = _worker(name, "state")
+    assert r["rollback_identical"] and r["serialized_identical"] and r["differs_from_start"]
+
+
+def test_state_rollback_bitwise_with_resolved_needles():
+    # the needle-resolved bearing carries 11 floats a needle of state and its diagnostics
+    r = _worker("TripodRoller", "state", {"bearing": 2, "n_needles": 12})
     assert r["rollback_identical"] and r["serialized_identical"] and r["differs_from_start"]
 
 

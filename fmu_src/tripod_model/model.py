@@ -133,13 +133,6 @@ class ContactModel:
         Rp = p["r_trunnion"] + 0.5 * p["d_needle"] + 0.5 * p["needle_clearance"]
         return min(p["d_needle"], 2 * Rp * math.sin(math.pi / n) - p["needle_circ_clearance"] / n)
 
-    def row_is_tight(self):
-        """True when the needles of the row can form a touching chain: their diameters fill more
-        than half the pitch circle (the 46-needle default fills all of it; 12 fill 26 %)."""
-        p = self.p
-        Rp = p["r_trunnion"] + 0.5 * p["d_needle"]
-        return p["n_needles"] * p["d_needle"] > math.pi * Rp
-
     # --- inputs that set the operating point ---
     def v_st(self, theta, omega):
         """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2)/4 (model.md)."""
@@ -392,10 +385,6 @@ class JointModel:
         F = self.pressing(F_press, torque)
         vst = r.v_st(theta, omega)
         h = r.substep(theta, omega, F, vst)
-        warn = ""
-        if self.p["bearing"] == 2 and r.row_is_tight():
-            warn = ("; WARNING: neighbouring needles touch in this row; the resolved bearing's "
-                    "split step locks such a row (README, 'Needle-resolved bearing')")
         return (f"{len(self.rollers)} roller(s), bearing {self.p['bearing']}, traverse "
                 f"{self.p['traverse']}; pressing {F:.6g} N per roller, v_st {vst:.4g} m/s, "
-                f"substep {h:.3g} s, pressing offset {r.pressing_offset(F):.6g} m{warn}")
+                f"substep {h:.3g} s, pressing offset {r.pressing_offset(F):.6g} m")
