@@ -99,10 +99,14 @@ PARAMS: tuple[Param, ...] = (
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C),
-    Param("integrator", 1, "1", 0, 2,
-          "1 linearly implicit Euler extrapolated to 2nd order (Richardson, default), "
-          "0 linearly implicit Euler, 2 explicit (symplectic) Euler for comparison",
-          kind="int", models=_C),
+    Param("integrator", 3, "1", 0, 3,
+          "3 linearly implicit Euler extrapolated to 2nd order (Richardson) with the substep "
+          "set by its own error estimate (step_tolerance; default), 1 the same at the fixed "
+          "automatic substep, 0 linearly implicit Euler, 2 explicit (symplectic) Euler for "
+          "comparison", kind="int", models=_C),
+    Param("step_tolerance", 1e-3, "1", 0.0, 1.0,
+          "integrator 3: largest error of one substep in the roller's slip velocities, as a "
+          "fraction of v_st", lo_open=True, models=_C),
     Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_C),
     Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_C),
     Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),

@@ -14,7 +14,7 @@ from . import needles as NDL
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_LEN) = range(30)
+ P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN) = range(32)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
 # radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
@@ -428,18 +428,65 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
 
 
 @njit
-def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW):
+def step_error(Y, Y1, P):
+    """Scaled error estimate of one extrapolated step: the difference between the two half
+    steps (Y) and the whole step (Y1) in the roller's velocities, against tol x v_st (slides)
+    and tol x v_st / r (turns): what sets the friction's direction and so the thrust."""
+    vs = P[P_TOL] * P[P_VST]
+    vr = vs / P[P_R]
+    e = abs(Y[Y_OM] - Y1[Y_OM]) / vr
+    if P[P_TRAV] > 0.5:
+        e = max(e, abs(Y[Y_UD] - Y1[Y_UD]) / vs)
+    if P[P_BEAR] > 0.5:
+        e = max(e, abs(Y[Y_WD] - Y1[Y_WD]) / vs, abs(Y[Y_ED] - Y1[Y_ED]) / vs,
+                abs(Y[Y_B1D] - Y1[Y_B1D]) / vr, abs(Y[Y_B2D] - Y1[Y_B2D]) / vr)
+    return e
+
+
+@njit
+def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW, hs):
     """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
 
     theta [rad], w [rad/s], F_press [N], x0 [m] the pressing offset of the trunnion axis.
     P[P_INTEG] = 1: each substep is extrapolated (Richardson) from one step of h and two of
     h/2, which makes the linearly implicit Euler second order and keeps it L-stable
     (the scheme of LIMEX/SEULEX with two stages); 0: plain linearly implicit Euler.
+    P[P_INTEG] = 3: the same extrapolated step with its substep chosen by the step's own error
+    estimate (step_error <= 1; up to P[P_HMAX]); hs[0] carries that substep from call to call,
+    hs[1] counts accepted, hs[2] rejected substeps.
     L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
     NW the needle work arrays (model.ContactModel; used by the resolved bearing only).
     """
     ny = Y.shape[0]
     extrap = P[P_INTEG] == 1.0
+    if P[P_INTEG] == 3.0:
+        T = h * n
+        t = 0.0
+        hc = hs[0] if hs[0] > 0.0 else h
+        while t < T * (1.0 - 1e-12):
+            last = hc >= T - t
+            hh = T - t if last else hc
+            for i in range(ny):
+                Y1[i] = Y[i]
+                Y2[i] = Y[i]
+            substep(Y1, P, theta, w, F_press, x0, hh, L, res, G, A, b, NW)
+            substep(Y2, P, theta, w, F_press, x0, 0.5 * hh, L, res, G, A, b, NW)
+            substep(Y2, P, theta, w, F_press, x0, 0.5 * hh, L, res, G, A, b, NW)
+            err = step_error(Y2, Y1, P)
+            fac = 0.9 / math.sqrt(max(err, 1e-12))   # local error of the whole step ~ h^2
+            fac = min(4.0, max(0.2, fac))
+            if err <= 1.0:
+                for i in range(ny):
+                    Y[i] = 2.0 * Y2[i] - Y1[i]
+                t += hh
+                hs[1] += 1.0
+                if not last:            # a step cut short to land on T says nothing of hc
+                    hc = min(hc * fac, P[P_HMAX])
+            else:
+                hs[2] += 1.0
+                hc = hh * fac
+        hs[0] = hc
+        n = 0
     for _ in range(n):
         if extrap:
             for i in range(ny):

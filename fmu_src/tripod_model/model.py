@@ -65,6 +65,7 @@ class ContactModel:
         P[K.P_IT] = p["m_roller"] * (3 * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
                                      + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
+        P[K.P_TOL] = p["step_tolerance"]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
         self.NW = self._needle_work(C_line)
@@ -77,6 +78,7 @@ class ContactModel:
         self._G = np.zeros((K.NV, 3))
         self._A = np.zeros((K.NV, K.NV))
         self._b = np.zeros(K.NV)
+        self._hs = np.zeros(3)   # adaptive substep (integrator 3): current h, accepted, rejected
         self.time = 0.0
         self.substeps = 0
         self._started = False
@@ -187,7 +189,7 @@ class ContactModel:
         g = -self.Y[K.Y_E] - self.p["needle_clearance"]
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
 
-    def substep(self, theta, omega, F_press, v_st):
+    def substep(self, theta, omega, F_press, v_st, stiff=True):
         """Substep [s]: max_substep if set, else from accuracy and stability estimates.
 
         - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
@@ -208,9 +210,9 @@ class ContactModel:
             A = amplitude_A(p["s"], omega, theta, p["pitch"])
             B = amplitude_B(p["r_roller"], omega, theta, p["roll"])
             R = math.hypot(A, B)
-            if R > 0:
+            if R > 0 and stiff:
                 h = min(h, v_st / (2 * omega * R) / 80.0)
-        if p["traverse"] and F_press > 0 and p["friction_groove"] and p["mu_groove"] > 0:
+        if stiff and p["traverse"] and F_press > 0 and p["friction_groove"] and p["mu_groove"] > 0:
             mu = p["mu_groove"]
             if p["bearing"] == 2 and p["friction_needle"]:
                 # resolved needles hold the roller's slide with their own friction too: the
@@ -282,12 +284,15 @@ class ContactModel:
             h = self.substep(theta, omega, F_press, vst)
             n = max(1, int(math.ceil(dt / h - 1e-9)))
             self._op = (vst, n, dt / n, self.pressing_offset(F_press))
+            # adaptive substeps: no larger than the accuracy bounds that do not come from the
+            # stiff stick mode (which the error estimate handles)
+            self.P[K.P_HMAX] = self.substep(theta, omega, F_press, vst, stiff=False)
             self._key = key
         vst, n, h, x0 = self._op
         self.P[K.P_VST] = vst
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
                        h, n, self.out, self._L, self._res, self._Y1, self._Y2,
-                       self._G, self._A, self._b, self.NW)
+                       self._G, self._A, self._b, self.NW, self._hs)
         self.substeps += n
         self.time += dt
         return self.outputs(F_press)
@@ -295,6 +300,7 @@ class ContactModel:
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
+                "hs": self._hs.copy(),
                 "ND": self.NW[6].copy(),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
@@ -302,6 +308,7 @@ class ContactModel:
         self.Y[:] = st["Y"]
         self.out[:] = st["out"]
         self.NW[6][:] = st["ND"]
+        self._hs[:] = st["hs"]
         self.P[K.P_VST] = st["vst"]
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 
