@@ -290,10 +290,11 @@ class ContactModel:
             self._key = key
         vst, n, h, x0 = self._op
         self.P[K.P_VST] = vst
+        acc = self._hs[1]
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
                        h, n, self.out, self._L, self._res, self._Y1, self._Y2,
                        self._G, self._A, self._b, self.NW, self._hs)
-        self.substeps += n
+        self.substeps += int(self._hs[1] - acc) if self.p["integrator"] == 3 else n
         self.time += dt
         return self.outputs(F_press)
 
