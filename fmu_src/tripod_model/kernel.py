@@ -360,8 +360,6 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     if resolved:
         # needle-resolved bearing: every needle contact on the roller, with its tangent,
         # evaluated at the start of the substep (needles and roller step on the same state)
-        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
-        FR, AR = NW[4], NW[5]
         It = P[P_IT]
         alx = ay * L[8] - az * L[7]
         aly = az * L[6] - ax * L[8]
@@ -377,10 +375,15 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         A[3, 3] += It
         A[4, 4] += It
         A[5, 5] += m + h * h * kh
-        for i in range(6):
-            b[i] += FR[i]
-            for j in range(6):
-                A[i, j] += AR[i, j]
+        # NW is None for the other bearings: numba then prunes this branch at compile time, so
+        # their kernels never compile the needle code (a 15 s first compile)
+        if NW is not None:
+            resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
+            FR, AR = NW[4], NW[5]
+            for i in range(6):
+                b[i] += FR[i]
+                for j in range(6):
+                    A[i, j] += AR[i, j]
     if not trav:
         # the slide along the axis is held: drop ud from the system
         for j in range(nv):
@@ -404,8 +407,9 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
         Y[Y_ED] = ed + b[5]
         Y[Y_E] = e + h * Y[Y_ED]
-        NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[11], NW[14], NW[15], NW[16],
-                          NW[17])
+        if NW is not None:
+            NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[11], NW[14], NW[15],
+                              NW[16], NW[17])
     if lumped:
         Y[Y_WD] = wod + b[2]
         Y[Y_W] = wo + h * Y[Y_WD]
@@ -455,7 +459,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     estimate (step_error <= 1; up to P[P_HMAX]); hs[0] carries that substep from call to call,
     hs[1] counts accepted, hs[2] rejected substeps.
     L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
-    NW the needle work arrays (model.ContactModel; used by the resolved bearing only).
+    NW the needle work arrays (model.ContactModel) with the resolved bearing, else None.
     """
     ny = Y.shape[0]
     extrap = P[P_INTEG] == 1.0
@@ -504,7 +508,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     (cx, cy, cz, vx, vy, vz, wx, wy, wz,
      e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, P[P_BEAR] > 0.5)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
-    if P[P_BEAR] == 2.0:   # needle loads at the output instant (diagnostics)
+    if NW is not None:   # needle loads at the output instant (diagnostics)
         resolved_forces(Y, P, NW, theta, Y[Y_X], 0.0, L, e1x, e1y, e1z, e2x, e2y, e2z)
     out[O_FX] = -res[0]
     out[O_FY] = -res[1]

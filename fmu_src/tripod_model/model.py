@@ -68,7 +68,8 @@ class ContactModel:
         P[K.P_TOL] = p["step_tolerance"]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
-        self.NW = self._needle_work(C_line)
+        # None unless the needles are resolved: the kernel is then compiled without them
+        self.NW = self._needle_work(C_line) if self.n_needle_bodies else None
         self.Y = np.zeros(K.Y_LEN + NDL.N_F * self.n_needle_bodies)
         self.out = np.zeros(K.O_LEN)
         self._L = np.full(17, np.nan)   # line kinematics + its cache key
@@ -86,10 +87,9 @@ class ContactModel:
         self._op = None
 
     def _needle_work(self, C_line):
-        """Parameter vector and work arrays of the needle-resolved bearing (needles.py);
-        one-element placeholders when the scene does not resolve the needles."""
+        """Parameter vector and work arrays of the needle-resolved bearing (needles.py)."""
         p = self.p
-        n = max(self.n_needle_bodies, 1)
+        n = self.n_needle_bodies
         ns = p["n_spheres"]
         NP = np.zeros(NDL.N_LEN)
         rn = 0.5 * p["d_needle"]
@@ -302,13 +302,14 @@ class ContactModel:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
                 "hs": self._hs.copy(),
-                "ND": self.NW[6].copy(),
+                "ND": None if self.NW is None else self.NW[6].copy(),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
     def set_state(self, st: dict) -> None:
         self.Y[:] = st["Y"]
         self.out[:] = st["out"]
-        self.NW[6][:] = st["ND"]
+        if self.NW is not None:
+            self.NW[6][:] = st["ND"]
         self._hs[:] = st["hs"]
         self.P[K.P_VST] = st["vst"]
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
