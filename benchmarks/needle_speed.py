@@ -12,8 +12,6 @@ Prints Markdown tables:
 Usage: python benchmarks/needle_speed.py [--runs N] [--quick]
 """
 import argparse
-import math
-import statistics
 import sys
 import time
 from pathlib import Path

@@ -20,7 +20,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
                    "trunnion motions as driving constraints, Hertz contact, tanh friction, "
-                   "spin moment, ideal or lumped needle bearing. Thrust Fz and modified thrust "
+                   "spin moment, ideal, lumped or needle-resolved bearing. Thrust Fz and modified thrust "
                    "Fz_mod.")
     # two whirl cycles of the paper's scene (10 Hz)
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)

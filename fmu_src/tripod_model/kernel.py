@@ -8,7 +8,7 @@ import math
 
 
 from .jit import njit
-from .linalg import solve_small  # noqa: F401  (re-exported)
+from .linalg import solve_small
 from . import needles as NDL
 
 # --- parameter vector layout (float64 array P) ---

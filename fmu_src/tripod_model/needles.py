@@ -11,17 +11,18 @@ theta w = 11 rad/s, gives forces below 1e-3 of the needle loads and is neglected
 Needle j state, N_F = 11 floats from Y_LEN + 11 j: centre p1, p2, p3 [m], axis tilts t1, t2
 (axis direction ~ (t1, t2, 1)), velocity v1..v3 [m/s], angular velocity w1..w3 [rad/s].
 
-Integration (see kernel.substep): one contact evaluation per substep gives each body its own
-forces and its own tangent (stiffness and friction slope) with the other bodies held; each
-needle then takes a linearly implicit step in its own 6 velocities (6 x 6 solve), the roller
-in its 6.  The needles are 300 times lighter than the roller and their contact modes are at
-about 300 kHz; the implicit step damps those modes instead of resolving them (L-stable), so
-unloaded needles rattling in the clearance stay bounded without any contact damping.
+Integration (see kernel.substep): one contact evaluation per substep gives every body its forces
+and its implicit tangent (stiffness, contact damping, friction secant).  The needles step
+together: their neighbour contacts couple them in a ring, solved as one block-cyclic
+tridiagonal system (ring_solve); the roller steps on its own 6 velocities, split from the
+needles with its and their tangents scaled so the split matrix dominates the coupled one
+(C_ROLLER, C_NEEDLE; _contact).  The implicit step damps the 300 kHz contact modes of the
+needles (300 times lighter than the roller) instead of resolving them (L-stable); the contact
+damping (_normal) takes the rebound out of free needles hitting a race.
 """
 import math
 
 from .jit import njit
-from .linalg import solve_small
 
 N_F = 11   # floats per needle in the state vector
 # needle parameter vector NP
