@@ -176,6 +176,7 @@ def ladder():
     lab = "contact bearing 2"
     b = {"bearing": 2}
     rows.append((f"{lab}, integrator 3", "TripodRoller", b, 1e-4, True))
+    rows.append((f"{lab}, integrator 3", "TripodRoller", b, 1e-3, False))
     rows.append((f"{lab}, integrator 3", "TripodRoller", dict(b, step_tolerance=3e-3), 1e-4,
                  False))
     rows.append((f"{lab}, integrator 1", "TripodRoller", dict(b, integrator=1), 1e-4, False))
