@@ -65,7 +65,7 @@ class ContactModel:
         P[K.P_IT] = p["m_roller"] * (3 * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
                                      + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
-        P[K.P_TOL] = p["step_tolerance"]
+        P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == 2 else 1e-3)
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
         # None unless the needles are resolved: the kernel is then compiled without them
