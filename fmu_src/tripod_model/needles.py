@@ -65,16 +65,22 @@ def _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, coef, w, b, A, MOM, gn):
             for l in range(6):
                 A[i, l] += ci * gn[l]
     if w != 0.0:
-        MOM[0] += w
-        MOM[1] += w * r1
-        MOM[2] += w * r2
-        MOM[3] += w * r3
-        MOM[4] += w * r1 * r1
-        MOM[5] += w * r2 * r2
-        MOM[6] += w * r3 * r3
-        MOM[7] += w * r1 * r2
-        MOM[8] += w * r1 * r3
-        MOM[9] += w * r2 * r3
+        _add_moments(MOM, w, r1, r2, r3)
+
+
+@njit
+def _add_moments(MOM, w, r1, r2, r3):
+    """MOM += w (1, r, r r^T): the weight, first and (symmetric) second moments of r."""
+    MOM[0] += w
+    MOM[1] += w * r1
+    MOM[2] += w * r2
+    MOM[3] += w * r3
+    MOM[4] += w * r1 * r1
+    MOM[5] += w * r2 * r2
+    MOM[6] += w * r3 * r3
+    MOM[7] += w * r1 * r2
+    MOM[8] += w * r1 * r3
+    MOM[9] += w * r2 * r3
 
 
 @njit
@@ -336,18 +342,7 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                          Fj, Aj, Mj, gn)
                 _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -h * kn * vrel, kq, h * iso,
                          FN[jn], AN[jn], MOM[jn], gn2)
-                wp = h * iso
-                Pj = PM[j]
-                Pj[0] += wp
-                Pj[1] += wp * r1
-                Pj[2] += wp * r2
-                Pj[3] += wp * r3
-                Pj[4] += wp * r1 * r1
-                Pj[5] += wp * r2 * r2
-                Pj[6] += wp * r3 * r3
-                Pj[7] += wp * r1 * r2
-                Pj[8] += wp * r1 * r3
-                Pj[9] += wp * r2 * r3
+                _add_moments(PM[j], h * iso, r1, r2, r3)
                 for i in range(6):
                     ci = kq * gn[i]
                     for l in range(6):
