@@ -316,6 +316,18 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     A[1, 1] += Is
     # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
     b[0] -= m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
+    if sixdof:
+        It = P[P_IT]
+        # the trunnion's angular acceleration a x a'' drags the tilting roller along
+        alx = ay * L[8] - az * L[7]
+        aly = az * L[6] - ax * L[8]
+        alz = ax * L[7] - ay * L[6]
+        drag1 = It * (alx * e1x + aly * e1y + alz * e1z)
+        drag2 = It * (alx * e2x + aly * e2y + alz * e2z)
+        kh = 0.0                                  # the groove's Hertz stiffness along x
+        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
+        if delta > 0.0:
+            kh = 1.5 * fn / delta * nx * nx
     # needle bearing (lumped): the row as a compliant joint (section 2.4.2 lumped)
     Fr = 0.0
     kr = 0.0
@@ -346,30 +358,17 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         kw = kr * P[P_KWR]
         kt2 = kr * P[P_LT]
         kt1 = kt2 * P[P_KWR]
-        It = P[P_IT]
-        # the trunnion's angular acceleration a x a'' drags the roller through the tilt springs
-        alx = ay * L[8] - az * L[7]
-        aly = az * L[6] - ax * L[8]
-        alz = ax * L[7] - ay * L[6]
         b[2] -= kw * (wo + h * wod)
-        b[3] -= kt1 * (Y[Y_B1] + h * b1d) + It * (alx * e1x + aly * e1y + alz * e1z)
-        b[4] -= kt2 * (Y[Y_B2] + h * b2d) + It * (alx * e2x + aly * e2y + alz * e2z)
+        b[3] -= kt1 * (Y[Y_B1] + h * b1d) + drag1
+        b[4] -= kt2 * (Y[Y_B2] + h * b2d) + drag2
         A[2, 2] += m + h * h * kw
         A[3, 3] += It + h * h * kt1
         A[4, 4] += It + h * h * kt2
     if resolved:
         # needle-resolved bearing: every needle contact on the roller, with its tangent,
         # evaluated at the start of the substep (needles and roller step on the same state)
-        It = P[P_IT]
-        alx = ay * L[8] - az * L[7]
-        aly = az * L[6] - ax * L[8]
-        alz = ax * L[7] - ay * L[6]
-        b[3] -= It * (alx * e1x + aly * e1y + alz * e1z)
-        b[4] -= It * (alx * e2x + aly * e2y + alz * e2z)
-        kh = 0.0
-        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
-        if delta > 0.0:
-            kh = 1.5 * fn / delta * nx * nx       # the groove's Hertz stiffness along x
+        b[3] -= drag1
+        b[4] -= drag2
         b[5] -= h * kh * ed
         A[2, 2] += m
         A[3, 3] += It
@@ -398,32 +397,23 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         Y[Y_UD] = ud + b[0]
         Y[Y_U] = u + h * Y[Y_UD]
     Y[Y_OM] = om + b[1]
-    if resolved:
+    if sixdof:
         Y[Y_WD] = wod + b[2]
         Y[Y_W] = wo + h * Y[Y_WD]
         Y[Y_B1D] = b1d + b[3]
         Y[Y_B1] = Y[Y_B1] + h * Y[Y_B1D]
         Y[Y_B2D] = b2d + b[4]
         Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
+    if resolved:
         Y[Y_ED] = ed + b[5]
         Y[Y_E] = e + h * Y[Y_ED]
         if NW is not None:
             NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[11], NW[14], NW[15],
                               NW[16], NW[17])
     if lumped:
-        Y[Y_WD] = wod + b[2]
-        Y[Y_W] = wo + h * Y[Y_WD]
-        Y[Y_B1D] = b1d + b[3]
-        Y[Y_B1] = Y[Y_B1] + h * Y[Y_B1D]
-        Y[Y_B2D] = b2d + b[4]
-        Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
         # radial along the pressing direction: the groove pushes the roller in -x, the
         # needles push it back. Linearly implicit with Hertz + row stiffness, so the stiff
         # radial mode (about 1e4 Hz) needs no artificial damping.
-        kh = 0.0
-        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
-        if delta > 0.0:
-            kh = 1.5 * fn / delta * nx * nx
         Fe = fx + Fr
         ktot = kh + kr
         ded = h * (Fe - h * ktot * ed) / (m + h * h * ktot)
