@@ -99,9 +99,11 @@ PARAMS: tuple[Param, ...] = (
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C),
-    Param("integrator", 3, "1", 0, 3,
-          "3 linearly implicit Euler extrapolated to 2nd order (Richardson) with the substep "
-          "set by its own error estimate (step_tolerance; default), 1 the same at the fixed "
+    Param("integrator", 4, "1", 0, 4,
+          "4 generalized-alpha (implicit, Newton; ideal bearing, default; runs as 3 with the "
+          "lumped and resolved bearings), 3 linearly implicit Euler extrapolated to 2nd "
+          "order (Richardson) with the substep set by its own error estimate "
+          "(step_tolerance), 1 the same at the fixed "
           "automatic substep, 0 linearly implicit Euler, 2 explicit (symplectic) Euler for "
           "comparison", kind="int", models=_C),
     Param("step_tolerance", 0.0, "1", 0.0, 1.0,
