@@ -154,14 +154,23 @@ def ladder():
     rows = []
     for dt in (1e-3, 5e-4, 2e-4, 1e-4):
         rows.append(("analytic", "TripodRollerAnalytic", {}, dt, dt == 1e-4))
+    lab = "contact bearing 0"
+    b = {"bearing": 0}
+    # integrator 4 (default): generalized-alpha at its automatic step (50 us here) and fixed ones
+    rows.append((f"{lab}, integrator 4", "TripodRoller", b, 1e-4, True))
+    rows.append((f"{lab}, integrator 4", "TripodRoller", b, 1e-3, False))
+    for h in (1e-4, 2.5e-5, 1.25e-5):
+        rows.append((f"{lab}, integrator 4", "TripodRoller", dict(b, max_substep=h), 1e-4, False))
     for bearing in (0, 1):
         lab = f"contact bearing {bearing}"
-        b = {"bearing": bearing}
-        rows.append((f"{lab}, integrator 3", "TripodRoller", b, 1e-4, True))
+        # integrator 4 runs as 3 with the lumped bearing: its defaults are integrator 3's
+        b = {"bearing": bearing} if bearing else {"bearing": 0, "integrator": 3}
+        rows.append((f"{lab}, integrator 3", "TripodRoller", b, 1e-4, bearing == 1))
         rows.append((f"{lab}, integrator 3", "TripodRoller", b, 1e-3, False))
         for tol in (3e-3, 3e-4, 1e-4):
             rows.append((f"{lab}, integrator 3", "TripodRoller", dict(b, step_tolerance=tol),
                          1e-4, False))
+        b = {"bearing": bearing}
         rows.append((f"{lab}, integrator 1", "TripodRoller", dict(b, integrator=1), 1e-4, False))
         for h in (2e-5, 5e-6, 1.25e-6):
             rows.append((f"{lab}, integrator 1", "TripodRoller",
@@ -186,6 +195,26 @@ def ladder():
         rows.append((f"{lab}, integrator 0", "TripodRoller", dict(b, integrator=0, max_substep=h),
                      1e-4, False))
     return rows
+
+
+GA_PYTHON = "contact bearing 0, generalized-alpha stepped in Python"
+GA_PYTHON_STEPS = (2e-4, 1e-4, 5e-5, 2.5e-5, 1.25e-5)
+
+
+def side_by_side(rows, budgets=(1e-2, 3e-3, 1e-3, 3e-4)):
+    """Per series of the ideal bearing: the cheapest measured setting whose order-3 error is
+    within each budget, as (series, {budget: (in-process s, setting) or None})."""
+    out = []
+    for label in dict.fromkeys(r["model"] for r in rows):
+        if not label.startswith("contact bearing 0"):
+            continue
+        mine = [r for r in rows if r["model"] == label]
+        best = {}
+        for bud in budgets:
+            ok = [r for r in mine if r["err_order3"] <= bud]
+            best[bud] = min(((r["in_process_s"], r["setting"]) for r in ok), default=None)
+        out.append((label, best))
+    return out
 
 
 REFERENCES = {  # converged reference of each model: the finest setting, not a ladder member
@@ -231,6 +260,21 @@ def work_precision(out, runs=5, fresh=True, log=print):
                      "in_process_s": r["wall"], "whole_process_s": whole,
                      "err_order1": err[1], "err_order3": err[3]})
         log(f"{label:34s} {rows[-1]['setting']:34s} {r['wall']:.4f} s  err3 {err[3]:.2e}")
+    # the generalized-alpha step stepped from Python (an engine with force callbacks), in this
+    # process after a warm-up: the same ideal-bearing model, so the same reference
+    from . import genalpha
+    genalpha.simulate(1e-4, cycles=0.1)
+    for h in GA_PYTHON_STEPS:
+        walls = []
+        for _ in range(runs):
+            t, y, st, wall = genalpha.simulate(h)
+            walls.append(wall)
+        err = rel_err(orders_of(y, t[0]), refs["contact bearing 0"])
+        rows.append({"model": GA_PYTHON, "setting": f"h={h:g}, dt={t[0]:g}", "default": False,
+                     "in_process_s": statistics.median(walls), "whole_process_s": float("nan"),
+                     "err_order1": err[1], "err_order3": err[3]})
+        log(f"{GA_PYTHON:34s} {rows[-1]['setting']:34s} {rows[-1]['in_process_s']:.4f} s  "
+            f"err3 {err[3]:.2e}")
     # Pareto front over every model and setting, per model family
     for fam in sorted({r["model"].split(",")[0] for r in rows}):
         mine = [r for r in rows if r["model"].startswith(fam)]

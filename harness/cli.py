@@ -164,6 +164,17 @@ def cmd_bench(args) -> int:
     rows, detail = bench.work_precision(out, runs=args.runs, fresh=not args.quick,
                                         log=lambda m: print(m, flush=True))
     lines += ["", "## Work-precision", "", (out / "work_precision.md").read_text()]
+    budgets = (1e-2, 3e-3, 1e-3, 3e-4)
+    sbs = ["## Side by side at equal order-3 error (ideal bearing)", "",
+           "Cheapest measured setting of each integrator within each order-3 error budget: "
+           "seconds for two whirl cycles, in process.", "",
+           "| integrator | " + " | ".join(f"error <= {100 * b:g} %" for b in budgets) + " |",
+           "|---|" + "---|" * len(budgets)]
+    for label, best in bench.side_by_side(rows, budgets):
+        cells = [f"{v[0]:.4f} s ({v[1]})" if v else "not reached" for v in best.values()]
+        sbs.append(f"| {label.split(', ', 1)[1]} | " + " | ".join(cells) + " |")
+    print("\n".join(sbs), flush=True)
+    lines += [""] + sbs
     (out / "bench.md").write_text("\n".join(lines) + "\n")
     off = [r for r in rows if r["default"] and not r["pareto"]]
     print(f"written: {out}/bench.md, work_precision.csv, work_precision.png")

@@ -1,0 +1,55 @@
+"""The generalized-alpha step stepped from Python, the way a general multibody engine runs it:
+an implicit fixed step whose Newton iterations call back for the forces.
+
+For the side-by-side of `tripod-thrust bench` (issue 7: our integrators against explicit
+stepping and against such an engine at equal order-3 error).  It runs the very step of the
+default integrator (kernel.ga_step, its plain-Python source) and only the force evaluations
+(kernel._ga_residual -> ga_forces) are compiled: a lower bound of what a Python force callback
+costs, so the difference to integrator 4 is what stepping in a host language costs.  Ideal
+bearing only (the scope of integrator 4).
+"""
+from __future__ import annotations
+
+import math
+import time
+
+import numpy as np
+
+from tripod_model import kernel as K
+from tripod_model.model import ContactModel
+
+
+def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
+    """Two (``cycles``) whirl cycles of the scene at a fixed step h [s], stepped in Python.
+
+    Inputs from the parameter table; dt_out [s] a whole number of steps (or h when larger).
+    Returns (t [s], Fz' [N], counts {steps, failed}, wall time of the stepping [s]).
+    """
+    m = ContactModel(dict(params or {}, bearing=0, integrator=4, max_substep=h))
+    p = m.p
+    theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
+    m.start(theta, w, F)
+    m.P[K.P_VST] = m.v_st(theta, w)
+    x0 = m.pressing_offset(F)
+    every = max(1, int(round(dt_out / h)))
+    if abs(every * h - max(dt_out, h)) > 1e-9 * h:
+        raise ValueError(f"dt_out = {dt_out:g} s is not a whole number of steps h = {h:g} s")
+    n_out = int(round(cycles * 2 * math.pi / w / (every * h)))
+    Y, P, L, res = m.Y, m.P, m._L, m._res
+    Q, Yf, C, hs = m._b, m._Y1, m._A[0], m._hs
+    step = K.ga_step.py_func          # the step in Python; its force evaluations compiled
+    out = np.zeros(n_out)
+    failed = 0
+    t0 = time.perf_counter()
+    for k in range(n_out):
+        for _ in range(every):
+            if not step(Y, P, theta, w, x0, h, L, res, Q, Yf, C, hs):
+                failed += 1           # integrator 4 would hand this step to integrator 3
+                hs[5] = 0.0
+                K.adaptive_steps(Y, P, theta, w, F, x0, h, 0.25 * h, L, res, m._Y1, m._Y2,
+                                 m._G, m._A, m._b, None, hs)
+        K.ga_forces(Y, P, theta, w, x0, L, res, Q)
+        out[k] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
+    wall = time.perf_counter() - t0
+    t = every * h * np.arange(1, n_out + 1)
+    return t, out, {"steps": n_out * every, "failed": failed}, wall
