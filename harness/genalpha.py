@@ -36,19 +36,19 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
         raise ValueError(f"dt_out = {dt_out:g} s is not a whole number of steps h = {h:g} s")
     n_out = int(round(cycles * 2 * math.pi / w / (every * h)))
     Y, P, L, res = m.Y, m.P, m._L, m._res
-    Q, Yf, C, hs = m._b, m._Y1, m._A[0], m._hs
+    Q, Yf, A, GW, hs = m._b, m._Y1, m._A, m._GW, m._hs
     step = K.ga_step.py_func          # the step in Python; its force evaluations compiled
     out = np.zeros(n_out)
     failed = 0
     t0 = time.perf_counter()
     for k in range(n_out):
         for _ in range(every):
-            if not step(Y, P, theta, w, x0, h, L, res, Q, Yf, C, hs):
+            if not step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
                 failed += 1           # integrator 4 would hand this step to integrator 3
-                hs[5] = 0.0
+                hs[3] = 0.0
                 K.adaptive_steps(Y, P, theta, w, F, x0, h, 0.25 * h, L, res, m._Y1, m._Y2,
                                  m._G, m._A, m._b, None, hs)
-        K.ga_forces(Y, P, theta, w, x0, L, res, Q)
+        K.ga_forces(Y, P, theta, w, x0, L, res, Q, GW[K.W_M])
         out[k] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
     wall = time.perf_counter() - t0
     t = every * h * np.arange(1, n_out + 1)

@@ -216,6 +216,29 @@ def roller_motion(Y, x0, L, lumped):
 
 
 @njit
+def tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z):
+    """Moments [N m] about e1, e2 with which the trunnion's angular acceleration a x a''
+    drags the tilting roller (inertia It about a diameter) along."""
+    ax, ay, az = L[0], L[1], L[2]
+    alx = ay * L[8] - az * L[7]
+    aly = az * L[6] - ax * L[8]
+    alz = ax * L[7] - ay * L[6]
+    return It * (alx * e1x + aly * e1y + alz * e1z), It * (alx * e2x + aly * e2y + alz * e2z)
+
+
+@njit
+def row_load(P, e):
+    """Lumped needle row: radial load F_r [N] and its tangent stiffness [N/m] at the roller's
+    radial offset e [m].  Eq. (17) summed over the loaded needles: F_r = K_row g^(10/9), g the
+    radial approach beyond the row's clearance (roller pushed back onto the trunnion)."""
+    g = -e - P[P_CLR]
+    if g <= 0.0:
+        return 0.0, 0.0
+    Fr = P[P_KN] * g ** (10.0 / 9.0)
+    return Fr, 10.0 / 9.0 * Fr / g
+
+
+@njit
 def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     """Needle-resolved bearing: the roller's pose and velocity and the trunnion's motion in the
     trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]."""
@@ -318,12 +341,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     b[0] -= m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
     if sixdof:
         It = P[P_IT]
-        # the trunnion's angular acceleration a x a'' drags the tilting roller along
-        alx = ay * L[8] - az * L[7]
-        aly = az * L[6] - ax * L[8]
-        alz = ax * L[7] - ay * L[6]
-        drag1 = It * (alx * e1x + aly * e1y + alz * e1z)
-        drag2 = It * (alx * e2x + aly * e2y + alz * e2z)
+        drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
         kh = 0.0                                  # the groove's Hertz stiffness along x
         delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
         if delta > 0.0:
@@ -332,12 +350,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     Fr = 0.0
     kr = 0.0
     if lumped:
-        # radial needle load, Eq. (17) summed over the loaded needles: F_r = K_row g^(10/9),
-        # g = radial approach beyond the row's clearance (roller pushed back onto the trunnion)
-        g = -e - P[P_CLR]
-        if g > 0.0:
-            Fr = P[P_KN] * g ** (10.0 / 9.0)
-            kr = 10.0 / 9.0 * Fr / g
+        Fr, kr = row_load(P, e)
         q = P[P_QSUM] * Fr            # sum of the needle loads (> F_r: they fan out)
         if P[P_FRICN] > 0.5 and q > 0.0:
             # axial sliding of the roller on the needles, mu_needle, tanh law
@@ -444,107 +457,175 @@ GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-
 GA_MAXIT = 12
 
 
+# unknowns of the generalized-alpha step: their position and velocity in Y (-1: the spin
+# angle, which nothing depends on), and whether they turn (scaled by r against v_st)
+GA_POS = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
+GA_VEL = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
+GA_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
+# rows of the generalized-alpha work array GW (NV + 8 rows of NV): the Jacobian, then vectors
+(W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0) = range(NV, NV + 7)
+
+
 @njit
-def ga_forces(Y, P, theta, w, x0, L, res, Q):
-    """Generalized forces on the roller with the ideal bearing at the state Y (whirl angle
-    Y[Y_X]): Q[0] along the trunnion axis [N], Q[1] the moment about it [N m].  The equations
-    of kernel.substep: m u'' = F.a - m (Q''.a + u a''.a), I_s om' = M.a."""
+def ga_forces(Y, P, theta, w, x0, L, res, Q, M):
+    """Generalized forces Q [N, N m] and masses M [kg, kg m^2] of the roller's unknowns at the
+    state Y (whirl angle Y[Y_X]), the equations of kernel.substep: ideal bearing (2 unknowns:
+    m u'' = F.a - m (Q''.a + u a''.a), I_s om' = M.a) or lumped (6: also the slide across the
+    load w, the tilts b1, b2 and the radial offset e, with the row's forces).  Returns nv."""
+    lumped = P[P_BEAR] == 1.0
     line_kinematics(Y[Y_X], w, theta, P, L)
-    cx, cy, cz, vx, vy, vz, wx, wy, wz, _, _, _, _, _, _ = roller_motion(Y, x0, L, False)
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, lumped)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     ax, ay, az = L[0], L[1], L[2]
+    fx, fy, fz, mx, my, mz = res[0], res[1], res[2], res[3], res[4], res[5]
+    m = P[P_M]
     u = Y[Y_U]
-    Q[0] = (res[0] * ax + res[1] * ay + res[2] * az
-            - P[P_M] * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az)))
-    Q[1] = res[3] * ax + res[4] * ay + res[5] * az
+    Q[0] = fx * ax + fy * ay + fz * az - m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
+    Q[1] = mx * ax + my * ay + mz * az
+    M[0] = m
+    M[1] = P[P_IS]
+    nv = 2
+    if lumped:
+        nv = 6
+        It = P[P_IT]
+        drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        Fr, kr = row_load(P, Y[Y_E])
+        q = P[P_QSUM] * Fr
+        if P[P_FRICN] > 0.5 and q > 0.0:
+            Q[0] -= P[P_MUN] * q * math.tanh(3.0 * (Y[Y_UD] - L[12]) / P[P_VST])
+        if P[P_ROLLR] > 0.5 and q > 0.0:
+            vr = (Y[Y_OM] - L[13]) * P[P_RB]
+            Q[1] -= P[P_MUR] * q * P[P_RB] * math.tanh(3.0 * vr / P[P_VST])
+        kt2 = kr * P[P_LT]
+        Q[2] = fx * e2x + fy * e2y + fz * e2z - kr * P[P_KWR] * Y[Y_W]
+        Q[3] = mx * e1x + my * e1y + mz * e1z - kt2 * P[P_KWR] * Y[Y_B1] - drag1
+        Q[4] = mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
+        Q[5] = fx + Fr
+        M[2] = m
+        M[3] = It
+        M[4] = It
+        M[5] = m
     if P[P_TRAV] < 0.5:
         Q[0] = 0.0
+    return nv
 
 
 @njit
-def _ga_residual(Y, Yf, P, theta, w, x0, h, au, ao, C, L, res, Q):
+def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
     """Residual M ((1 - am) a1 + am a0) - Q(t_f, q_f, v_f) of the generalized-alpha equations at
-    trial accelerations a1 = (au [m/s^2], ao [rad/s^2]); C = (am, af, gamma, beta, a0u, a0o)."""
-    am, af, ga, be, a0u, a0o = C[0], C[1], C[2], C[3], C[4], C[5]
-    u, ud, om = Y[Y_U], Y[Y_UD], Y[Y_OM]
-    u1 = u + h * ud + h * h * ((0.5 - be) * a0u + be * au)
-    ud1 = ud + h * ((1.0 - ga) * a0u + ga * au)
-    om1 = om + h * ((1.0 - ga) * a0o + ga * ao)
-    Yf[Y_X] = Y[Y_X] + (1.0 - af) * h * w
-    Yf[Y_U] = (1.0 - af) * u1 + af * u
-    Yf[Y_UD] = (1.0 - af) * ud1 + af * ud
-    Yf[Y_OM] = (1.0 - af) * om1 + af * om
-    ga_forces(Yf, P, theta, w, x0, L, res, Q)
-    return (P[P_M] * ((1.0 - am) * au + am * a0u) - Q[0],
-            P[P_IS] * ((1.0 - am) * ao + am * a0o) - Q[1])
-
-
-@njit
-def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, C, hs):
-    """One generalized-alpha step of h [s] on Y (ideal bearing).  Newton on the accelerations,
-    its Jacobian by finite differences (refreshed when convergence is slow), each Newton step
-    halved until the residual falls (the tanh friction is steep over v_st).  hs[3], hs[4]
-    carry the algorithmic accelerations from step to step (hs[5] = 1 when they are valid).
-    Returns False and leaves Y untouched when Newton does not converge."""
-    m, Is, r, vs = P[P_M], P[P_IS], P[P_R], P[P_VST]
-    trav = P[P_TRAV] > 0.5
-    for i in range(Y.shape[0]):
-        Yf[i] = Y[i]
-    if hs[5] == 0.0:   # first step, or after a fallback: accelerations from the forces
-        ga_forces(Y, P, theta, w, x0, L, res, Q)
-        hs[3] = Q[0] / m
-        hs[4] = Q[1] / Is
-        hs[5] = 1.0
+    the trial accelerations GW[ra] into GW[rr]; GW[W_A0] holds a0, GW[W_M] the masses."""
     rho = RHO_GA
     am = (2.0 * rho - 1.0) / (rho + 1.0)
     af = rho / (rho + 1.0)
     ga = 0.5 - am + af
-    C[0], C[1], C[2], C[3] = am, af, ga, 0.25 * (1.0 - am + af) ** 2
-    C[4], C[5] = hs[3], hs[4]
-    # residuals scaled to the velocity change they would cause, against the Newton tolerance
-    su = h * ga / (m * GA_NTOL * vs)
-    so = h * ga * r / (Is * GA_NTOL * vs)
-    du = 1e-4 * vs / (ga * h)          # finite-difference steps: 1e-4 v_st of velocity
-    do = du / r
-    au, ao = C[4], C[5]
-    r0, r1 = _ga_residual(Y, Yf, P, theta, w, x0, h, au, ao, C, L, res, Q)
-    J00 = J01 = J10 = J11 = 0.0
+    be = 0.25 * (1.0 - am + af) ** 2
+    nv = 6 if P[P_BEAR] == 1.0 else 2
+    for i in range(nv):
+        a0 = GW[W_A0, i]
+        a1 = GW[ra, i]
+        iv = GA_VEL[i]
+        v = Y[iv]
+        Yf[iv] = (1.0 - af) * (v + h * ((1.0 - ga) * a0 + ga * a1)) + af * v
+        ip = GA_POS[i]
+        if ip >= 0:
+            q = Y[ip]
+            Yf[ip] = (1.0 - af) * (q + h * v + h * h * ((0.5 - be) * a0 + be * a1)) + af * q
+    Yf[Y_X] = Y[Y_X] + (1.0 - af) * h * w
+    ga_forces(Yf, P, theta, w, x0, L, res, Q, GW[W_M])
+    for i in range(nv):
+        GW[rr, i] = GW[W_M, i] * ((1.0 - am) * GW[ra, i] + am * GW[W_A0, i]) - Q[i]
+    if P[P_TRAV] < 0.5:
+        GW[rr, 0] = 0.0
+
+
+@njit
+def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
+    """One generalized-alpha step of h [s] on Y (ideal or lumped bearing; Chung & Hulbert
+    1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
+    convergence is slow), each Newton step halved until the residual falls (the tanh friction
+    is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
+    (hs[3] = 1 when valid).  Returns False and leaves Y untouched when Newton does not
+    converge.  Yf (like Y), A (NV x NV), GW (NV + 8 x NV) are work arrays."""
+    vs, r = P[P_VST], P[P_R]
+    trav = P[P_TRAV] > 0.5
+    for i in range(Y.shape[0]):
+        Yf[i] = Y[i]
+    if hs[3] == 0.0:   # first step, or after a fallback: accelerations from the forces
+        nv = ga_forces(Y, P, theta, w, x0, L, res, Q, GW[W_M])
+        for i in range(nv):
+            hs[5 + i] = Q[i] / GW[W_M, i]
+        hs[3] = 1.0
+    nv = 6 if P[P_BEAR] == 1.0 else 2
+    rho = RHO_GA
+    am = (2.0 * rho - 1.0) / (rho + 1.0)
+    af = rho / (rho + 1.0)
+    ga = 0.5 - am + af
+    be = 0.25 * (1.0 - am + af) ** 2
+    for i in range(nv):
+        GW[W_A0, i] = hs[5 + i]
+        GW[W_A, i] = hs[5 + i]
+    _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_A, W_R, L, res, Q)
     fresh = False
     for it in range(GA_MAXIT):
         if not fresh:
-            p0, p1 = _ga_residual(Y, Yf, P, theta, w, x0, h, au + du, ao, C, L, res, Q)
-            J00, J10 = (p0 - r0) / du, (p1 - r1) / du
-            p0, p1 = _ga_residual(Y, Yf, P, theta, w, x0, h, au, ao + do, C, L, res, Q)
-            J01, J11 = (p0 - r0) / do, (p1 - r1) / do
+            # Jacobian column j: finite difference of 1e-4 v_st in unknown j's velocity
+            for j in range(nv):
+                d = 1e-4 * vs / (ga * h) / (r if GA_ROT[j] > 0.0 else 1.0)
+                for i in range(nv):
+                    GW[W_AT, i] = GW[W_A, i]
+                GW[W_AT, j] += d
+                _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+                for i in range(nv):
+                    GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
             fresh = True
-        if trav:
-            det = J00 * J11 - J01 * J10
-            if det == 0.0:
-                return False
-            d_u = -(J11 * r0 - J01 * r1) / det
-            d_o = -(J00 * r1 - J10 * r0) / det
-        else:
-            d_u = 0.0
-            d_o = -r1 / J11
-        n0 = max(abs(r0) * su, abs(r1) * so)
+        for i in range(nv):
+            for j in range(nv):
+                A[i, j] = GW[i, j]
+            Q[i] = -GW[W_R, i]
+        if not trav:   # the slide is held: its acceleration stays as it is
+            for j in range(nv):
+                A[0, j] = 0.0
+                A[j, 0] = 0.0
+            A[0, 0] = 1.0
+            Q[0] = 0.0
+        solve_small(A, Q, nv)
+        n0 = 0.0      # residual as the velocity change it would cause, against the tolerance
+        for i in range(nv):
+            GW[W_D, i] = Q[i]
+            sc = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
+            n0 = max(n0, abs(GW[W_R, i]) * sc)
         lam = 1.0
         for _ in range(8):
-            t0, t1 = _ga_residual(Y, Yf, P, theta, w, x0, h, au + lam * d_u, ao + lam * d_o,
-                                  C, L, res, Q)
-            if max(abs(t0) * su, abs(t1) * so) < n0:
+            for i in range(nv):
+                GW[W_AT, i] = GW[W_A, i] + lam * GW[W_D, i]
+            _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+            n1 = 0.0
+            for i in range(nv):
+                sc = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
+                n1 = max(n1, abs(GW[W_RT, i]) * sc)
+            if n1 < n0:
                 break
             lam *= 0.5
-        au += lam * d_u
-        ao += lam * d_o
-        r0, r1 = t0, t1
-        if abs(h * ga * lam * d_u) <= GA_NTOL * vs and abs(h * ga * lam * d_o) * r <= GA_NTOL * vs:
-            be = C[3]
-            u, ud, om = Y[Y_U], Y[Y_UD], Y[Y_OM]
+        conv = True
+        for i in range(nv):
+            GW[W_A, i] = GW[W_AT, i]
+            GW[W_R, i] = GW[W_RT, i]
+            dv = abs(h * ga * lam * GW[W_D, i]) * (r if GA_ROT[i] > 0.0 else 1.0)
+            if dv > GA_NTOL * vs:
+                conv = False
+        if conv:
+            for i in range(nv):
+                a0 = GW[W_A0, i]
+                a1 = GW[W_A, i]
+                iv = GA_VEL[i]
+                v = Y[iv]
+                ip = GA_POS[i]
+                if ip >= 0:
+                    Y[ip] = Y[ip] + h * v + h * h * ((0.5 - be) * a0 + be * a1)
+                Y[iv] = v + h * ((1.0 - ga) * a0 + ga * a1)
+                hs[5 + i] = a1
             Y[Y_X] += h * w
-            Y[Y_U] = u + h * ud + h * h * ((0.5 - be) * C[4] + be * au)
-            Y[Y_UD] = ud + h * ((1.0 - ga) * C[4] + ga * au)
-            Y[Y_OM] = om + h * ((1.0 - ga) * C[5] + ga * ao)
-            hs[3], hs[4] = au, ao
             hs[1] += 1.0
             return True
         if it % 3 == 2 or lam < 1.0:
@@ -586,7 +667,8 @@ def adaptive_steps(Y, P, theta, w, F_press, x0, T, h0, L, res, Y1, Y2, G, A, b, 
 
 
 @njit
-def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW, hs):
+def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW, hs,
+                 GW):
     """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
 
     theta [rad], w [rad/s], F_press [N], x0 [m] the pressing offset of the trunnion axis.
@@ -596,23 +678,23 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     P[P_INTEG] = 3: the same extrapolated step with its substep chosen by the step's own error
     estimate (step_error <= 1; up to P[P_HMAX]); hs[0] carries that substep from call to call,
     hs[1] counts accepted, hs[2] rejected substeps.
-    P[P_INTEG] = 4 with the ideal bearing: n generalized-alpha steps of h (ga_step), hs[3:6]
-    its accelerations, hs[6] counts steps handed to the extrapolated substeps; with the other
-    bearings 4 runs as 3.
+    P[P_INTEG] = 4 with the ideal or lumped bearing: n generalized-alpha steps of h (ga_step,
+    work array GW), hs[3] and hs[5:11] its accelerations, hs[4] counts steps handed to the
+    extrapolated substeps; with the needle-resolved bearing 4 runs as 3.
     L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
     NW the needle work arrays (model.ContactModel) with the resolved bearing, else None.
     """
     ny = Y.shape[0]
     extrap = P[P_INTEG] == 1.0
-    if P[P_INTEG] == 4.0 and P[P_BEAR] == 0.0:
+    if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
-            if not ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A[0], hs):
+            if not ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
                 # Newton did not converge (a very steep friction law): this step by the
                 # error-controlled extrapolated substeps instead, then start afresh
                 adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
                                b, NW, hs)
-                hs[5] = 0.0
-                hs[6] += 1.0
+                hs[3] = 0.0
+                hs[4] += 1.0
         n = 0
     elif P[P_INTEG] >= 3.0:
         adaptive_steps(Y, P, theta, w, F_press, x0, h * n, h, L, res, Y1, Y2, G, A, b, NW, hs)

@@ -80,8 +80,10 @@ class ContactModel:
         self._A = np.zeros((K.NV, K.NV))
         self._b = np.zeros(K.NV)
         # integrators 3 and 4: adaptive substep, accepted and rejected substeps; generalized-
-        # alpha accelerations (2), whether valid, steps handed to the adaptive substeps
-        self._hs = np.zeros(7)
+        # alpha: whether its accelerations are valid, steps handed to the adaptive substeps,
+        # the accelerations (NV)
+        self._hs = np.zeros(5 + K.NV)
+        self._GW = np.zeros((K.NV + 8, K.NV))   # generalized-alpha work array
         self.time = 0.0
         self.substeps = 0
         self._started = False
@@ -206,7 +208,7 @@ class ContactModel:
         p = self.p
         if p["max_substep"] > 0:
             return p["max_substep"]
-        if stiff and p["integrator"] == 4 and p["bearing"] == 0:
+        if stiff and p["integrator"] == 4 and p["bearing"] <= 1:
             return self.ga_step_size(theta, omega, F_press, v_st)
         h = 1e-4
         if omega > 0:
@@ -233,7 +235,7 @@ class ContactModel:
         Implicit with Newton, it needs no substep for the stick mode; it must resolve
         - the roller rocking across the groove (sliding along the trunnion, restored by the
           groove's curvature, undamped while the slip saturates the tanh): omega_g^2 =
-          F / (m x0), x0 the roller centre's distance from the groove axis; omega_g h <= 0.5
+          F / (m rho), rho the roller centre's distance from the groove axis; omega_g h <= 0.5
           (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %);
         - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
         - at least 2000 steps a whirl cycle, and at most 1e-4 s.
@@ -247,7 +249,8 @@ class ContactModel:
             if R > 0:
                 h = min(h, v_st / (2 * omega * R) / 20.0)
         if F_press > 0:
-            w_g = math.sqrt(F_press / (p["m_roller"] * self.pressing_offset(F_press)))
+            rho = p["r_groove"] - p["r_roller"] + (F_press / self.Kh) ** (2.0 / 3.0)
+            w_g = math.sqrt(F_press / (p["m_roller"] * rho))
             h = min(h, 0.5 / w_g)
         return max(h, 1e-7)
 
@@ -321,7 +324,7 @@ class ContactModel:
         acc = self._hs[1]
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
                        h, n, self.out, self._L, self._res, self._Y1, self._Y2,
-                       self._G, self._A, self._b, self.NW, self._hs)
+                       self._G, self._A, self._b, self.NW, self._hs, self._GW)
         self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
         self.time += dt
         return self.outputs(F_press)
