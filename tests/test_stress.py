@@ -37,3 +37,16 @@ def test_pareto_and_error_measure():
     # a pure phase error of 1 deg is |1 - e^(i 1 deg)| = 1.745 %
     e = rel_err({1: (2.0, 11.0), 3: (4.0, -30.0)}, ref)
     assert e[1] == pytest.approx(2 * math.sin(math.radians(0.5)))
+
+
+def test_side_by_side_picks_the_cheapest_setting_within_each_budget():
+    from harness.bench import side_by_side
+    row = lambda m, s, t, e: {"model": m, "setting": s, "in_process_s": t, "err_order3": e}
+    rows = [row("contact bearing 0, integrator 4", "a", 0.02, 2e-4),
+            row("contact bearing 0, integrator 4", "b", 0.01, 2e-3),
+            row("contact bearing 0, integrator 2 (explicit)", "c", 0.5, 2e-3),
+            row("contact bearing 1, integrator 4", "d", 0.001, 1e-5)]    # other model: ignored
+    got = dict(side_by_side(rows, budgets=(1e-2, 1e-3, 1e-4)))
+    assert set(got) == {"contact bearing 0, integrator 4", "contact bearing 0, integrator 2 (explicit)"}
+    assert got["contact bearing 0, integrator 4"] == {1e-2: (0.01, "b"), 1e-3: (0.02, "a"), 1e-4: None}
+    assert got["contact bearing 0, integrator 2 (explicit)"][1e-3] is None
