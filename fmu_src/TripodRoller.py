@@ -39,6 +39,10 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self.log(self.model.info(self.theta, self.omega, self.F_press, self.torque),
                  Fmi2Status.ok, "logAll")
 
+    def terminate(self):
+        if self.model is not None:   # what the integrator did, for a user who checks
+            self.log(self.model.summary(), Fmi2Status.ok, "logAll")
+
     # FMU state: the registered variables plus the model's internal arrays, deep-copied, so a
     # rollback (get state, run, set state, run) reproduces the outputs bit for bit
     def _get_fmu_state(self):

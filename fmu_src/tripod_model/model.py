@@ -419,6 +419,18 @@ class JointModel:
         for r, s in zip(self.rollers, st):
             r.set_state(s)
 
+    def summary(self) -> str:
+        """One line for the FMU log at the end: the integration steps roller 1 took."""
+        r = self.rollers[0]
+        hs = r._hs
+        text = f"roller 1: {r.substeps} steps, {r.time:.6g} s"
+        if self.p["integrator"] == 4 and self.p["bearing"] <= 1:
+            text += (f"; generalized-alpha, {int(hs[4])} step(s) handed to the extrapolated "
+                     f"substeps when Newton did not converge")
+        elif self.p["integrator"] >= 3:
+            text += f"; {int(hs[2])} substep(s) rejected by the error estimate"
+        return text
+
     def info(self, theta, omega, F_press, torque=0.0) -> str:
         """One line for the FMU log: the operating point the integrator chose."""
         r = self.rollers[0]
