@@ -193,6 +193,9 @@ def ladder():
     for h in (3.8e-6, 9.5e-7):
         rows.append((f"{lab}, integrator 0", "TripodRoller", dict(b, integrator=0, max_substep=h),
                      1e-4, False))
+    for h in (1e-6, 5e-7):   # explicit: about 20 and 30 s a run
+        rows.append((f"{lab}, integrator 2 (explicit)", "TripodRoller",
+                     dict(b, integrator=2, max_substep=h), 1e-4, False))
     return rows
 
 
