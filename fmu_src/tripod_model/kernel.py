@@ -450,9 +450,10 @@ def step_error(Y, Y1, P):
     return e
 
 
-# generalized-alpha step (integrator 4, ideal bearing): Chung & Hulbert (1993)
-RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) lets the stick mode
-               # ring: order 3 off by 40-200 % at 25-100 us (measured), 0.6-0.9 all < 0.02 %
+# generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
+RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) let the stick mode ring
+               # in a first version of this step: order 3 off by 40-200 % at 25-100 us, while
+               # 0.6-0.9 all stayed below 0.02 % at 25-50 us (paper's scene, ideal bearing)
 GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-2: same order 3)
 GA_MAXIT = 12
 

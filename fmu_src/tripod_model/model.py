@@ -230,7 +230,7 @@ class ContactModel:
         return max(h, 1e-7)
 
     def ga_step_size(self, theta, omega, F_press, v_st):
-        """Step of the generalized-alpha integrator [s] (integrator 4, ideal bearing).
+        """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing).
 
         Implicit with Newton, it needs no substep for the stick mode; it must resolve
         - the roller rocking across the groove (sliding along the trunnion, restored by the
@@ -239,6 +239,8 @@ class ContactModel:
           (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %);
         - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
         - at least 2000 steps a whirl cycle, and at most 1e-4 s.
+        The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
+        step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
         """
         p = self.p
         h = 1e-4
