@@ -5,8 +5,8 @@ For the side-by-side of `tripod-thrust bench` (issue 7: our integrators against 
 stepping and against such an engine at equal order-3 error).  It runs the very step of the
 default integrator (kernel.ga_step, its plain-Python source) and only the force evaluations
 (kernel._ga_residual -> ga_forces) are compiled: a lower bound of what a Python force callback
-costs, so the difference to integrator 4 is what stepping in a host language costs.  Ideal
-bearing only (the scope of integrator 4).
+costs, so the difference to integrator 4 is what stepping in a host language costs.  Run with
+the ideal bearing, the scene of the side-by-side.
 """
 from __future__ import annotations
 

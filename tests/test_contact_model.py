@@ -99,3 +99,15 @@ def test_generalized_alpha_converges_to_the_extrapolated_euler():
     assert n_d == 4000          # 50 us steps over two cycles: the step rule of ga_step_size
     assert e_d < 5e-4
     assert e_h < 0.5 * e_d
+
+
+def test_python_stepped_generalized_alpha_is_the_default_step():
+    # the bench's engine stand-in (harness/genalpha.py: the step run as Python, forces compiled)
+    # must be the very method of integrator 4, or the side-by-side compares two methods: at the
+    # same fixed step both give the same Fz' to rounding (1e-9 relative, a tenth of a cycle)
+    from harness import genalpha
+    t, y, counts, _ = genalpha.simulate(5e-5, cycles=0.1)
+    r = simulate({"max_substep": 5e-5}, duration=t[-1])
+    assert counts == {"steps": 200, "failed": 0}
+    assert np.allclose(y, r["Fz_mod"], rtol=1e-9, atol=1e-9 * np.abs(y).max())
+    assert np.abs(y).max() > 1.0     # a real thrust, not two zeros agreeing

@@ -194,7 +194,8 @@ class ContactModel:
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
 
     def substep(self, theta, omega, F_press, v_st, stiff=True):
-        """Substep [s]: max_substep if set, else from accuracy and stability estimates.
+        """Substep [s]: max_substep if set; the generalized-alpha step (ga_step_size) with
+        integrator 4 and the ideal or lumped bearing; else from accuracy and stability estimates:
 
         - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
           substeps across it keep order 3 converged to about 0.02 % (2nd-order integrator);
