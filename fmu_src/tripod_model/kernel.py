@@ -456,6 +456,12 @@ RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) let the s
                # 0.6-0.9 all stayed below 0.02 % at 25-50 us (paper's scene, ideal bearing)
 GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-2: same order 3)
 GA_MAXIT = 12
+# the method's coefficients from rho_inf (Chung & Hulbert: second order, maximal damping at
+# infinity for the given rho_inf)
+GA_AM = (2.0 * RHO_GA - 1.0) / (RHO_GA + 1.0)
+GA_AF = RHO_GA / (RHO_GA + 1.0)
+GA_GAMMA = 0.5 - GA_AM + GA_AF
+GA_BETA = 0.25 * (1.0 - GA_AM + GA_AF) ** 2
 
 
 # unknowns of the generalized-alpha step: their position and velocity in Y (-1: the spin
@@ -464,7 +470,7 @@ GA_POS = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
 GA_VEL = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
 GA_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # rows of the generalized-alpha work array GW (NV + 8 rows of NV): the Jacobian, then vectors
-(W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0) = range(NV, NV + 7)
+(W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
 
 
 @njit
@@ -516,11 +522,7 @@ def ga_forces(Y, P, theta, w, x0, L, res, Q, M):
 def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
     """Residual M ((1 - am) a1 + am a0) - Q(t_f, q_f, v_f) of the generalized-alpha equations at
     the trial accelerations GW[ra] into GW[rr]; GW[W_A0] holds a0, GW[W_M] the masses."""
-    rho = RHO_GA
-    am = (2.0 * rho - 1.0) / (rho + 1.0)
-    af = rho / (rho + 1.0)
-    ga = 0.5 - am + af
-    be = 0.25 * (1.0 - am + af) ** 2
+    am, af, ga, be = GA_AM, GA_AF, GA_GAMMA, GA_BETA
     nv = 6 if P[P_BEAR] == 1.0 else 2
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -558,15 +560,13 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             hs[5 + i] = Q[i] / GW[W_M, i]
         hs[3] = 1.0
     nv = 6 if P[P_BEAR] == 1.0 else 2
-    rho = RHO_GA
-    am = (2.0 * rho - 1.0) / (rho + 1.0)
-    af = rho / (rho + 1.0)
-    ga = 0.5 - am + af
-    be = 0.25 * (1.0 - am + af) ** 2
+    ga, be = GA_GAMMA, GA_BETA
     for i in range(nv):
         GW[W_A0, i] = hs[5 + i]
         GW[W_A, i] = hs[5 + i]
     _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_A, W_R, L, res, Q)
+    for i in range(nv):   # residual -> the velocity change it would cause, against the tolerance
+        GW[W_S, i] = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
     fresh = False
     for it in range(GA_MAXIT):
         if not fresh:
@@ -591,11 +591,10 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             A[0, 0] = 1.0
             Q[0] = 0.0
         solve_small(A, Q, nv)
-        n0 = 0.0      # residual as the velocity change it would cause, against the tolerance
+        n0 = 0.0
         for i in range(nv):
             GW[W_D, i] = Q[i]
-            sc = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
-            n0 = max(n0, abs(GW[W_R, i]) * sc)
+            n0 = max(n0, abs(GW[W_R, i]) * GW[W_S, i])
         lam = 1.0
         for _ in range(8):
             for i in range(nv):
@@ -603,8 +602,7 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
             n1 = 0.0
             for i in range(nv):
-                sc = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
-                n1 = max(n1, abs(GW[W_RT, i]) * sc)
+                n1 = max(n1, abs(GW[W_RT, i]) * GW[W_S, i])
             if n1 < n0:
                 break
             lam *= 0.5
