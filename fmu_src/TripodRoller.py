@@ -5,12 +5,15 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 """
 import copy
 import math
+import sys
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
+from fmi2bridge import requirements
 from reduced_model.scene import check_value
 from slavekit import Guarded, PickleState, register_table
+from tripod_model import jit
 from tripod_model.model import JointModel
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
@@ -30,6 +33,12 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self._params = register_table(self, "contact")
         self.model = None
         self._checked = None
+        if not jit.HAVE_NUMBA and jit.ENABLED:     # say once what this Python lacks
+            need = [r for r in requirements(self.resources or "") if r.startswith("numba")]
+            self.log(f"numba is missing in this Python ({sys.executable}, "
+                     f"{sys.version.split()[0]}): the contact kernel runs as plain Python, "
+                     f"about 40x slower; {sys.executable} -m pip install "
+                     f"'{need[0] if need else 'numba'}'", Fmi2Status.warning)
 
     def _param_values(self):
         return {p.name: getattr(self, p.name) for p in self._params}

@@ -1,9 +1,18 @@
-"""Build the FMUs into build/: pythonfmu, then units, ranges and display units added to
-modelDescription.xml from the parameter table (pythonfmu has no unit attributes)."""
+"""Build the FMUs into build/.
+
+pythonfmu writes the model description and bundles the Python sources; the binary is ours
+(fmu_src/native/fmi2_python.c, compiled here with the system C compiler) in place of
+pythonfmu's, whose teardown corrupts the host's heap (docs/native-layer.md).  Units, ranges
+and display units are added to modelDescription.xml from the parameter table (pythonfmu has
+no unit attributes).
+"""
 from __future__ import annotations
 
+import os
 import shutil
+import subprocess
 import sys
+import sysconfig
 import tempfile
 import zipfile
 from pathlib import Path
@@ -20,13 +29,95 @@ SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
 KIT = FMU_SRC / "slavekit.py"      # what both slaves share
 BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
           "TripodRollerAnalytic": (ROOT / "reduced_model", KIT)}
+# what each FMU needs in the Python it runs in (versions from pyproject.toml): the FMU's log
+# names them when they are missing
+RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",)}
+
+NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
+BRIDGE = FMU_SRC / "fmi2bridge.py"     # the native layer's Python side, in every FMU
+NATIVE_LIB = BUILD / "native" / "fmi2_python.so"
+PLATFORM = "linux64"
 
 
 def _sources(name):
-    files = [SLAVES[name], Path(__file__)]
+    files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
     return files
+
+
+def _fmi_headers() -> Path:
+    """The FMI 2.0 standard's C headers, as FMPy ships them."""
+    import fmpy
+    return Path(fmpy.__file__).parent / "c-code"
+
+
+def native_library(force=False) -> Path:
+    """build/native/fmi2_python.so, compiled from fmu_src/native/ when missing or stale.
+
+    Needs only a C compiler ($CC, else cc): the Python C API is bound at run time, so neither
+    the Python headers nor libpython are needed to build it."""
+    if (not force and NATIVE_LIB.exists()
+            and NATIVE_LIB.stat().st_mtime >= NATIVE_SRC.stat().st_mtime):
+        return NATIVE_LIB
+    if sys.platform != "linux":
+        raise RuntimeError(f"the FMUs' native layer builds on Linux only, not {sys.platform}")
+    NATIVE_LIB.parent.mkdir(parents=True, exist_ok=True)
+    cc = os.environ.get("CC") or sysconfig.get_config_var("CC") or "cc"
+    cmd = cc.split()[:1] + ["-std=c11", "-O2", "-g", "-fPIC", "-shared", "-fvisibility=hidden",
+                           "-Wall", "-Wextra", f"-I{_fmi_headers()}", str(NATIVE_SRC),
+                           "-o", str(NATIVE_LIB), "-ldl", "-lpthread", "-lm"]
+    try:
+        p = subprocess.run(cmd, capture_output=True, text=True)
+    except FileNotFoundError:
+        raise RuntimeError(f"no C compiler '{cmd[0]}': install one (Debian: apt-get install "
+                           "gcc) or set CC") from None
+    if p.returncode != 0:
+        raise RuntimeError(f"compiling {NATIVE_SRC.name} failed:\n{p.stderr}")
+    return NATIVE_LIB
+
+
+def _requirements(names) -> str:
+    """requirements.txt lines for ``names``, with the version ranges of pyproject.toml."""
+    import tomllib
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        deps = tomllib.load(f)["project"]["dependencies"]
+    pick = [d for d in deps if d.split(">")[0].split("<")[0].split("=")[0].strip() in names]
+    return "".join(d + "\n" for d in pick)
+
+
+def package(script, dest, project_files=(), requirements="", patch_xml=None) -> Path:
+    """Build the FMU of the slave in ``script`` at ``dest`` with our native layer.
+
+    project_files go to resources/; requirements: resources/requirements.txt (what the FMU's
+    Python must have); patch_xml: bytes -> bytes applied to modelDescription.xml."""
+    from pythonfmu import FmuBuilder
+    lib = native_library()
+    dest = Path(dest)
+    with tempfile.TemporaryDirectory() as tmp:
+        raw = FmuBuilder.build_FMU(script, dest=tmp,
+                                   project_files=list(project_files) + [BRIDGE],
+                                   needsExecutionTool=False, canGetAndSetFMUstate=True,
+                                   canSerializeFMUstate=True)
+        tmp_fmu = Path(tmp) / "patched.fmu"
+        with zipfile.ZipFile(raw) as zin, zipfile.ZipFile(tmp_fmu, "w", zipfile.ZIP_DEFLATED) as zout:
+            model_id = None
+            for item in zin.infolist():
+                if "__pycache__" in item.filename or item.filename.startswith("binaries/"):
+                    continue        # pythonfmu's binaries are replaced by ours
+                data = zin.read(item.filename)
+                if item.filename == "modelDescription.xml":
+                    model_id = ET.fromstring(data).find("CoSimulation").get("modelIdentifier")
+                    if patch_xml:
+                        data = patch_xml(data)
+                zout.writestr(item, data)
+            zout.write(lib, f"binaries/{PLATFORM}/{model_id}.so")
+            # the interpreter that built the FMU: a C host's first guess at a Python to start
+            zout.writestr("resources/python.txt", sys.executable + "\n")
+            zout.writestr("resources/requirements.txt", requirements)
+        dest.parent.mkdir(parents=True, exist_ok=True)
+        shutil.move(str(tmp_fmu), dest)
+    return dest
 
 
 def fmu_path(name="TripodRoller") -> Path:
@@ -83,23 +174,10 @@ def build(name="TripodRoller", force=False) -> Path:
     dest = fmu_path(name)
     if not force and not is_stale(name):
         return dest
-    from pythonfmu import FmuBuilder
-    BUILD.mkdir(exist_ok=True)
-    with tempfile.TemporaryDirectory() as tmp:
-        raw = FmuBuilder.build_FMU(SLAVES[name], dest=tmp, project_files=list(BUNDLE[name]),
-                                   needsExecutionTool=False, canGetAndSetFMUstate=True,
-                                   canSerializeFMUstate=True)
-        tmp_fmu = Path(tmp) / "patched.fmu"
-        with zipfile.ZipFile(raw) as zin, zipfile.ZipFile(tmp_fmu, "w", zipfile.ZIP_DEFLATED) as zout:
-            for item in zin.infolist():
-                if "__pycache__" in item.filename:
-                    continue
-                data = zin.read(item.filename)
-                if item.filename == "modelDescription.xml":
-                    data = _units_and_ranges(data)
-                zout.writestr(item, data)
-        shutil.move(str(tmp_fmu), dest)
-    return dest
+    if force:
+        native_library(force=True)
+    return package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
+                   _units_and_ranges)
 
 
 if __name__ == "__main__":

@@ -37,9 +37,9 @@ class Guarded:
     """The project's error contract for a slave; subclasses supply ``_initialise()`` (raise
     ValueError on a bad parameter) and ``_advance(t, h)`` (raise ValueError on a bad input).
 
-    A bad parameter is logged and fails initialisation (pythonfmu reports it as fatal); a bad
-    input or any other exception is logged and the step returns Discard.  Nothing escapes into
-    the host, and no output is changed by a failed step.
+    A bad parameter fails initialisation: the ValueError reaches the native layer, which logs
+    its message and returns fmi2Error.  A bad input or any other exception in a step is logged
+    here and the step returns Discard.  No output is changed by a failed step.
     """
     _ready = False
 
@@ -48,8 +48,7 @@ class Guarded:
         try:
             self._initialise()
         except ValueError as e:
-            self.log(f"invalid parameter: {e}", Fmi2Status.error)
-            raise RuntimeError(f"invalid parameter: {e}") from None
+            raise ValueError(f"invalid parameter: {e}") from None
         self._ready = True
 
     def do_step(self, current_time, step_size):

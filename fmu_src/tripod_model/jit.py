@@ -11,9 +11,9 @@ or TRIPOD_NUMBA_CACHE.
 import os
 import sys
 
-_ENABLED = os.environ.get("TRIPOD_NUMBA", "1") != "0"
+ENABLED = os.environ.get("TRIPOD_NUMBA", "1") != "0"    # False: plain Python on purpose
 try:
-    if not _ENABLED:
+    if not ENABLED:
         raise ImportError
     import numba as _nb
     HAVE_NUMBA = True

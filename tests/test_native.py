@@ -1,0 +1,118 @@
+"""The FMUs' native layer (fmu_src/native/fmi2_python.c) in the hosts that load it: a plain C
+host (dlopen, no libpython linked or preloaded, a clean environment), FMPy in fresh processes
+whose exit status must be 0, and the call sequence and status codes of FMI 2.0."""
+import os
+import subprocess
+import sys
+import sysconfig
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description
+
+from harness.fmus import ROOT, ensure_fmu
+
+NAMES = ("TripodRoller", "TripodRollerAnalytic")
+HOST_SRC = Path(__file__).with_name("c_host") / "fmi2_host.c"
+# a C host's environment: no virtualenv, no PYTHONPATH, no LD_PRELOAD; the FMU finds its
+# Python itself (here: the interpreter that built it, recorded in resources/python.txt)
+CLEAN_ENV = {"PATH": "/usr/bin:/bin", "HOME": os.environ.get("HOME", "/root")}
+
+
+@pytest.fixture(scope="module")
+def c_host(tmp_path_factory):
+    """The C host, compiled with the system compiler against the FMI 2.0 headers."""
+    import fmpy
+    exe = tmp_path_factory.mktemp("host") / "fmi2_host"
+    cc = os.environ.get("CC") or sysconfig.get_config_var("CC") or "cc"
+    subprocess.run(cc.split()[:1] + ["-std=c11", "-O2", "-Wall", "-Wextra", "-Werror",
+                                     f"-I{Path(fmpy.__file__).parent / 'c-code'}",
+                                     str(HOST_SRC), "-o", str(exe), "-ldl", "-lpthread"],
+                   check=True)
+    return exe
+
+
+def _unzipped(name):
+    fmu = ensure_fmu(name)
+    md = read_model_description(str(fmu))
+    return md, extract(str(fmu)), {v.name: v.valueReference for v in md.modelVariables}
+
+
+def _host(c_host, name, out, *ints, env=None):
+    md, d, vr = _unzipped(name)
+    return subprocess.run([str(c_host), d, md.coSimulation.modelIdentifier, md.guid,
+                           str(vr["Fz"]), "0.2", "1e-4", str(out)] + [f"{vr[k]}={v}" for k, v in ints],
+                          capture_output=True, text=True, timeout=600, env=env or CLEAN_ENV)
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_c_host_matches_fmpy(c_host, tmp_path, name):
+    """Two whirl cycles, state rollback and serialisation, unload and reload, a second run from
+    another thread, two instances: every check of the host holds, and its Fz is FMPy's to
+    1e-12 (the same code in the same process kind: in fact bit for bit)."""
+    p = _host(c_host, name, tmp_path / "fz.txt")
+    assert p.returncode == 0, p.stdout + p.stderr[-3000:]
+    checks = [ln for ln in p.stdout.splitlines() if ln.startswith("check ")]
+    assert len(checks) >= 12 and all(ln.endswith(" ok") for ln in checks), p.stdout
+    assert "unloaded ok" in p.stdout and "second_round_from_thread ok" in p.stdout
+    fz_c = np.loadtxt(tmp_path / "fz.txt")
+    from harness.runs import run_fmu
+    fz_py = run_fmu(ensure_fmu(name), {}, stop_time=0.2, output_interval=1e-4)["Fz"][1:]
+    assert fz_c.shape == fz_py.shape == (2000,)
+    assert np.allclose(fz_c, fz_py, rtol=0, atol=1e-12 * np.abs(fz_py).max())
+
+
+def test_c_host_invalid_parameter_is_error_not_fatal(c_host, tmp_path):
+    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", ("bearing", 7))
+    assert p.returncode == 0, p.stderr
+    assert "exit_initialization_status 3 (set 0)" in p.stdout      # fmi2Error = 3, not Fatal
+    assert "do_step_after_failed_init_status 3" in p.stdout        # the instance is in error
+    assert "invalid parameter: bearing = 7 is outside the allowed range" in p.stderr
+
+
+def test_c_host_says_what_python_lacks(c_host, tmp_path):
+    """A Python without numpy: instantiation fails with one line naming numpy and how to get
+    it (numba too), and the host carries on and exits cleanly."""
+    venv = tmp_path / "bare"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
+    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env)
+    assert p.returncode == 1 and "first_round FAILED" in p.stdout       # no instance, no crash
+    lines = [ln for ln in p.stderr.splitlines() if "needs the Python package 'numpy'" in ln]
+    assert lines, p.stderr
+    assert "pip install 'numpy" in lines[0] and "numba" in lines[0] and "TRIPOD_THRUST_PYTHON" in lines[0]
+
+
+def test_c_host_warns_when_numba_is_missing(c_host, tmp_path):
+    """A Python with numpy but no numba: the contact FMU runs, and says once what it lacks."""
+    import numpy
+    venv, site = tmp_path / "numpy-only", tmp_path / "site"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    site.mkdir()
+    pkg = Path(numpy.__file__).parent
+    for d in (pkg, pkg.with_name("numpy.libs")):
+        if d.exists():
+            (site / d.name).symlink_to(d)
+    sp = next(venv.glob("lib/python3.*/site-packages"))
+    (sp / "numpy_only.pth").write_text(str(site) + "\n")
+    md, d, vr = _unzipped("TripodRoller")
+    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
+    # a short run: the kernel as plain Python is slow
+    p = subprocess.run([str(c_host), d, "TripodRoller", md.guid, str(vr["Fz"]), "0.002", "1e-4",
+                        str(tmp_path / "fz.txt")], capture_output=True, text=True, timeout=600,
+                       env=env)
+    warn = [ln for ln in p.stderr.splitlines() if "numba" in ln]
+    assert len(warn) >= 1 and "pip install 'numba" in warn[0] and "|1|" in warn[0], p.stderr
+    assert "first_round ok" in p.stdout, p.stdout + p.stderr
+
+
+def test_fresh_processes_exit_clean():
+    """20 fresh Python processes of each FMU through fmpy.simulate_fmu: every exit status 0
+    (benchmarks/exit_clean.py runs the 300 + 50 of the issue)."""
+    p = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "exit_clean.py"),
+                        "--runs", "10", "--cli-runs", "0"],
+                       capture_output=True, text=True, timeout=900)
+    assert p.returncode == 0, p.stdout + p.stderr
+    for name in NAMES:
+        assert f"| {name} | simulate_fmu | 10 | 0 | 0 |" in p.stdout, p.stdout
