@@ -1,5 +1,5 @@
-"""The bare pythonfmu boundary: one input, one output, a do_step that does nothing.
-Built by harness/bench.py to measure what the FMI boundary alone costs per step."""
+"""The bare FMI boundary: one input, one output, a do_step that does nothing.  Built on the
+FMUs' native layer by harness/bench.py to measure what the FMI boundary alone costs a step."""
 from pythonfmu import Fmi2Causality, Fmi2Initial, Fmi2Slave, Fmi2Variability, Real
 
 

@@ -15,7 +15,7 @@ import numpy as np
 from .runs import FmuRunError
 
 _WORKER = r'''
-import json, os, sys
+import json, sys
 import numpy as np
 req = json.loads(sys.stdin.read())
 from libcosimpy.CosimLogging import CosimLogLevel, log_output_level
@@ -51,8 +51,6 @@ for name in req["outputs"]:
 np.savez(req["out"], **res)
 with open(req["out"] + ".json", "w") as f:
     json.dump({"ok": bool(ok)}, f)
-sys.stdout.flush()
-os._exit(0)
 '''
 
 

@@ -1,12 +1,8 @@
 """Runs one FMU through FMPy in its own process (so the built FMU's bundled code is what runs).
 
-Reads a JSON request on stdin, writes an .npz of the result, and leaves with os._exit: the
-pythonfmu binary can corrupt the heap when FMPy frees the instance at the end of a run
-(intermittent 'corrupted double-linked list' abort; upstream PythonFMU issue #228), after the
-results are complete.  Exiting without the teardown keeps the run's status honest.
-"""
+Reads a JSON request on stdin, writes an .npz of the result and a status JSON, and exits as
+any script does; the exit status is 0 exactly when the run succeeded."""
 import json
-import os
 import sys
 import time
 import traceback
@@ -45,9 +41,7 @@ def main():
                   "traceback": traceback.format_exc(), "log": locals().get("logs", [])[-50:]}
     with open(req["out"] + ".json", "w") as f:
         json.dump(status, f)
-    sys.stdout.flush()
-    sys.stderr.flush()
-    os._exit(0 if status["ok"] else 1)
+    sys.exit(0 if status["ok"] else 1)
 
 
 if __name__ == "__main__":

@@ -10,7 +10,8 @@ FMU_NAMES = ("TripodRoller", "TripodRollerAnalytic")
 
 
 @lru_cache(maxsize=1)
-def _builder():
+def builder():
+    """fmu_src/build.py as a module (fmu_src is not a package: it is what goes into the FMUs)."""
     spec = importlib.util.spec_from_file_location("tripod_fmu_build", ROOT / "fmu_src" / "build.py")
     mod = importlib.util.module_from_spec(spec)
     spec.loader.exec_module(mod)
@@ -19,4 +20,4 @@ def _builder():
 
 def ensure_fmu(name: str = "TripodRoller", force: bool = False) -> Path:
     """Path of build/<name>.fmu, built first when missing, stale or forced."""
-    return _builder().build(name, force=force)
+    return builder().build(name, force=force)

@@ -1,11 +1,9 @@
 """Runs FMI-level checks on a built FMU in its own process (called by test_driveline.py).
 
-Usage: python fmi_worker.py FMU CHECK [INTEGER_START_VALUES_JSON]; prints one JSON object;
-exits without freeing the instance (upstream pythonfmu teardown issue, see
-harness/fmu_worker.py).
+Usage: python fmi_worker.py FMU CHECK [INTEGER_START_VALUES_JSON]; prints one JSON object
+and exits normally (the caller checks the exit status).
 """
 import json
-import os
 import sys
 
 from fmpy import extract, read_model_description
@@ -74,5 +72,3 @@ elif check == "reset":
     b = run(s, 300)
     res = {"reset_identical": a == b}
 print(json.dumps(res))
-sys.stdout.flush()
-os._exit(0)

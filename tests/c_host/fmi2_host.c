@@ -82,11 +82,14 @@ static fmi2Component instantiate(Api *a, const char *name)
     return a->fmi2Instantiate(name, fmi2CoSimulation, g_guid, uri, &cb, fmi2False, fmi2False);
 }
 
-/* n steps from t0, the output after each into y (may be NULL); 0 on a non-OK status */
+/* Communication points as FMPy makes them: t_i = i h, each step t_(i+1) - t_i. */
+static double t_at(int i) { return i * g_step; }
+
+/* Steps i0 .. i0+n-1, the output after each into y (may be NULL); 0 on a non-OK status */
 static int steps(Api *a, fmi2Component c, int i0, int n, double *y)
 {
     for (int i = i0; i < i0 + n; ++i) {
-        if (a->fmi2DoStep(c, i * g_step, g_step, fmi2True) != fmi2OK) return 0;
+        if (a->fmi2DoStep(c, t_at(i), t_at(i + 1) - t_at(i), fmi2True) != fmi2OK) return 0;
         double v;
         if (a->fmi2GetReal(c, &g_vr, 1, &v) != fmi2OK) return 0;
         if (y) y[i] = v;
@@ -204,8 +207,8 @@ int main(int argc, char **argv)
     double v1 = 0, v2 = 0;
     int m = n < 200 ? n : 200;
     for (int i = 0; ok && i < m; ++i) {
-        ok &= a.fmi2DoStep(c1, i * g_step, g_step, fmi2True) == fmi2OK;
-        ok &= a.fmi2DoStep(c2, i * g_step, g_step, fmi2True) == fmi2OK;
+        ok &= a.fmi2DoStep(c1, t_at(i), t_at(i + 1) - t_at(i), fmi2True) == fmi2OK;
+        ok &= a.fmi2DoStep(c2, t_at(i), t_at(i + 1) - t_at(i), fmi2True) == fmi2OK;
         ok &= a.fmi2GetReal(c1, &g_vr, 1, &v1) == fmi2OK && a.fmi2GetReal(c2, &g_vr, 1, &v2) == fmi2OK;
         ok &= v1 == y1[i] && v2 == y1[i];
     }
