@@ -108,11 +108,12 @@ def test_c_host_warns_when_numba_is_missing(c_host, tmp_path):
 
 
 def test_fresh_processes_exit_clean():
-    """20 fresh Python processes of each FMU through fmpy.simulate_fmu: every exit status 0
-    (benchmarks/exit_clean.py runs the 300 + 50 of the issue)."""
+    """20 fresh Python processes of each FMU through fmpy.simulate_fmu and 5 through `fmpy
+    simulate`: every exit status 0 (benchmarks/exit_clean.py runs the issue's 300 + 50)."""
     p = subprocess.run([sys.executable, str(ROOT / "benchmarks" / "exit_clean.py"),
-                        "--runs", "10", "--cli-runs", "0"],
+                        "--runs", "20", "--cli-runs", "5"],
                        capture_output=True, text=True, timeout=900)
     assert p.returncode == 0, p.stdout + p.stderr
     for name in NAMES:
-        assert f"| {name} | simulate_fmu | 10 | 0 | 0 |" in p.stdout, p.stdout
+        assert f"| {name} | simulate_fmu | 20 | 0 | 0 |" in p.stdout, p.stdout
+        assert f"| {name} | fmpy simulate | 5 | 0 | 0 |" in p.stdout, p.stdout
