@@ -12,7 +12,6 @@ import os
 import shutil
 import subprocess
 import sys
-import sysconfig
 import tempfile
 import zipfile
 from pathlib import Path
@@ -63,7 +62,7 @@ def native_library(force=False) -> Path:
     if sys.platform != "linux":
         raise RuntimeError(f"the FMUs' native layer builds on Linux only, not {sys.platform}")
     NATIVE_LIB.parent.mkdir(parents=True, exist_ok=True)
-    cc = os.environ.get("CC") or sysconfig.get_config_var("CC") or "cc"
+    cc = os.environ.get("CC") or "cc"
     cmd = cc.split()[:1] + ["-std=c11", "-O2", "-g", "-fPIC", "-shared", "-fvisibility=hidden",
                            "-Wall", "-Wextra", f"-I{_fmi_headers()}", str(NATIVE_SRC),
                            "-o", str(NATIVE_LIB), "-ldl", "-lpthread", "-lm"]

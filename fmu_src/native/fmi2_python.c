@@ -206,24 +206,25 @@ static char *run_capture(char *const argv[], int *status)
         return NULL;
     }
     size_t cap = 4096, len = 0;
-    char *buf = malloc(cap);
-    ssize_t k;
-    while (buf && (k = read(fd[0], buf + len, cap - len - 1)) != 0) {
+    char *buf = malloc(cap), scratch[4096];
+    for (;;) {                 /* read to EOF, so the child never blocks on a full pipe */
+        if (buf && cap - len < 2 && cap < (1u << 20)) {
+            char *nb = realloc(buf, cap * 2);
+            if (nb) buf = nb, cap *= 2;
+        }
+        int keep = buf && cap - len >= 2;
+        ssize_t k = keep ? read(fd[0], buf + len, cap - len - 1) : read(fd[0], scratch, sizeof scratch);
+        if (k == 0) break;
         if (k < 0) {
             if (errno == EINTR) continue;
             break;
         }
-        len += (size_t)k;
-        if (cap - len < 2 && cap < (1u << 20)) {
-            char *nb = realloc(buf, cap *= 2);
-            if (!nb) break;
-            buf = nb;
-        } else if (cap - len < 2) {
-            break;
-        }
+        if (keep) len += (size_t)k;
     }
     close(fd[0]);
-    while (waitpid(pid, status, 0) < 0 && errno == EINTR) {}
+    pid_t w;
+    while ((w = waitpid(pid, status, 0)) < 0 && errno == EINTR) {}
+    if (w < 0) *status = 0;   /* a host that ignores SIGCHLD: judge by the output alone */
     if (buf) buf[len] = '\0';
     return buf;
 }
