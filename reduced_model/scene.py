@@ -85,12 +85,13 @@ PARAMS: tuple[Param, ...] = (
     Param("bearing", 0, "1", 0, 2, "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved",
           kind="int", models=_C),
     Param("traverse", True, "1", None, None,
-          "roller free along the trunnion axis (contact point traverses the groove)",
-          kind="bool", models=_C),
+          "roller free along the trunnion axis (contact point traverses the groove); in the "
+          "analytic model: the reduced traverse model (false: Eqs. 18-27 alone)",
+          kind="bool", models=_A),
     Param("friction_groove", True, "1", None, None, "roller-groove sliding friction on",
           kind="bool", models=_C),
     Param("spin_moment", True, "1", None, None, "roller-groove spin moment Eq. (16) on",
-          kind="bool", models=_C),
+          kind="bool", models=_A),
     Param("friction_needle", True, "1", None, None,
           "needle sliding friction on (lumped and resolved bearing)",
           kind="bool", models=_C),
@@ -110,8 +111,8 @@ PARAMS: tuple[Param, ...] = (
           "integrator 3: largest error of one substep in the roller's slip velocities, as a "
           "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (its chaotic needle "
           "row moves order 3 by about 1 % anyway)", models=_C),
-    Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_C),
-    Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_C),
+    Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_A),
+    Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_A),
     Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),
     Param("d_needle", 0.0016, "m", 0.0, 0.1, "needle diameter", lo_open=True, models=_C),
     Param("l_needle", 0.012, "m", 0.0, 0.1, "needle length", lo_open=True, models=_C),

@@ -1,0 +1,259 @@
+"""The reduced traverse model: the roller's slide across the groove, beyond Eqs. (18)-(27).
+
+Eqs. (18)-(27) hold the roller at the groove bottom, so the groove friction follows the driven
+slip V at once.  A roller free to slide along the trunnion (ideal bearing) is instead held by
+the groove's curvature: it rides up the flank until the slope of the normal force balances the
+friction, and crosses the groove bottom when the slip reverses.  That crossing is the third
+sliding velocity of Fig. 22; where the friction never reaches mu_s the roller only rocks on the
+flank (micro-slip) and the thrust falls far below Eq. (27).  Quasi-static balance of the roller
+(its rocking mode, sqrt(F / (m rho)), lies far above 2 w), unknown p(x) = n.a, the tilt of the
+contact normal n towards the trunnion axis a at whirl angle x (docs/model.md, "Traverse"):
+
+  T1  lateral balance along a:   friction on the roller f_a = f_n p
+  T2  spin balance about a:      f_b = -(I z''/r + M_s p) / r,   beta = f_b / f_n
+      (I spin inertia, z the roll along the groove, M_s the spin moment Eq. (16) with the
+      spin about the normal w_n = phi' + (z'/r) p)
+  T3  tanh friction, inverted:   |f| = mu_s f_n tanh(3 |v| / v_st), v parallel to -f  ->
+      slip along a  s = -(v_st / 3) atanh(g) / g * p / mu_s,  g = sqrt(p^2 + beta^2) / mu_s
+  T4  kinematics:                s = V'(x) + rho_c p',   V' = v1 + v2 (1 + rho_c / r)
+      (the roller centre, rho_c = r_groove - r_roller + Hertz approach from the groove axis,
+      must follow the rolling trunnion's tilt xi as well as its contact point)
+  T5  normal force:              f_n = K (rho_c / sqrt(1 - p^2) - (r_groove - r_roller))^1.5
+  T6  forces on the groove:      Fz = -f_n (p sin phi + beta cos phi),
+                                 Fx = f_n (sqrt(1 - p^2) + p^2 - p xi),  Fy = f_n p cos phi
+
+The periodic solution of T4 (implicit trapezoidal rule over one whirl cycle, the start value by
+a secant iteration on the cycle map) is tabulated once per operating point; ``Traverse.at``
+interpolates it (a whirl angle in, the forces out: what the analytic FMU does per step).
+Kinematics are the exact Eqs. (1), (5) (the contact model's).
+"""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from .hertz import hertz_point
+from .orders import order_spectrum
+from .scene import pressing_load
+from .thrust import closed_form, spin_inertia, transition_velocity
+
+N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
+MICRO_SLIP_G = 0.95        # friction never above 95 % of mu_s f_n: the roller never slides across
+FULL_SLIP_REL = 0.05       # order 3 within 5 % (complex) of Eq. (27): Eqs. 18-27 hold
+REGIMES = ("full slip", "traverse", "micro-slip")
+
+
+class Traverse:
+    """Periodic (settled) solution of the reduced traverse model at one operating point.
+
+    ``scene``: a validated analytic scene (SI).  Attributes: ``x`` whirl angles [rad] of the
+    table (one cycle, endpoint included), ``p`` [1], ``beta`` [1], ``fn`` [N], ``slip`` [m/s],
+    ``Fx``, ``Fy``, ``Fz``, ``Fz_mod`` [N] on it; ``g_max`` [1]: the largest friction over
+    mu_s f_n; ``rho_c`` [m]; ``cycles`` of the cycle map the secant iteration used.
+    """
+
+    def __init__(self, scene: dict, n: int = N_PER_CYCLE):
+        self.scene = sc = scene
+        self.n = n
+        w = sc["omega"]
+        if w <= 0:
+            raise ValueError("omega = 0: the traverse model needs a whirling joint; allowed "
+                             "range (0, 10000] rad/s (or traverse = false)")
+        self.F = F = pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"])
+        self.mu = mu = sc["mu_groove"]
+        self.vst = transition_velocity(sc)
+        self.r = r = sc["r_roller"]
+        Rg = sc["r_groove"]
+        self.K, self.a1, _ = hertz_point(r, Rg, sc["E"], sc["nu"])
+        self.clear = Rg - r
+        self.rho_c = self.clear + (F / self.K) ** (2.0 / 3.0) if F > 0 else self.clear
+        self.x = 2.0 * math.pi * np.arange(n + 1) / n
+        self._drive(sc)
+        if F <= 0 or mu <= 0:
+            self.p = np.zeros(n + 1)
+            self.cycles = 0
+        else:
+            self.p, self.cycles = self._periodic()
+        self._tabulate()
+
+    # --- the driving motion on the table (exact Eqs. 1, 5; z = s tan(phi), Eq. 18) ---------
+    def _drive(self, sc):
+        x, w, th = self.x, sc["omega"], sc["theta"]
+        T = math.tan(th) if sc["pitch"] else 0.0
+        k = (1.0 - math.cos(th)) / (2.0 * math.cos(th)) if sc["roll"] else 0.0   # e / s
+        tz = T * np.sin(x)
+        self.phi = np.arctan(tz)
+        dphi = T * w * np.cos(x) / (1.0 + tz * tz)
+        self.xi = np.arcsin(k * np.sin(2.0 * x))
+        dxi = 2.0 * w * k * np.cos(2.0 * x) / np.sqrt(1.0 - (k * np.sin(2.0 * x)) ** 2)
+        zd = sc["s"] * T * w * np.cos(x)
+        zdd = -sc["s"] * T * w * w * np.sin(x)
+        r = sc["r_roller"]
+        v1 = zd * np.sin(self.phi)                          # Eq. (19), exact
+        v2 = -r * dxi                                       # Eq. (20), exact
+        self.V = v1 + v2 * (1.0 + self.rho_c / r)           # T4
+        self.dphi = dphi
+        self.spin = zd / r                                  # rolling along the groove
+        I = spin_inertia(sc["m_roller"], r, sc["r_bore"]) if sc["spin_inertia"] else 0.0
+        self.b_inertia = -I * zdd / (r * r)                 # T2: the inertia part of f_b [N]
+        # plain lists: the time-stepping loop reads them one float at a time
+        self._V, self._bi = self.V.tolist(), self.b_inertia.tolist()
+        self._dphi, self._spin = self.dphi.tolist(), self.spin.tolist()
+        self._sm = bool(sc["spin_moment"])
+
+    # --- T2, T3, T5 at one table point ------------------------------------------------------
+    def _fn(self, p):
+        d = self.rho_c / math.sqrt(1.0 - p * p) - self.clear
+        return self.K * d ** 1.5 if d > 0 else 0.0
+
+    def _beta(self, i, p, fn):
+        """f_b / f_n, T2."""
+        b = self._bi[i]
+        if self._sm:
+            a = self.a1 * fn ** (1.0 / 3.0)                 # Eq. (15)
+            wn = self._dphi[i] + self._spin[i] * p
+            b -= 0.375 * self.mu * math.tanh(3.0 * wn * a / self.vst) * fn * a * p / self.r
+        return b / fn
+
+    def _share(self, s, B):
+        """p >= 0 [1] for the slide slip |s| [m/s] when the spin needs |f_b| / f_n = B (T3):
+        the slip vector (s, t) at angle a from the slide, mu tanh(3 |s| / (v_st cos a)) sin a
+        = B, solved by bisection and Newton on a in [0, pi/2) (its left side rises from 0 to
+        mu); then p = mu tanh(3 |v| / v_st) cos a."""
+        mu, k = self.mu, 3.0 / self.vst
+        B = min(B, mu * (1.0 - 1e-9))
+        s = abs(s)
+        if B <= 0.0:
+            return mu * math.tanh(k * s)
+        if s == 0.0:
+            return 0.0
+        lo, hi = 0.0, 0.5 * math.pi
+        a = min(math.asin(min(B / (mu * math.tanh(k * s) + 1e-300), 1.0)), 1.5)
+        for _ in range(60):
+            c, sn = math.cos(a), math.sin(a)
+            th = math.tanh(k * s / c)
+            f = mu * th * sn - B
+            if f > 0:
+                hi = a
+            else:
+                lo = a
+            df = mu * (th * c + sn * (1.0 - th * th) * k * s * sn / (c * c))
+            an = a - f / df if df > 0 else 0.5 * (lo + hi)
+            if not lo < an < hi:
+                an = 0.5 * (lo + hi)
+            if abs(an - a) < 1e-10:
+                a = an
+                break
+            a = an
+        return mu * math.tanh(k * s / math.cos(a)) * math.cos(a)
+
+    def _p(self, i, s):
+        """p at table point i for the slide slip s [m/s] (T2, T3, T5: beta depends weakly on
+        p through f_n and the spin moment: fixed point)."""
+        sign = -1.0 if s > 0 else 1.0
+        p = sign * self.mu * math.tanh(3.0 * abs(s) / self.vst)
+        for _ in range(6):
+            q = sign * self._share(s, abs(self._beta(i, p, self._fn(p))))
+            if abs(q - p) < 1e-11 * self.mu:
+                return q
+            p = q
+        return p
+
+    # --- the periodic solution of T4 in the slide slip s ----------------------------------------
+    def _cycle(self, s0, keep=False):
+        """One whirl cycle of T4, rho_c dp/dt = s - V', by the trapezoidal rule in s (never
+        singular: d(rho_c p - h s / 2)/ds <= -h / 2)."""
+        n, h = self.n, 2.0 * math.pi / self.scene["omega"] / self.n
+        rho, V, P = self.rho_c, self._V, self._p
+        s = s0
+        p0 = P(0, s)
+        ss = [s]
+        for i in range(n):
+            rhs0 = rho * p0 + 0.5 * h * (s - V[i] - V[i + 1])
+            z = s
+            for _ in range(30):                # Newton on rho p1 - h/2 s1 = rhs0
+                p1 = P(i + 1, z)
+                res = rho * p1 - 0.5 * h * z - rhs0
+                e = 1e-6 * self.vst
+                d = (rho * (P(i + 1, z + e) - p1)) / e - 0.5 * h
+                dz = -res / d
+                z += dz
+                if abs(dz) < 1e-9 * self.vst:
+                    break
+            s = z
+            p0 = P(i + 1, s)
+            if keep:
+                ss.append(s)
+        return ss if keep else s
+
+    def _periodic(self, tol=1e-7, max_cycles=60):
+        """The slide slip over one cycle with s(2 pi) = s(0): secant on the cycle map."""
+        a = 0.0
+        ga = self._cycle(a) - a
+        b = a + ga
+        gb = self._cycle(b) - b
+        used = 2
+        while abs(gb) > tol * self.vst and gb != ga and used < max_cycles:
+            a, ga, b = b, gb, b - gb * (b - a) / (gb - ga)
+            gb = self._cycle(b) - b
+            used += 1
+        ss = self._cycle(b, keep=True)
+        self.slip = np.array(ss)
+        return np.array([self._p(i, v) for i, v in enumerate(ss)]), used + 1
+
+    def _tabulate(self):
+        p = self.p
+        n1 = p.size
+        fn = np.array([self._fn(q) for q in p]) if self.F > 0 else np.zeros(n1)
+        beta = np.array([self._beta(i, p[i], fn[i]) if fn[i] > 0 else 0.0 for i in range(n1)])
+        slip = self.slip if hasattr(self, "slip") else self.V
+        self.fn, self.beta, self.slip = fn, beta, slip
+        self.Fz = -fn * (p * np.sin(self.phi) + beta * np.cos(self.phi))          # T6
+        self.Fx = fn * (np.sqrt(1.0 - p * p) + p * p - p * self.xi)
+        self.Fy = fn * p * np.cos(self.phi)
+        F = self.F
+        self.Fz_mod = np.where(self.Fx > 1e-9 * max(F, 1.0), self.Fz * F / np.where(
+            self.Fx > 0, self.Fx, 1.0), 0.0)
+        self.g_max = float(np.max(np.hypot(p, beta)) / self.mu) if self.mu > 0 else 0.0
+        self._cols = np.column_stack([self.Fz, self.Fz_mod, self.Fx, self.Fy, np.abs(slip)])
+
+    def at(self, x):
+        """(Fz, Fz_mod, Fx, Fy, slip speed) at whirl angle x [rad] (scalar), N and m/s: linear
+        interpolation in the periodic table."""
+        u = (x % (2.0 * math.pi)) * self.n / (2.0 * math.pi)
+        i = int(u)
+        if i >= self.n:
+            i = self.n - 1
+        f = u - i
+        a, b = self._cols[i], self._cols[i + 1]
+        return tuple(float(a[j] + f * (b[j] - a[j])) for j in range(5))
+
+    def orders(self, name="Fz_mod", orders=(1, 3)):
+        """{k: (amplitude N, phase deg)} of one of the tabulated signals over the cycle."""
+        a, ph = order_spectrum(getattr(self, name)[:-1], 1, orders)
+        return {int(k): (float(ak), float(pk)) for k, ak, pk in zip(orders, a, ph)}
+
+    def three_rollers(self, name="Fz_mod", orders=(1, 3)):
+        """Orders of the sum over rollers at whirl phases 0, 120, 240 deg."""
+        y = getattr(self, name)[:-1]
+        s = y + np.roll(y, -self.n // 3) + np.roll(y, -2 * self.n // 3)
+        a, ph = order_spectrum(s, 1, orders)
+        return {int(k): (float(ak), float(pk)) for k, ak, pk in zip(orders, a, ph)}
+
+    def regime(self) -> str:
+        """'micro-slip' (friction never reaches 95 % of mu_s f_n), 'full slip' (order 3 within
+        5 % of Eq. 27), else 'traverse'."""
+        return regime_of(self.g_max, self.orders()[3], closed_form(self.scene)["total"][3])
+
+
+def regime_of(g_max, o3, o3_eq27) -> str:
+    """The regime from the friction's reach and the order-3 change against Eq. (27)."""
+    if g_max < MICRO_SLIP_G:
+        return "micro-slip"
+    c = o3[0] * np.exp(1j * math.radians(o3[1]))
+    c27 = o3_eq27[0] * np.exp(1j * math.radians(o3_eq27[1]))
+    if abs(c27) > 0 and abs(c - c27) <= FULL_SLIP_REL * abs(c27):
+        return "full slip"
+    return "traverse"
+
