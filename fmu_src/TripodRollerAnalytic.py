@@ -1,5 +1,7 @@
-"""pythonfmu slave of the reduced (analytic) thrust model, Eqs. (18)-(27): numpy only.
+"""pythonfmu slave of the reduced (analytic) thrust model: numpy only.
 
+traverse = true (default): the reduced traverse model's periodic solution, tabulated over the
+whirl angle once per operating point (reduced_model/traverse.py); false: Eqs. (18)-(27).
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
 """
@@ -8,8 +10,9 @@ import math
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
 
-from reduced_model.scene import check_value, pressing_load, validate
+from reduced_model.scene import REGIME_CODES, check_value, pressing_load, validate
 from reduced_model.thrust import Thrust
+from reduced_model.traverse import Traverse
 from slavekit import Guarded, PickleState, register_table
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
@@ -20,8 +23,9 @@ _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz
 class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
-                   "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), plus the "
-                   "roller spin-inertia thrust. Needs numpy only.")
+                   "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), the "
+                   "roller spin-inertia thrust and (traverse = true) the roller's slide across "
+                   "the groove with micro-slip. Needs numpy only.")
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
 
     def __init__(self, **kwargs):
@@ -36,6 +40,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._x = [2.0 * math.pi * i / 3.0 for i in range(n)]   # rollers at 0, 120, 240 deg
         self._key = None
         self._thrust = None
+        self._table = None
 
     def _get_fmu_state(self):
         return {"vars": super()._get_fmu_state(), "x": list(self._x),
@@ -44,8 +49,9 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
     def _set_fmu_state(self, state):
         super()._set_fmu_state(state["vars"])
         self._x = list(state["x"])
+        if state["scene"] != self._scene:      # else the table of this operating point stays
+            self._key = None
         self._scene = copy.deepcopy(state["scene"])
-        self._key = None
 
     def _advance(self, current_time, step_size):
         key = (self.theta, self.omega, self.F_press, self.torque)
@@ -54,24 +60,44 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
                 check_value(name, value)
                 self._scene[name] = float(value)
             self._thrust = Thrust(self._scene)
+            self._table = None
+            sc = self._scene
+            if sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
+                    pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0:
+                self._table = Traverse(sc)       # about 0.1 s: once per operating point
+                self.regime = REGIME_CODES.index(self._table.regime())
+            else:
+                self.regime = 0
             self._key = key
         w = self._scene["omega"] * step_size
-        at = self._thrust.at
-        fz = []
-        for i in range(len(self._x)):
-            self._x[i] += w
-            r = at(self._x[i])
-            if i == 0:
-                _, _, ft, V, phi, _ = r
-            fz.append(r[0])
         F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
-        self.Fz = fz[0]
+        fz = []
+        if self._table is not None:
+            at = self._table.at
+            for i in range(len(self._x)):
+                self._x[i] += w
+                r = at(self._x[i])
+                if i == 0:
+                    Fz, Fz_mod, Fx, Fy, slip = r
+                fz.append(r[0])
+            self.Fz, self.Fz_mod, self.Fx, self.Fy = Fz, Fz_mod, Fx, Fy
+            self.dFx = Fx - F
+            self.slip_speed = slip
+        else:
+            at = self._thrust.at
+            for i in range(len(self._x)):
+                self._x[i] += w
+                r = at(self._x[i])
+                if i == 0:
+                    _, _, ft, V, phi, _ = r
+                fz.append(r[0])
+            self.Fz = fz[0]
+            self.Fy = ft * math.cos(phi)
+            self.Fx = F
+            self.dFx = 0.0
+            self.Fz_mod = self.Fz          # Fx = F_press in Eqs. (18)-(27)
+            self.slip_speed = abs(V)
         self.Fz_joint = sum(fz)
         self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
         self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
-        self.Fy = ft * math.cos(phi)
-        self.Fx = F
-        self.dFx = 0.0
-        self.Fz_mod = self.Fz          # Fx = F_press in the reduced model
-        self.slip_speed = abs(V)
         return True

@@ -6,7 +6,7 @@ import traceback
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import OUTPUTS, params_for
+from reduced_model.scene import INT_OUTPUTS, OUTPUTS, params_for
 
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 
@@ -30,6 +30,12 @@ def register_table(slave, model, outputs=None):
             slave.register_variable(Real(name, causality=Fmi2Causality.output,
                                          variability=Fmi2Variability.continuous,
                                          initial=Fmi2Initial.exact, description=desc))
+    for name, desc, owner in INT_OUTPUTS:
+        if owner == model:
+            setattr(slave, name, 0)
+            slave.register_variable(Integer(name, causality=Fmi2Causality.output,
+                                            variability=Fmi2Variability.discrete,
+                                            initial=Fmi2Initial.exact, description=desc))
     return params
 
 

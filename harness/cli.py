@@ -49,7 +49,8 @@ def _fmt_o(o):
 def format_analytic(r: dict) -> str:
     sc = r["scene"]
     lines = [
-        "tripod-thrust analytic: reduced model, Eqs. (18)-(27) (one roller unless stated)",
+        "tripod-thrust analytic: reduced model, Eqs. (18)-(27) and the traverse (one roller "
+        "unless stated)",
         f"scene: theta = {math.degrees(sc['theta']):.3f} deg, omega = {sc['omega']:.4g} rad/s "
         f"({sc['omega'] / (2 * math.pi):.4g} Hz), F_press = {sc['F_press']:.6g} N, "
         f"mu_groove = {sc['mu_groove']:g}",
@@ -69,8 +70,18 @@ def format_analytic(r: dict) -> str:
         f"  {'three rollers order 1':28s}{_fmt_o(r['three_rollers']['order1'])}   {_fmt_o(r['three_rollers']['closed_form']['order1'])}",
         f"  {'three rollers order 3':28s}{_fmt_o(r['three_rollers']['order3'])}   {_fmt_o(r['three_rollers']['closed_form']['order3'])}",
         "",
-        "order k is a_k sin(k w t + p_k), t = 0 where pitching is 0 and rising (model.md).",
     ]
+    t = r.get("traverse")
+    if t:
+        use = "in use" if r["model"] == "traverse" else "not in use: traverse = false"
+        lines += [
+            f"reduced traverse model ({use}; docs/model.md): regime {t['regime']}, friction "
+            f"reaches {100 * t['friction_reach']:.1f} % of mu_groove F",
+            f"  {'Fz_mod order 1':28s}{_fmt_o(t['order1'])}",
+            f"  {'Fz_mod order 3':28s}{_fmt_o(t['order3'])}",
+            f"  {'three rollers order 3':28s}{_fmt_o(t['three_rollers']['order3'])}",
+            ""]
+    lines.append("order k is a_k sin(k w t + p_k), t = 0 where pitching is 0 and rising (model.md).")
     return "\n".join(lines)
 
 

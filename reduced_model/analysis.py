@@ -4,6 +4,7 @@ import numpy as np
 from . import scene as scene_mod
 from .orders import order_spectrum
 from .thrust import closed_form, three_roller_thrust, time_series
+from .traverse import Traverse
 
 N_PER_CYCLE = 1440   # samples per whirl cycle for the FFT (model.md asks for >= 400)
 
@@ -12,8 +13,27 @@ def _o(a_p):
     return {"amplitude": float(a_p[0]), "phase_deg": float(a_p[1])}
 
 
+def traverse_report(sc) -> dict | None:
+    """The reduced traverse model's orders of Fz_mod and Fz (one roller, three rollers), its
+    regime and reach; None where it does not apply (omega = 0, no load or no friction)."""
+    if sc["omega"] <= 0 or sc["F_press"] <= 0 and sc.get("torque", 0.0) <= 0 or sc["mu_groove"] <= 0:
+        return None
+    tr = Traverse(sc)
+    o, oz, j = tr.orders("Fz_mod"), tr.orders("Fz"), tr.three_rollers("Fz_mod")
+    return {"order1": _o(o[1]), "order3": _o(o[3]),
+            "Fz": {"order1": _o(oz[1]), "order3": _o(oz[3])},
+            "three_rollers": {"order1": _o(j[1]), "order3": _o(j[3])},
+            "regime": tr.regime(), "friction_reach": tr.g_max,
+            "Fx_max": float(tr.Fx.max()), "cycles": tr.cycles}
+
+
 def analytic_report(overrides=None, n=N_PER_CYCLE):
-    """Everything ``tripod-thrust analytic`` prints, as a JSON-ready dict (SI units, deg)."""
+    """Everything ``tripod-thrust analytic`` prints, as a JSON-ready dict (SI units, deg).
+
+    "order1", "order3", "closed_form", "friction", "three_rollers": Eqs. (18)-(27) (FFT of
+    the time series and closed form); "traverse": the reduced traverse model (always computed
+    where it applies, so the regime is known); "model": which one the analytic FMU uses.
+    """
     sc = scene_mod.validate(overrides, "analytic")
     x = 2.0 * np.pi * np.arange(n) / n
     ts = time_series(sc, x)
@@ -22,8 +42,12 @@ def analytic_report(overrides=None, n=N_PER_CYCLE):
     af, pf = order_spectrum(ts["ftz"], 1, (1, 3))
     aj, pj = order_spectrum(three_roller_thrust(sc, x), 1, (1, 3))
     c2, _ = order_spectrum(ts["ft"], 1, (2,))
+    tr = traverse_report(sc)
     return {
         "scene": sc,
+        "model": "traverse" if sc["traverse"] and tr is not None else "eqs_18_27",
+        "regime": tr["regime"] if tr else "full slip",
+        "traverse": tr,
         "A": cf["A"], "B": cf["B"], "v_st": cf["v_st"], "C": cf["C"], "C_fft": float(c2[0]),
         "alpha_deg": cf["alpha_deg"], "beta_deg": cf["beta_deg"],
         "order1": _o((a[0], p[0])), "order3": _o((a[1], p[1])),

@@ -1,5 +1,5 @@
 """Markdown documentation generated from the parameter table (one source of truth)."""
-from .scene import OUTPUTS, PARAMS
+from .scene import INT_OUTPUTS, OUTPUTS, PARAMS
 
 
 def _start(p):
@@ -23,6 +23,8 @@ def outputs_markdown() -> str:
     rows = ["| name | unit | causality | variability | description |", "|---|---|---|---|---|"]
     for name, unit, desc in OUTPUTS:
         rows.append(f"| `{name}` | {unit} | output | continuous | {desc} |")
+    for name, desc, owner in INT_OUTPUTS:
+        rows.append(f"| `{name}` | 1 (Integer, {owner} FMU only) | output | discrete | {desc} |")
     return "\n".join(rows)
 
 

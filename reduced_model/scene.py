@@ -151,6 +151,14 @@ OUTPUTS = (
 )
 
 
+# Integer outputs: name, description, the FMU that has it.
+REGIME_CODES = ("full slip", "traverse", "micro-slip")
+INT_OUTPUTS = (
+    ("regime", "which theory holds at the operating point (reduced traverse model): "
+               "0 full slip (Eqs. 18-27 within 5 %), 1 traverse, 2 micro-slip", "analytic"),
+)
+
+
 def params_for(model: str) -> tuple[Param, ...]:
     """The parameters a model ('analytic' or 'contact') uses, in table order."""
     return tuple(p for p in PARAMS if model in p.models)

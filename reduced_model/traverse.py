@@ -36,7 +36,7 @@ import numpy as np
 from .hertz import hertz_point
 from .orders import order_spectrum
 from .scene import pressing_load
-from .thrust import closed_form, spin_inertia, transition_velocity
+from .thrust import Thrust, spin_inertia, transition_velocity
 
 N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
 MICRO_SLIP_G = 0.95        # friction never above 95 % of mu_s f_n: the roller never slides across
@@ -244,7 +244,9 @@ class Traverse:
     def regime(self) -> str:
         """'micro-slip' (friction never reaches 95 % of mu_s f_n), 'full slip' (order 3 within
         5 % of Eq. 27), else 'traverse'."""
-        return regime_of(self.g_max, self.orders()[3], closed_form(self.scene)["total"][3])
+        fz27 = Thrust(self.scene).at(self.x[:-1], np)[0]        # Eqs. (18)-(27), numpy only
+        a, ph = order_spectrum(fz27, 1, (3,))
+        return regime_of(self.g_max, self.orders()[3], (float(a[0]), float(ph[0])))
 
 
 def regime_of(g_max, o3, o3_eq27) -> str:
