@@ -42,6 +42,7 @@ test: $(STAMP)
 docs: $(STAMP)
 	$(BIN)/python -m reduced_model.docs README.md
 	$(BIN)/python -m harness.reference
+	$(BIN)/python -m harness.validation
 
 clean:
 	rm -rf build out .pytest_cache

@@ -116,7 +116,7 @@ def cmd_compare(args) -> int:
     from harness.compare import compare, format_table
     over = _load_scene_file(args.scene) if args.scene else {}
     over.update(overrides_from(args, model="contact"))
-    r = compare(over, cycles=args.cycles, dt=args.dt)
+    r = compare(over, max_cycles=args.max_cycles, dt=args.dt)
     if args.out:
         from harness.plots import compare_plots
         compare_plots(r, args.out)
@@ -145,15 +145,20 @@ def cmd_sweep(args) -> int:
         raise ValueError("--grid NAME=START:STOP:N is required (repeat it for more parameters)")
     grid = dict(sw.parse_grid(g) for g in args.grid)
     base = overrides_from(args)
-    rows = sw.sweep(grid, base, model=args.model, cycles=args.cycles, dt=args.dt,
+    rows = sw.sweep(grid, base, model=args.model, max_cycles=args.max_cycles, dt=args.dt,
                     scheduler=args.scheduler, workers=args.workers, progress=True)
     out = Path(args.out)
     csv_path = sw.write_csv(rows, out / "sweep.csv")
     png = sw.plot(rows, grid, out / "sweep_order3.png")
     bad = [r for r in rows if r["error"]]
-    print(f"{len(rows)} points, {len(bad)} failed; {csv_path}, {png}")
+    unsettled = [r for r in rows if not r["error"] and not r["settled"]]
+    print(f"{len(rows)} points, {len(bad)} failed, {len(unsettled)} not settled within the cap "
+          f"(column 'settled' in the CSV); {csv_path}, {png}")
     for r in bad[:5]:
         print(f"  failed: {r}")
+    for r in unsettled[:5]:
+        print(f"  NOT SETTLED after {r['cycles']} cycles (last change "
+              f"{100 * r['cycle_change']:.3g} %): {r}")
     return 1 if bad else 0
 
 
@@ -217,7 +222,9 @@ def build_parser() -> argparse.ArgumentParser:
     p = sub.add_parser("compare", help="run the analytic and the contact FMU on a scene and compare orders 1 and 3")
     _scene_args(p, "contact")
     p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE")
-    p.add_argument("--cycles", type=float, default=2.0, help="whirl cycles to simulate (default 2)")
+    p.add_argument("--max-cycles", type=int, default=None,
+                   help="cap on whirl cycles; the run stops earlier once orders 1 and 3 change by "
+                        "less than 0.1 %% from one cycle to the next (default 40)")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
@@ -230,7 +237,8 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="address of a running dask.distributed scheduler (default: local processes)")
     p.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
-    p.add_argument("--cycles", type=float, default=2.0)
+    p.add_argument("--max-cycles", type=int, default=None,
+                   help="cap on whirl cycles per point; each run stops once periodic (default 40)")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
     p.add_argument("--out", metavar="DIR", default="out/sweep")
     p.set_defaults(func=cmd_sweep)

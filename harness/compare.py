@@ -1,5 +1,7 @@
 """The analytic and the contact model side by side: both FMUs through FMPy, orders 1 and 3 of
-Fz_mod over the last whole whirl cycle, differences, tolerance and verdict."""
+Fz_mod over the last whole whirl cycle of a settled (periodic) run, differences, tolerance and
+verdict.  Verification scenes (no traverse, ideal bearing) are judged against Eqs. (18)-(27);
+physical scenes against the reduced traverse model, Eqs. (18)-(27) reported beside it."""
 from __future__ import annotations
 
 import math
@@ -11,12 +13,18 @@ from reduced_model.analysis import analytic_report
 from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
-from .runs import run_fmu
+from .runs import run_fmu, run_settled, settle_line
 
 # Tolerances and their physical reason (README, "Tolerances").
 TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
                     "order3": {"amplitude_rel": 0.01, "phase_deg": 1.0}}
-TOL_PHYSICAL = {"order3": {"amplitude_rel": 0.05}}
+# against the reduced traverse model, ideal bearing: what it leaves out (the roller's inertia
+# while it crosses the groove, a rocking mode near 1 kHz) costs up to 8.3 % in order 3 over the
+# 24-scene grid of docs/validation.md (median 1.1 %, phase within 1.1 deg)
+TOL_PHYSICAL = {"order3": {"amplitude_rel": 0.10, "phase_deg": 3.0}}
+# a needle bearing also holds the roller's slide with its own friction, which the reduced model
+# leaves out: amplitude only, against the same model
+TOL_BEARING = {"order3": {"amplitude_rel": 0.10}}
 ORDERS = (1, 3)
 
 
@@ -40,54 +48,78 @@ def _dphase(a, b):
     return float((a - b + 180.0) % 360.0 - 180.0)
 
 
-def compare(overrides: dict | None = None, cycles: float = 2.0, dt: float = 1e-4) -> dict:
+def compare(overrides: dict | None = None, max_cycles: int | None = None, dt: float = 1e-4,
+            rel_tol: float | None = None) -> dict:
     """Run both FMUs on a scene and judge the contact model against the analytic one.
 
-    Returns the JSON-ready result (see README); arrays of the runs under the key "_runs"
-    (not JSON) for plotting.
+    The contact FMU runs whole whirl cycles until Fz_mod (and each roller's Fz) is periodic
+    within rel_tol (default reduced_model.steady.REL_TOL), at most max_cycles.  Returns the
+    JSON-ready result (see README); arrays of the runs under "_runs" (not JSON) for plotting.
     """
     contact_sc, analytic_sc = split_scene(overrides or {})
     omega = contact_sc["omega"]
     if omega <= 0:
         raise ValueError("omega = 0: compare needs whole whirl cycles; allowed range (0, 10000] rad/s")
-    if cycles < 1.5:
-        raise ValueError(f"cycles = {cycles}: at least 1.5 (the last whole cycle is analysed)")
-    stop = cycles * 2 * math.pi / omega
-    ra = run_fmu(ensure_fmu("TripodRollerAnalytic"), analytic_sc, stop, dt)
-    rc = run_fmu(ensure_fmu("TripodRoller"), contact_sc, stop, dt)
+    period = 2 * math.pi / omega
+    ra = run_fmu(ensure_fmu("TripodRollerAnalytic"), analytic_sc, 2 * period, dt)
+    signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
+    rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, omega, signals, dt, max_cycles,
+                     rel_tol)
     oa = last_cycle_orders(ra["time"], ra["Fz_mod"], omega * ra["time"], ORDERS)
     oc = last_cycle_orders(rc["time"], rc["Fz_mod"], omega * rc["time"], ORDERS)
-    cf = analytic_report(analytic_sc)["closed_form"]
-    ref = {k: (cf[f"order{k}"]["amplitude"], cf[f"order{k}"]["phase_deg"]) for k in ORDERS}
+    rep = analytic_report(analytic_sc)
+    cf = rep["closed_form"]
+    eq27 = {k: (cf[f"order{k}"]["amplitude"], cf[f"order{k}"]["phase_deg"]) for k in ORDERS}
+    trav = rep["traverse"]
     verification = is_verification(contact_sc)
-    tol = TOL_VERIFICATION if verification else TOL_PHYSICAL
+    if verification or trav is None:
+        ref, against, tol = eq27, "eqs_18_27", TOL_VERIFICATION if verification else {}
+    else:
+        ref = {k: (trav[f"order{k}"]["amplitude"], trav[f"order{k}"]["phase_deg"]) for k in ORDERS}
+        against = "traverse"
+        tol = TOL_PHYSICAL if contact_sc["bearing"] == 0 else TOL_BEARING
+    diff, ok = _judge(oc, ref, tol)
+    diff27, _ = _judge(oc, eq27, {})
+    st = rc["settle"]
+    result = {
+        "scene": contact_sc,
+        "kind": "verification" if verification else "physical",
+        "against": against,
+        "regime": rep["regime"],
+        "analytic": {**{f"order{k}": _o(*ref[k]) for k in ORDERS},
+                     "closed_form": {f"order{k}": _o(*eq27[k]) for k in ORDERS},
+                     "traverse": None if trav is None else
+                     {f"order{k}": trav[f"order{k}"] for k in ORDERS},
+                     "fmu": {f"order{k}": _o(*oa[k]) for k in ORDERS}},
+        "contact": {f"order{k}": _o(*oc[k]) for k in ORDERS},
+        "difference": diff,
+        "difference_eqs_18_27": diff27,
+        "tolerance": tol,
+        "phase_lag_deg": None if verification else -diff27["order3"]["phase_deg"],
+        "cycles": st["cycles"],
+        "settled": st["settled"],
+        "cycle_change": st["worst"],
+        "pass": bool(ok and st["settled"]),
+        "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
+        "_runs": {"analytic": ra, "contact": rc, "omega": omega, "settle": st},
+    }
+    return result
+
+
+def _judge(got, ref, tol):
+    """Differences of orders 1 and 3 of ``got`` from ``ref`` and whether they are within tol."""
     diff, ok = {}, True
     for k in ORDERS:
         key = f"order{k}"
-        rel = oc[k][0] / ref[k][0] - 1 if ref[k][0] > 0 else (0.0 if oc[k][0] == 0 else math.inf)
-        dp = _dphase(oc[k][1], ref[k][1])
+        rel = got[k][0] / ref[k][0] - 1 if ref[k][0] > 0 else (0.0 if got[k][0] == 0 else math.inf)
+        dp = _dphase(got[k][1], ref[k][1])
         diff[key] = {"amplitude_rel": float(rel), "phase_deg": dp}
         t = tol.get(key, {})
         if "amplitude_rel" in t and not abs(rel) <= t["amplitude_rel"]:
             ok = False
         if "phase_deg" in t and not abs(dp) <= t["phase_deg"]:
             ok = False
-    result = {
-        "scene": contact_sc,
-        "kind": "verification" if verification else "physical",
-        "analytic": {**{f"order{k}": _o(*ref[k]) for k in ORDERS},
-                     "closed_form": {f"order{k}": _o(*ref[k]) for k in ORDERS},
-                     "fmu": {f"order{k}": _o(*oa[k]) for k in ORDERS}},
-        "contact": {f"order{k}": _o(*oc[k]) for k in ORDERS},
-        "difference": diff,
-        "tolerance": tol,
-        "phase_lag_deg": None if verification else -diff["order3"]["phase_deg"],
-        "pass": bool(ok),
-        "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
-        "_runs": {"analytic": ra, "contact": rc, "omega": omega},
-    }
-    return result
-
+    return diff, ok
 
 
 def spectrum(run: dict, omega: float, name: str = "Fz_mod", orders=range(1, 11)):
@@ -100,30 +132,41 @@ def spectrum(run: dict, omega: float, name: str = "Fz_mod", orders=range(1, 11))
 def format_table(r: dict) -> str:
     sc = r["scene"]
     a, c, d = r["analytic"], r["contact"], r["difference"]
+    ref_name = {"traverse": "traverse model", "eqs_18_27": "Eqs. 18-27"}[r["against"]]
     lines = [
         f"tripod-thrust compare: {r['kind']} scene (traverse = {str(sc['traverse']).lower()}, "
         f"bearing = {sc['bearing']}), theta = {math.degrees(sc['theta']):.2f} deg, "
         f"{sc['omega'] / (2 * math.pi):.3g} Hz, F_press = {sc['F_press']:.6g} N",
+        f"regime (reduced traverse model): {r['regime']}; contact FMU: "
+        + settle_line({"cycles": r["cycles"], "settled": r["settled"], "worst": r["cycle_change"],
+                       "rel_tol": r["_runs"]["settle"]["rel_tol"],
+                       "max_cycles": r["_runs"]["settle"]["max_cycles"]}),
         "",
-        "Fz_mod, last whole whirl cycle; order k = a sin(k w t + p)",
-        f"{'':8s}{'analytic FMU':>22s}{'closed form':>22s}{'contact FMU':>22s}{'difference':>20s}{'tolerance':>20s}",
+        f"Fz_mod, last whole whirl cycle; order k = a sin(k w t + p); judged against the {ref_name}",
+        f"{'':8s}{'analytic FMU':>22s}{'Eqs. 18-27':>22s}{'traverse model':>22s}{'contact FMU':>22s}"
+        f"{'difference':>20s}{'tolerance':>20s}",
     ]
     for k in ORDERS:
         key = f"order{k}"
         t = r["tolerance"].get(key, {})
         ttxt = " / ".join(x for x in (f"{100 * t['amplitude_rel']:g} %" if "amplitude_rel" in t else "",
                                       f"{t['phase_deg']:g} deg" if "phase_deg" in t else "") if x) or "reported"
+        tr = a["traverse"][key] if a["traverse"] else None
+        trtxt = f"{tr['amplitude']:11.3f} N {tr['phase_deg']:7.2f}°" if tr else f"{'-':>22s}"
         lines.append(
             f"{'order ' + str(k):8s}"
             f"{a['fmu'][key]['amplitude']:9.3f} N {a['fmu'][key]['phase_deg']:7.2f}°"
-            f"{a[key]['amplitude']:11.3f} N {a[key]['phase_deg']:7.2f}°"
+            f"{a['closed_form'][key]['amplitude']:11.3f} N {a['closed_form'][key]['phase_deg']:7.2f}°"
+            f"{trtxt}"
             f"{c[key]['amplitude']:11.3f} N {c[key]['phase_deg']:7.2f}°"
             f"{100 * d[key]['amplitude_rel']:+10.2f} % {d[key]['phase_deg']:+6.2f}°"
             f"{ttxt:>20s}")
     if r["phase_lag_deg"] is not None:
-        lines.append(f"physical effect (traverse, needle bearing): order 3 lags the analytic "
-                     f"model by {r['phase_lag_deg']:.1f} deg (reported, not judged)")
+        d27 = r["difference_eqs_18_27"]["order3"]
+        lines.append(f"against Eqs. (18)-(27) (reported, not judged): order 3 "
+                     f"{100 * d27['amplitude_rel']:+.1f} %, lagging by {r['phase_lag_deg']:.1f} deg")
     lines += ["", f"wall time: analytic FMU {r['wall_s']['analytic']:.2f} s, contact FMU "
               f"{r['wall_s']['contact']:.2f} s (FMPy in a subprocess)",
-              f"verdict: {'PASS' if r['pass'] else 'FAIL'}"]
+              f"verdict: {'PASS' if r['pass'] else 'FAIL'}"
+              + ("" if r["settled"] else " (the run did not settle within the cap)")]
     return "\n".join(lines)

@@ -17,15 +17,16 @@ from reduced_model.orders import order_spectrum
 from reduced_model.thrust import time_series, transition_velocity
 
 from .fmus import ensure_fmu
-from .runs import run_fmu
+from .runs import run_settled
 
 W = 20 * math.pi            # the paper's whirl speed, rad/s
 T = 2 * math.pi / W
 N_CYC = 480                 # samples a cycle on the common grid (divisible by 3: 120 deg shifts)
 
 
-def _run(sv, cycles=2.0):
-    return run_fmu(ensure_fmu("TripodRoller"), sv, stop_time=cycles * T, output_interval=1e-4)
+def _run(sv):
+    """The contact FMU at the paper's scene, whole cycles until Fz_mod is periodic."""
+    return run_settled(ensure_fmu("TripodRoller"), sv, W, ["Fz_mod"])
 
 
 def cycle(run, name, n=N_CYC):
@@ -96,6 +97,13 @@ def reproduce(out: str | Path, share_bearing: int = 2) -> dict:
     for k, v in off.items():
         runs[f"share {k}"] = _run(dict(sb, **v))
     fzm = {k: cycle(r, "Fz_mod") for k, r in runs.items()}
+    st = {k: r["settle"] for k, r in runs.items()}
+    claim("Every run is periodic: orders 1 and 3 of Fz' settled from one whirl cycle to the next",
+          "; ".join(f"{k}: {v['cycles']} cycles, last change "
+                    f"{100 * v['worst']['complex_rel']:.2g} %" for k, v in st.items()),
+          all(v["settled"] for v in st.values()),
+          "reduced_model.steady: tolerance 0.1 % (1 % with the needle-resolved bearing, its "
+          "chaos floor), estimated drift to come included; cap 40 cycles")
 
     # Fig. 12: Fz and Fz' nearly the same
     fz = cycle(runs["all"], "Fz")

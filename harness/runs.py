@@ -2,6 +2,7 @@
 from __future__ import annotations
 
 import json
+import math
 import os
 import subprocess
 import sys
@@ -17,11 +18,15 @@ class FmuRunError(RuntimeError):
 
 def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float = 0.2,
             output_interval: float = 1e-4, outputs: list[str] | None = None,
-            timeout: float = 900.0, inputs: dict | None = None) -> dict:
+            timeout: float = 900.0, inputs: dict | None = None,
+            settle: dict | None = None) -> dict:
     """Simulate ``fmu`` with FMPy in a new Python process.
 
     start_values: {name: value} in SI units; stop_time, output_interval [s].
     inputs: time-varying inputs {"time": [...], name: [...]} (FMPy interpolates between rows).
+    settle: run until periodic instead of to stop_time, {"omega" [rad/s], "signals": [names],
+    "rel_tol", "min_cycles", "max_cycles"} (see ``settle_request``); the result then carries
+    "settle": {"cycles", "settled", "cycle_change", "worst", ...}.
     Returns {"time": array, <output>: array, ..., "wall_s": simulate time [s] in the worker,
     "log": the FMU's last log lines}.  Raises FmuRunError with the FMU's log on failure.
     """
@@ -29,7 +34,7 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
         out = os.path.join(tmp, "result.npz")
         req = {"fmu": str(Path(fmu).resolve()), "start_values": start_values or {},
                "stop_time": stop_time, "output_interval": output_interval,
-               "outputs": outputs, "out": out,
+               "outputs": outputs, "out": out, "settle": settle,
                "inputs": {k: [float(x) for x in v] for k, v in (inputs or {}).items()}}
         p = subprocess.run([sys.executable, "-m", "harness.fmu_worker"], input=json.dumps(req),
                            capture_output=True, text=True, timeout=timeout,
@@ -45,4 +50,46 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
         data = dict(np.load(out))
     data["wall_s"] = status["wall_s"]
     data["log"] = status.get("log", [])
+    if "settle" in status:
+        data["settle"] = status["settle"]
     return data
+
+
+def settle_request(omega: float, signals, rel_tol: float | None = None,
+                   max_cycles: int | None = None, min_cycles: int | None = None) -> tuple[dict, float]:
+    """(settle request, stop time [s]) for ``run_fmu``: run whole whirl cycles at omega [rad/s]
+    until ``signals`` are periodic within rel_tol, at most max_cycles."""
+    from reduced_model import steady
+    rel_tol = steady.REL_TOL if rel_tol is None else float(rel_tol)
+    if not 0 < rel_tol < 1:
+        raise ValueError(f"settle tolerance = {rel_tol}: allowed range (0, 1)")
+    max_cycles = steady.MAX_CYCLES if max_cycles is None else int(max_cycles)
+    min_cycles = steady.MIN_CYCLES if min_cycles is None else int(min_cycles)
+    if max_cycles < min_cycles:
+        raise ValueError(f"max-cycles = {max_cycles}: allowed range [{min_cycles}, 1000]")
+    req = {"omega": omega, "signals": list(signals), "rel_tol": rel_tol,
+           "min_cycles": min_cycles, "max_cycles": max_cycles}
+    return req, max_cycles * 2 * math.pi / omega
+
+
+def run_settled(fmu, start_values: dict, omega: float, signals, dt: float = 1e-4,
+                max_cycles: int | None = None, rel_tol: float | None = None) -> dict:
+    """run_fmu for whole whirl cycles until ``signals`` are periodic (or the cap): the result
+    carries "settle" (cycles used, settled, the last cycle-to-cycle change)."""
+    if rel_tol is None:
+        from reduced_model.steady import tolerance_for
+        rel_tol = tolerance_for(start_values)
+    req, stop = settle_request(omega, signals, rel_tol, max_cycles)
+    return run_fmu(fmu, start_values, stop_time=stop, output_interval=dt, settle=req)
+
+
+def settle_line(st: dict) -> str:
+    """One line on how a run settled (for tables and logs)."""
+    w = st["worst"]
+    last = (f"last cycle-to-cycle change {100 * w['complex_rel']:.3g} % ({w['signal']} order "
+            f"{w['order']}: amplitude {100 * w['amplitude_rel']:+.3g} %, phase "
+            f"{w['phase_deg']:+.3g} deg)") if w else ""
+    if st["settled"]:
+        return f"settled after {st['cycles']} whirl cycles (tolerance {100 * st['rel_tol']:g} %); {last}"
+    return (f"NOT SETTLED: the cap of {st['max_cycles']} whirl cycles was hit; {last} "
+            f"(raise --max-cycles)")

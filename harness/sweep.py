@@ -13,11 +13,11 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
-from .runs import FmuRunError, run_fmu
+from .runs import FmuRunError, run_settled
 
 FMUS = {"contact": "TripodRoller", "analytic": "TripodRollerAnalytic"}
 COLUMNS = ("order1_amplitude", "order1_phase_deg", "order3_amplitude", "order3_phase_deg",
-           "wall_s", "error")
+           "cycles", "settled", "cycle_change", "wall_s", "error")
 
 
 def parse_grid(spec: str) -> tuple[str, np.ndarray]:
@@ -46,9 +46,11 @@ def points(grid: dict) -> list[dict]:
     return [dict(zip(names, combo)) for combo in itertools.product(*(grid[n] for n in names))]
 
 
-def run_point(fmu: str, base: dict, point: dict, cycles: float, dt: float,
+def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: float,
               signal: str = "Fz_mod") -> dict:
-    """One grid point: simulate, then orders 1 and 3 of ``signal`` over the last whole cycle."""
+    """One grid point: simulate whole cycles until ``signal`` is periodic (or max_cycles), then
+    orders 1 and 3 over the last whole cycle, the cycles used and the last cycle-to-cycle
+    change (relative, complex; reduced_model.steady)."""
     sv = dict(base)
     for k, v in point.items():
         p = scene_mod.BY_NAME[k]
@@ -58,16 +60,20 @@ def run_point(fmu: str, base: dict, point: dict, cycles: float, dt: float,
     try:
         if omega <= 0:
             raise ValueError("omega must be > 0 for an order analysis")
-        r = run_fmu(fmu, sv, stop_time=cycles * 2 * math.pi / omega, output_interval=dt)
+        r = run_settled(fmu, sv, omega, [signal], dt, max_cycles)
         o = last_cycle_orders(r["time"], r[signal], omega * r["time"], (1, 3))
+        st = r["settle"]
         row.update(order1_amplitude=o[1][0], order1_phase_deg=o[1][1],
-                   order3_amplitude=o[3][0], order3_phase_deg=o[3][1], wall_s=r["wall_s"])
+                   order3_amplitude=o[3][0], order3_phase_deg=o[3][1], cycles=st["cycles"],
+                   settled=st["settled"], cycle_change=st["worst"]["complex_rel"],
+                   wall_s=r["wall_s"])
     except (FmuRunError, ValueError) as e:   # a failed point is reported, not fatal
         row["error"] = str(e).splitlines()[0][:300]
     return row
 
 
-def sweep(grid: dict, base: dict | None = None, model: str = "contact", cycles: float = 2.0,
+def sweep(grid: dict, base: dict | None = None, model: str = "contact",
+          max_cycles: int | None = None,
           dt: float = 1e-4, scheduler: str | None = None, workers: int = 2,
           progress: bool = True) -> list[dict]:
     """Run the grid in parallel.
@@ -85,11 +91,11 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact", cycles: 
         from distributed import Client, progress as dprogress
         with Client(scheduler) as client:
             futs = client.map(run_point, [fmu] * len(pts), [base] * len(pts), pts,
-                              [cycles] * len(pts), [dt] * len(pts), pure=False)
+                              [max_cycles] * len(pts), [dt] * len(pts), pure=False)
             if progress:
                 dprogress(futs)
             return client.gather(futs)
-    tasks = [dask.delayed(run_point)(fmu, base, p, cycles, dt) for p in pts]
+    tasks = [dask.delayed(run_point)(fmu, base, p, max_cycles, dt) for p in pts]
     kw = {"scheduler": "sync"} if scheduler == "sync" else {"scheduler": "processes",
                                                               "num_workers": workers}
     if progress:

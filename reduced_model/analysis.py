@@ -3,7 +3,7 @@ import numpy as np
 
 from . import scene as scene_mod
 from .orders import order_spectrum
-from .thrust import closed_form, three_roller_thrust, time_series
+from .thrust import closed_form, three_roller_thrust, time_series, transition_velocity
 from .traverse import Traverse
 
 N_PER_CYCLE = 1440   # samples per whirl cycle for the FFT (model.md asks for >= 400)
@@ -16,7 +16,8 @@ def _o(a_p):
 def traverse_report(sc) -> dict | None:
     """The reduced traverse model's orders of Fz_mod and Fz (one roller, three rollers), its
     regime and reach; None where it does not apply (omega = 0, no load or no friction)."""
-    if sc["omega"] <= 0 or sc["F_press"] <= 0 and sc.get("torque", 0.0) <= 0 or sc["mu_groove"] <= 0:
+    if sc["omega"] <= 0 or sc["F_press"] <= 0 and sc.get("torque", 0.0) <= 0 or \
+            sc["mu_groove"] <= 0 or transition_velocity(sc) <= 0:
         return None
     tr = Traverse(sc)
     o, oz, j = tr.orders("Fz_mod"), tr.orders("Fz"), tr.three_rollers("Fz_mod")

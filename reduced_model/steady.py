@@ -18,8 +18,16 @@ from .orders import last_cycle_orders
 ORDERS = (1, 3)
 REL_TOL = 1e-3      # |complex change| / amplitude: amplitude within 0.1 %, phase within 0.06 deg
 FLOOR = 0.01        # an order below 1 % of the largest one is judged against that 1 %
-MIN_CYCLES = 2      # the first comparison needs two whole cycles
+MIN_CYCLES = 3      # two changes: the last one and the drift still to come
+NOISE = 1e-7        # a change below this is the integrator's noise, settled whatever its trend
 MAX_CYCLES = 40     # the cap
+REL_TOL_RESOLVED = 1e-2   # needle-resolved bearing: its chaotic row moves order 3 by about 1 %
+
+
+def tolerance_for(scene: dict) -> float:
+    """The cycle-to-cycle tolerance a scene can meet: REL_TOL, or the needle row's chaos floor
+    REL_TOL_RESOLVED with the resolved bearing (bearing = 2)."""
+    return REL_TOL_RESOLVED if scene.get("bearing", 0) == 2 else REL_TOL
 
 
 def _complex(o):
@@ -73,6 +81,18 @@ def cycle_change(t, y, whirl_angle, orders=ORDERS, floor=FLOOR) -> dict:
 def settled(change: dict, rel_tol=REL_TOL) -> bool:
     """True when every order's last change and its estimated drift to come are within rel_tol.
     ``change``: cycle_change's result (of one signal)."""
-    return all(v["complex_rel"] <= rel_tol and
-               (math.isnan(v["drift_rel"]) or v["drift_rel"] <= rel_tol)
+    return all(v["complex_rel"] <= NOISE or
+               (v["complex_rel"] <= rel_tol and
+                (math.isnan(v["drift_rel"]) or v["drift_rel"] <= rel_tol))
                for v in change.values())
+
+
+def worst(changes: dict) -> dict:
+    """The largest change over signals and orders: {"signal", "order", "complex_rel",
+    "amplitude_rel", "phase_deg", "drift_rel"}; changes: {signal: cycle_change result}."""
+    best = None
+    for sig, ch in changes.items():
+        for k, v in ch.items():
+            if best is None or v["complex_rel"] > best["complex_rel"]:
+                best = dict(v, signal=sig, order=k)
+    return best

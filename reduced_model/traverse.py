@@ -70,7 +70,7 @@ class Traverse:
         self.rho_c = self.clear + (F / self.K) ** (2.0 / 3.0) if F > 0 else self.clear
         self.x = 2.0 * math.pi * np.arange(n + 1) / n
         self._drive(sc)
-        if F <= 0 or mu <= 0:
+        if F <= 0 or mu <= 0 or self.vst <= 0:      # no friction, or no slip to drive it
             self.p = np.zeros(n + 1)
             self.cycles = 0
         else:

@@ -11,6 +11,7 @@ from harness.fmus import ensure_fmu
 from harness.runs import run_fmu
 from reduced_model import scene as sc
 from reduced_model.thrust import time_series
+from reduced_model.traverse import Traverse
 
 
 def cli(*args, timeout=600):
@@ -55,6 +56,8 @@ def test_compare_bad_input_one_line():
 
 @pytest.mark.parametrize("over", [{}, {"theta": 0.3, "omega": 40 * math.pi, "F_press": 2500.0, "spin_inertia": False}])
 def test_analytic_fmu_equals_reduced_model(over):
+    # traverse = false: Eqs. (18)-(27) alone
+    over = dict(over, traverse=False)
     fmu = ensure_fmu("TripodRollerAnalytic")
     s = sc.validate(over, "analytic")
     dt = 1e-4
@@ -73,3 +76,20 @@ def test_analytic_fmu_equals_reduced_model(over):
     for i, k in enumerate((1, 3)):
         assert a[k][0] == pytest.approx(amp[i], rel=1e-6)
         assert a[k][1] == pytest.approx(ph[i], abs=1e-4)
+
+
+def test_analytic_fmu_traverse_is_the_tabulated_model():
+    # traverse = true (default): the FMU interpolates the periodic solution of the reduced
+    # traverse model; three rollers read the same table at 0, 120, 240 deg
+    over = {"n_rollers": 3}
+    r = run_fmu(ensure_fmu("TripodRollerAnalytic"), over, stop_time=0.2, output_interval=1e-4)
+    s = sc.validate(over, "analytic")
+    tr = Traverse(s)
+    t = r["time"][1:]
+    ref = np.array([tr.at(s["omega"] * ti) for ti in t])
+    assert np.allclose(r["Fz"][1:], ref[:, 0], rtol=1e-9, atol=1e-9)
+    assert np.allclose(r["Fz_mod"][1:], ref[:, 1], rtol=1e-9, atol=1e-9)
+    assert np.allclose(r["Fx"][1:], ref[:, 2], rtol=1e-9)
+    j = [sum(tr.at(s["omega"] * ti + 2 * math.pi * i / 3)[0] for i in range(3)) for ti in t]
+    assert np.allclose(r["Fz_joint"][1:], j, rtol=1e-9, atol=1e-9)
+    assert set(r["regime"][1:]) == {sc.REGIME_CODES.index(tr.regime())}

@@ -13,7 +13,7 @@ def test_paper_writes_figures_and_claims(tmp_path):
     assert len(pngs) == 9
     assert all(f.stat().st_size > 10_000 for f in pngs)
     report = (tmp_path / "report.md").read_text()
-    assert report.count("| PASS |") + report.count("| FAIL |") == len(r["claims"]) == 8
+    assert report.count("| PASS |") + report.count("| FAIL |") == len(r["claims"]) == 9
     assert r["pass"], [c for c in r["claims"] if not c["pass"]]
 
 
@@ -22,8 +22,8 @@ def test_claims_follow_the_runs(tmp_path, monkeypatch):
     # which it cannot if the number were typed in
     real = paper._run
 
-    def fake(sv, cycles=2.0):
-        r = real(sv, cycles)
+    def fake(sv):
+        r = real(sv)
         if sv.get("bearing") == 1 and sv.get("friction_needle") is False:
             r = dict(r, Fz_mod=2 * r["Fz_mod"])
         return r
