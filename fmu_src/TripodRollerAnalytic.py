@@ -41,6 +41,27 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._key = None
         self._thrust = None
         self._table = None
+        self._prepare()
+
+    def _prepare(self):
+        """Check the inputs and, when the operating point changed, re-derive the constants and
+        the traverse model's table (about 0.1 s): at initialisation and on an input change."""
+        key = (self.theta, self.omega, self.F_press, self.torque)
+        if key == self._key:
+            return
+        for name, value in zip(_INPUTS, key):
+            check_value(name, value)
+            self._scene[name] = float(value)
+        self._thrust = Thrust(self._scene)
+        self._table = None
+        sc = self._scene
+        if sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
+                pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0:
+            self._table = Traverse(sc)
+            self.regime = REGIME_CODES.index(self._table.regime())
+        else:
+            self.regime = 0
+        self._key = key
 
     def _get_fmu_state(self):
         return {"vars": super()._get_fmu_state(), "x": list(self._x),
@@ -54,21 +75,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._scene = copy.deepcopy(state["scene"])
 
     def _advance(self, current_time, step_size):
-        key = (self.theta, self.omega, self.F_press, self.torque)
-        if key != self._key:       # operating point changed: check and re-derive constants
-            for name, value in zip(_INPUTS, key):
-                check_value(name, value)
-                self._scene[name] = float(value)
-            self._thrust = Thrust(self._scene)
-            self._table = None
-            sc = self._scene
-            if sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
-                    pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0:
-                self._table = Traverse(sc)       # about 0.1 s: once per operating point
-                self.regime = REGIME_CODES.index(self._table.regime())
-            else:
-                self.regime = 0
-            self._key = key
+        self._prepare()
         w = self._scene["omega"] * step_size
         F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
         fz = []
