@@ -216,18 +216,22 @@ class Traverse:
         self.Fz_mod = np.where(self.Fx > 1e-9 * max(F, 1.0), self.Fz * F / np.where(
             self.Fx > 0, self.Fx, 1.0), 0.0)
         self.g_max = float(np.max(np.hypot(p, beta)) / self.mu) if self.mu > 0 else 0.0
-        self._cols = np.column_stack([self.Fz, self.Fz_mod, self.Fx, self.Fy, np.abs(slip)])
+        self._rows = [tuple(r) for r in np.column_stack(
+            [self.Fz, self.Fz_mod, self.Fx, self.Fy, np.abs(slip)]).tolist()]
+        self._scale = self.n / (2.0 * math.pi)
 
     def at(self, x):
         """(Fz, Fz_mod, Fx, Fy, slip speed) at whirl angle x [rad] (scalar), N and m/s: linear
-        interpolation in the periodic table."""
-        u = (x % (2.0 * math.pi)) * self.n / (2.0 * math.pi)
+        interpolation in the periodic table (plain floats: the analytic FMU's per-step path)."""
+        u = (x % 6.283185307179586) * self._scale
         i = int(u)
         if i >= self.n:
             i = self.n - 1
         f = u - i
-        a, b = self._cols[i], self._cols[i + 1]
-        return tuple(float(a[j] + f * (b[j] - a[j])) for j in range(5))
+        a0, a1, a2, a3, a4 = self._rows[i]
+        b0, b1, b2, b3, b4 = self._rows[i + 1]
+        return (a0 + f * (b0 - a0), a1 + f * (b1 - a1), a2 + f * (b2 - a2), a3 + f * (b3 - a3),
+                a4 + f * (b4 - a4))
 
     def orders(self, name="Fz_mod", orders=(1, 3)):
         """{k: (amplitude N, phase deg)} of one of the tabulated signals over the cycle."""
