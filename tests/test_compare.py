@@ -97,3 +97,34 @@ def test_analytic_fmu_traverse_is_the_tabulated_model():
     j = [sum(tr.at(s["omega"] * ti + 2 * math.pi * i / 3)[0] for i in range(3)) for ti in t]
     assert np.allclose(r["Fz_joint"][1:], j, rtol=1e-9, atol=1e-9)
     assert set(r["regime"][1:]) == {sc.REGIME_CODES.index(tr.regime())}
+
+
+@pytest.mark.parametrize("scene", [{}, {"theta": 3 * math.pi / 180, "omega": 50 * math.pi,
+                                        "F_press": 1500.0, "mu_groove": 0.09,
+                                        "r_groove": 0.0196}], ids=["paper", "micro-slip"])
+def test_settled_orders_hold_when_the_cycles_are_doubled(scene):
+    # a run stopped as settled gives the same orders as one twice as long (within the settle
+    # tolerance plus its drift estimate, 2 x 0.1 %), and the three rollers' order 1 cancels
+    from harness.runs import run_settled
+    from reduced_model.orders import last_cycle_orders
+    fmu = ensure_fmu("TripodRoller")
+    sv = dict(scene, n_rollers=3)
+    w = sc.validate(sv, "contact")["omega"]
+    sigs = ["Fz_mod", "Fz_2", "Fz_3"]
+    r = run_settled(fmu, sv, w, sigs)
+    assert r["settle"]["settled"], r["settle"]
+    n = r["settle"]["cycles"]
+    r2 = run_fmu(fmu, sv, stop_time=2 * n * 2 * math.pi / w, output_interval=1e-4)
+    for name in sigs + ["Fz_joint"]:
+        a = last_cycle_orders(r["time"], r[name], w * r["time"], (1, 3))
+        b = last_cycle_orders(r2["time"], r2[name], w * r2["time"], (1, 3))
+        top = max(a[1][0], a[3][0])
+        for k in (1, 3):
+            ca = a[k][0] * np.exp(1j * math.radians(a[k][1]))
+            cb = b[k][0] * np.exp(1j * math.radians(b[k][1]))
+            # each roller is judged on its own orders; the joint's order 1 is a cancelling sum
+            # of three of them, so its error scales with the joint's order 3
+            scale = top if name == "Fz_joint" else max(abs(cb), 0.01 * top)
+            assert abs(ca - cb) <= 2e-3 * scale, (name, k, a[k], b[k])
+    j = last_cycle_orders(r["time"], r["Fz_joint"], w * r["time"], (1, 3))
+    assert j[1][0] < 0.02 * j[3][0], j
