@@ -72,6 +72,7 @@ class Traverse:
         self._drive(sc)
         if F <= 0 or mu <= 0 or self.vst <= 0:      # no friction, or no slip to drive it
             self.p = np.zeros(n + 1)
+            self.slip = self.V.copy()                 # nothing holds the roller: it slips by V
             self.cycles = 0
         else:
             self.p, self.cycles = self._periodic()
@@ -207,7 +208,7 @@ class Traverse:
         n1 = p.size
         fn = np.array([self._fn(q) for q in p]) if self.F > 0 else np.zeros(n1)
         beta = np.array([self._beta(i, p[i], fn[i]) if fn[i] > 0 else 0.0 for i in range(n1)])
-        slip = self.slip if hasattr(self, "slip") else self.V
+        slip = self.slip
         self.fn, self.beta, self.slip = fn, beta, slip
         self.Fz = -fn * (p * np.sin(self.phi) + beta * np.cos(self.phi))          # T6
         self.Fx = fn * (np.sqrt(1.0 - p * p) + p * p - p * self.xi)
