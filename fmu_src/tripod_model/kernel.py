@@ -109,6 +109,31 @@ def line_kinematics(x, w, theta, P, out):
 
 
 @njit
+def hertz_normal_force(K, delta):
+    """Roller-groove normal force [N] at the approach delta [m]: Eq. (10) with Table 1's point
+    contact, f_n = K delta^(3/2) (K [N/m^1.5] from hertz.hertz_point)."""
+    return K * delta ** 1.5
+
+
+@njit
+def tanh_friction(mu, fn, vt, vst):
+    """Regularised friction, Eq. (11) with model.md's law mu(v) = mu tanh(3 v / v_st): returns
+    g = tanh(3 |v_t| / v_st) (the friction force is mu f_n g [N]) and its slope
+    d(mu f_n g)/d|v_t| [N s/m] at the slip |v_t| [m/s], normal force f_n [N]."""
+    g = math.tanh(3.0 * vt / vst)
+    return g, mu * fn * 3.0 / vst * (1.0 - g * g)
+
+
+@njit
+def spin_moment(mu, fn, a1, wn, vst):
+    """Spin moment [N m] of the elliptical contact about its normal, Eqs. (14)-(16): the
+    contact's semi-major axis a = a1 f_n^(1/3) (Eq. 15) and 3/8 mu f_n a, regularised in the
+    spin rate wn [rad/s] like the sliding friction."""
+    a = a1 * fn ** (1.0 / 3.0)
+    return 0.375 * mu * math.tanh(3.0 * wn * a / vst) * fn * a
+
+
+@njit
 def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     """Roller (sphere) in groove (concave cylinder along z): Hertz normal force, tanh friction
     on the full 3-D slip at the contact point, spin moment Eq. (16).
@@ -132,7 +157,7 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     res[18] = cz
     if delta <= 0.0:
         return
-    fn = P[P_K] * delta ** 1.5                # Eq. (10) with Table 1, n = 3/2
+    fn = hertz_normal_force(P[P_K], delta)
     # velocity of the roller material at the contact point p = c + r n
     px = vx + (wy * 0.0 - wz * r * ny)
     py = vy + (wz * r * nx - wx * 0.0)
@@ -153,8 +178,7 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     g = 0.0
     slope = 0.0
     if P[P_FRIC] > 0.5 and mu > 0.0:
-        g = math.tanh(3.0 * vt / vst)
-        slope = mu * fn * 3.0 / vst * (1.0 - g * g)
+        g, slope = tanh_friction(mu, fn, vt, vst)
         if vt > 0.0:
             ft = mu * fn * g / vt             # Eq. (11): |f_t| = mu(v) f_n, opposing the slip
             fx -= ft * tx
@@ -165,9 +189,7 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
             my += -r * nx * (-ft * tz)
             mz += r * nx * (-ft * ty) - r * ny * (-ft * tx)
     if P[P_SPIN] > 0.5 and mu > 0.0:
-        a = P[P_A1] * fn ** (1.0 / 3.0)       # semi-major axis, Eq. (15)
-        wn = wx * nx + wy * ny                # spin relative to the fixed groove
-        ms = 0.375 * mu * math.tanh(3.0 * wn * a / vst) * fn * a   # Eqs. (14), (16)
+        ms = spin_moment(mu, fn, P[P_A1], wx * nx + wy * ny, vst)   # spin against the groove
         mx -= ms * nx
         my -= ms * ny
     res[0] = fx
@@ -261,47 +283,18 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
 
 
 @njit
-def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
-    """One linearly implicit Euler substep of h [s] on the state Y (in place).
-
-    Velocities v = (ud, om[, wd, b1d, b2d]): (M - h J + h^2 K) dv = h (Q - h K v), with J the
-    friction Jacobian (the friction slope mu f_n / v_st against the roller's mass and inertia is
-    the stiff part) and K the needle row's stiffness (lumped bearing); positions then move with
-    the new velocities; the driving motion is taken at the end of the substep.
-    G (NV x 3), A (NV x NV), b (NV) are work arrays.
-    """
-    m = P[P_M]
-    Is = P[P_IS]
-    r = P[P_R]
-    trav = P[P_TRAV] > 0.5
-    lumped = P[P_BEAR] == 1.0
-    resolved = P[P_BEAR] == 2.0
-    sixdof = lumped or resolved
-    # driving motion at the end of the substep (backward in the driving terms, so the
-    # rolling target is not lagged by a whole substep)
-    x = Y[Y_X] + h * w
-    Y[Y_X] = x
-    line_kinematics(x, w, theta, P, L)
+def slip_sensitivities(r, L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved, G, b):
+    """Rows of G: the contact slip's sensitivity d v_t / d v_i to each velocity unknown
+    (ud, om[, wd, b1d, b2d][, ed]); b: the groove's force and moment on the roller projected
+    on them (generalized forces [N, N m])."""
     ax, ay, az = L[0], L[1], L[2]
-    u = Y[Y_U]
-    ud = Y[Y_UD]
-    e = Y[Y_E]
-    ed = Y[Y_ED]
-    om = Y[Y_OM]
-    wo, wod = Y[Y_W], Y[Y_WD]
-    b1d, b2d = Y[Y_B1D], Y[Y_B2D]
-    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
-     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, sixdof)
-    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     fx, fy, fz = res[0], res[1], res[2]
     mx, my, mz = res[3], res[4], res[5]
     nx, ny = res[6], res[7]
     rnx, rny = r * nx, r * ny
-    # slip sensitivities of the unknowns (rows of G): d v_t / d v_i
     an = ax * nx + ay * ny
     G[0, 0], G[0, 1], G[0, 2] = ax - an * nx, ay - an * ny, az          # ud: P_t a
     G[1, 0], G[1, 1], G[1, 2] = -az * rny, az * rnx, ax * rny - ay * rnx  # om: a x r n
-    # generalized forces
     b[0] = fx * ax + fy * ay + fz * az
     b[1] = mx * ax + my * ay + mz * az
     if sixdof:
@@ -315,7 +308,13 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     if resolved:
         G[5, 0], G[5, 1], G[5, 2] = 1.0 - nx * nx, -nx * ny, 0.0             # ed: P_t x_hat
         b[5] = fx
-    # friction Jacobian D = -(slope t t^T + mu fn g/|v_t| (I - t t^T)), t = v_t/|v_t|
+
+
+@njit
+def friction_jacobian(P, h, res, G, nv, A):
+    """A = -h J, J the Jacobian of the groove friction (Eq. 11, tanh law) in the unknowns:
+    J = -G (slope t t^T + iso (I - t t^T)) G^T with t = v_t/|v_t|, slope the tangent and
+    iso = mu f_n g/|v_t| the secant [N s/m]; zero for the explicit integrator 2."""
     vt = res[13]
     fn = res[9]
     if vt > 1e-12:
@@ -328,110 +327,178 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     if P[P_INTEG] == 2.0:
         iso = 0.0      # explicit (symplectic) Euler, for comparison: no friction Jacobian
         aniso = 0.0
-    nv = 6 if resolved else 5 if lumped else 2
     for i in range(nv):
         gi_t = G[i, 0] * tx + G[i, 1] * ty + G[i, 2] * tz
         for j in range(nv):
             gj_t = G[j, 0] * tx + G[j, 1] * ty + G[j, 2] * tz
             gg = G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2]
             A[i, j] = h * (iso * gg + aniso * gi_t * gj_t)      # -h J
-    A[0, 0] += m
-    A[1, 1] += Is
-    # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
-    b[0] -= m * (L[11] * az + u * (L[6] * ax + L[7] * ay + L[8] * az))
-    if sixdof:
-        It = P[P_IT]
-        drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
-        kh = 0.0                                  # the groove's Hertz stiffness along x
-        delta = math.sqrt(cx * cx + cy * cy) + r - P[P_RG]
-        if delta > 0.0:
-            kh = 1.5 * fn / delta * nx * nx
-    # needle bearing (lumped): the row as a compliant joint (section 2.4.2 lumped)
-    Fr = 0.0
-    kr = 0.0
-    if lumped:
-        Fr, kr = row_load(P, e)
-        q = P[P_QSUM] * Fr            # sum of the needle loads (> F_r: they fan out)
-        if P[P_FRICN] > 0.5 and q > 0.0:
-            # axial sliding of the roller on the needles, mu_needle, tanh law
-            gn = math.tanh(3.0 * (ud - L[12]) / P[P_VST])
-            b[0] -= P[P_MUN] * q * gn
-            if P[P_INTEG] != 2.0:
-                A[0, 0] += h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
-        if P[P_ROLLR] > 0.5 and q > 0.0:
-            # Eq. (12): rolling force mu_r P per needle, acting on the bore (radius r_bore)
-            # against the roller's spin relative to the trunnion
-            vr = (om - L[13]) * P[P_RB]
-            grl = math.tanh(3.0 * vr / P[P_VST])
-            b[1] -= P[P_MUR] * q * P[P_RB] * grl
-            if P[P_INTEG] != 2.0:
-                A[1, 1] += h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
-        # tangent stiffness of the row: across the load (w) and in tilt (line contacts of
-        # length l: radial stiffness times l^2/12), implicit like the friction
-        kw = kr * P[P_KWR]
-        kt2 = kr * P[P_LT]
-        kt1 = kt2 * P[P_KWR]
-        b[2] -= kw * (wo + h * wod)
-        b[3] -= kt1 * (Y[Y_B1] + h * b1d) + drag1
-        b[4] -= kt2 * (Y[Y_B2] + h * b2d) + drag2
-        A[2, 2] += m + h * h * kw
-        A[3, 3] += It + h * h * kt1
-        A[4, 4] += It + h * h * kt2
-    if resolved:
-        # needle-resolved bearing: every needle contact on the roller, with its tangent,
-        # evaluated at the start of the substep (needles and roller step on the same state)
-        b[3] -= drag1
-        b[4] -= drag2
-        b[5] -= h * kh * ed
-        A[2, 2] += m
-        A[3, 3] += It
-        A[4, 4] += It
-        A[5, 5] += m + h * h * kh
-        # NW is None for the other bearings: numba then prunes this branch at compile time, so
-        # their kernels never compile the needle code (a 15 s first compile)
-        if NW is not None:
-            resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
-            FR, AR = NW[4], NW[5]
-            for i in range(6):
-                b[i] += FR[i]
-                for j in range(6):
-                    A[i, j] += AR[i, j]
-    if not trav:
-        # the slide along the axis is held: drop ud from the system
-        for j in range(nv):
-            A[0, j] = 0.0
-            A[j, 0] = 0.0
-        A[0, 0] = 1.0
-        b[0] = 0.0
-    for i in range(nv):
-        b[i] *= h
-    solve_small(A, b, nv)
+
+
+@njit
+def groove_stiffness_x(P, res, cx, cy):
+    """Tangent stiffness [N/m] of the groove's Hertz contact along x: d f_n / d delta (Eq. 10,
+    n = 3/2) times n_x^2."""
+    delta = math.sqrt(cx * cx + cy * cy) + P[P_R] - P[P_RG]
+    if delta > 0.0:
+        return 1.5 * res[9] / delta * res[6] * res[6]
+    return 0.0
+
+
+@njit
+def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
+    """Lumped needle row (section 2.4.2) in the implicit step: needle sliding friction on the
+    slide, Eq. (12) rolling resistance on the spin, the row's stiffness across the load and in
+    tilt, implicit like the friction.  Returns the row's radial load F_r [N] and stiffness
+    [N/m] (row_load)."""
+    m = P[P_M]
+    ud, om = Y[Y_UD], Y[Y_OM]
+    Fr, kr = row_load(P, Y[Y_E])
+    q = P[P_QSUM] * Fr            # sum of the needle loads (> F_r: they fan out)
+    if P[P_FRICN] > 0.5 and q > 0.0:
+        # axial sliding of the roller on the needles, mu_needle, tanh law
+        gn = math.tanh(3.0 * (ud - L[12]) / P[P_VST])
+        b[0] -= P[P_MUN] * q * gn
+        if P[P_INTEG] != 2.0:
+            A[0, 0] += h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
+    if P[P_ROLLR] > 0.5 and q > 0.0:
+        # Eq. (12): rolling force mu_r P per needle, acting on the bore (radius r_bore)
+        # against the roller's spin relative to the trunnion
+        vr = (om - L[13]) * P[P_RB]
+        grl = math.tanh(3.0 * vr / P[P_VST])
+        b[1] -= P[P_MUR] * q * P[P_RB] * grl
+        if P[P_INTEG] != 2.0:
+            A[1, 1] += h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
+    # tangent stiffness of the row: across the load (w) and in tilt (line contacts of
+    # length l: radial stiffness times l^2/12)
+    kw = kr * P[P_KWR]
+    kt2 = kr * P[P_LT]
+    kt1 = kt2 * P[P_KWR]
+    b[2] -= kw * (Y[Y_W] + h * Y[Y_WD])
+    b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1
+    b[4] -= kt2 * (Y[Y_B2] + h * Y[Y_B2D]) + drag2
+    A[2, 2] += m + h * h * kw
+    A[3, 3] += It + h * h * kt1
+    A[4, 4] += It + h * h * kt2
+    return Fr, kr
+
+
+@njit
+def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh,
+                       drag1, drag2, A, b):
+    """Needle-resolved bearing in the implicit step: the roller's own inertia and the groove's
+    radial stiffness, then every needle contact on the roller with its tangent, evaluated at
+    the start of the substep (needles and roller step on the same state)."""
+    m = P[P_M]
+    b[3] -= drag1
+    b[4] -= drag2
+    b[5] -= h * kh * Y[Y_ED]
+    A[2, 2] += m
+    A[3, 3] += It
+    A[4, 4] += It
+    A[5, 5] += m + h * h * kh
+    # NW is None for the other bearings: numba then prunes this branch at compile time, so
+    # their kernels never compile the needle code (a 15 s first compile)
+    if NW is not None:
+        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        FR, AR = NW[4], NW[5]
+        for i in range(6):
+            b[i] += FR[i]
+            for j in range(6):
+                A[i, j] += AR[i, j]
+
+
+@njit
+def hold_slide(A, b, nv):
+    """Traverse off: the slide along the trunnion axis is held (ud drops out of the system)."""
+    for j in range(nv):
+        A[0, j] = 0.0
+        A[j, 0] = 0.0
+    A[0, 0] = 1.0
+    b[0] = 0.0
+
+
+@njit
+def advance_roller(Y, dv, h, trav, sixdof, resolved, NW):
+    """Velocities by the solved increments dv, then positions with the new velocities
+    (semi-implicit); the needles of the resolved bearing by their own ring solve."""
     if trav:
-        Y[Y_UD] = ud + b[0]
-        Y[Y_U] = u + h * Y[Y_UD]
-    Y[Y_OM] = om + b[1]
+        Y[Y_UD] = Y[Y_UD] + dv[0]
+        Y[Y_U] = Y[Y_U] + h * Y[Y_UD]
+    Y[Y_OM] = Y[Y_OM] + dv[1]
     if sixdof:
-        Y[Y_WD] = wod + b[2]
-        Y[Y_W] = wo + h * Y[Y_WD]
-        Y[Y_B1D] = b1d + b[3]
+        Y[Y_WD] = Y[Y_WD] + dv[2]
+        Y[Y_W] = Y[Y_W] + h * Y[Y_WD]
+        Y[Y_B1D] = Y[Y_B1D] + dv[3]
         Y[Y_B1] = Y[Y_B1] + h * Y[Y_B1D]
-        Y[Y_B2D] = b2d + b[4]
+        Y[Y_B2D] = Y[Y_B2D] + dv[4]
         Y[Y_B2] = Y[Y_B2] + h * Y[Y_B2D]
     if resolved:
-        Y[Y_ED] = ed + b[5]
-        Y[Y_E] = e + h * Y[Y_ED]
+        Y[Y_ED] = Y[Y_ED] + dv[5]
+        Y[Y_E] = Y[Y_E] + h * Y[Y_ED]
         if NW is not None:
             NDL.needle_update(Y, Y_LEN, NW[0], h, NW[2], NW[3], NW[11], NW[14], NW[15],
                               NW[16], NW[17])
+
+
+@njit
+def lumped_radial_step(Y, h, m, Fe, ktot):
+    """Lumped bearing, radial along the pressing direction: the groove pushes the roller in -x,
+    the needles push it back (net force Fe [N], stiffness ktot [N/m]).  Linearly implicit with
+    both stiffnesses, so the stiff radial mode (about 1e4 Hz) needs no artificial damping."""
+    ed = Y[Y_ED]
+    ded = h * (Fe - h * ktot * ed) / (m + h * h * ktot)
+    Y[Y_ED] = ed + ded
+    Y[Y_E] = Y[Y_E] + h * Y[Y_ED]
+
+
+@njit
+def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
+    """One linearly implicit Euler substep of h [s] on the state Y (in place).
+
+    Velocities v = (ud, om[, wd, b1d, b2d][, ed]): (M - h J + h^2 K) dv = h (Q - h K v), with J
+    the friction Jacobian (the friction slope mu f_n / v_st against the roller's mass and
+    inertia is the stiff part) and K the needle row's stiffness; positions then move with the
+    new velocities; the driving motion is taken at the end of the substep (backward in the
+    driving terms, so the rolling target is not lagged by a whole substep).
+    G (NV x 3), A (NV x NV), b (NV) are work arrays.
+    """
+    m = P[P_M]
+    lumped = P[P_BEAR] == 1.0
+    resolved = P[P_BEAR] == 2.0
+    sixdof = lumped or resolved
+    x = Y[Y_X] + h * w
+    Y[Y_X] = x
+    line_kinematics(x, w, theta, P, L)
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, sixdof)
+    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    slip_sensitivities(P[P_R], L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved, G, b)
+    nv = 6 if resolved else 5 if lumped else 2
+    friction_jacobian(P, h, res, G, nv, A)
+    A[0, 0] += m
+    A[1, 1] += P[P_IS]
+    # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
+    b[0] -= m * (L[11] * L[2] + Y[Y_U] * (L[6] * L[0] + L[7] * L[1] + L[8] * L[2]))
+    It = P[P_IT]
+    drag1 = drag2 = kh = Fr = kr = 0.0
+    if sixdof:
+        drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        kh = groove_stiffness_x(P, res, cx, cy)
     if lumped:
-        # radial along the pressing direction: the groove pushes the roller in -x, the
-        # needles push it back. Linearly implicit with Hertz + row stiffness, so the stiff
-        # radial mode (about 1e4 Hz) needs no artificial damping.
-        Fe = fx + Fr
-        ktot = kh + kr
-        ded = h * (Fe - h * ktot * ed) / (m + h * h * ktot)
-        Y[Y_ED] = ed + ded
-        Y[Y_E] = e + h * Y[Y_ED]
+        Fr, kr = lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b)
+    if resolved:
+        resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh,
+                           drag1, drag2, A, b)
+    trav = P[P_TRAV] > 0.5
+    if not trav:
+        hold_slide(A, b, nv)
+    for i in range(nv):
+        b[i] *= h
+    solve_small(A, b, nv)
+    advance_roller(Y, b, h, trav, sixdof, resolved, NW)
+    if lumped:
+        lumped_radial_step(Y, h, m, res[0] + Fr, kh + kr)
 
 
 @njit
@@ -543,6 +610,81 @@ def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
 
 
 @njit
+def _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q):
+    """GW[0:nv, 0:nv]: the residual's Jacobian in the accelerations, column j by a finite
+    difference of 1e-4 v_st in unknown j's velocity."""
+    vs, r, ga = P[P_VST], P[P_R], GA_GAMMA
+    for j in range(nv):
+        d = 1e-4 * vs / (ga * h) / (r if GA_ROT[j] > 0.0 else 1.0)
+        for i in range(nv):
+            GW[W_AT, i] = GW[W_A, i]
+        GW[W_AT, j] += d
+        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+        for i in range(nv):
+            GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
+
+
+@njit
+def _ga_newton_direction(GW, nv, trav, A, Q):
+    """Newton direction GW[W_D] = -J^-1 R (the slide's row held when traverse is off); returns
+    the residual's scaled size max |R_i| S_i."""
+    for i in range(nv):
+        for j in range(nv):
+            A[i, j] = GW[i, j]
+        Q[i] = -GW[W_R, i]
+    if not trav:   # the slide is held: its acceleration stays as it is
+        for j in range(nv):
+            A[0, j] = 0.0
+            A[j, 0] = 0.0
+        A[0, 0] = 1.0
+        Q[0] = 0.0
+    solve_small(A, Q, nv)
+    n0 = 0.0
+    for i in range(nv):
+        GW[W_D, i] = Q[i]
+        n0 = max(n0, abs(GW[W_R, i]) * GW[W_S, i])
+    return n0
+
+
+@njit
+def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
+    """The Newton step halved (up to 8 times) until the scaled residual falls below n0 (the
+    tanh friction is steep over v_st); trial point in GW[W_AT], its residual in GW[W_RT].
+    Returns the step fraction."""
+    lam = 1.0
+    for _ in range(8):
+        for i in range(nv):
+            GW[W_AT, i] = GW[W_A, i] + lam * GW[W_D, i]
+        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+        n1 = 0.0
+        for i in range(nv):
+            n1 = max(n1, abs(GW[W_RT, i]) * GW[W_S, i])
+        if n1 < n0:
+            break
+        lam *= 0.5
+    return lam
+
+
+@njit
+def _ga_accept(Y, GW, h, w, nv, hs):
+    """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
+    converged a1 (GW[W_A]); a1 kept in hs[5:] for the next step."""
+    ga, be = GA_GAMMA, GA_BETA
+    for i in range(nv):
+        a0 = GW[W_A0, i]
+        a1 = GW[W_A, i]
+        iv = GA_VEL[i]
+        v = Y[iv]
+        ip = GA_POS[i]
+        if ip >= 0:
+            Y[ip] = Y[ip] + h * v + h * h * ((0.5 - be) * a0 + be * a1)
+        Y[iv] = v + h * ((1.0 - ga) * a0 + ga * a1)
+        hs[5 + i] = a1
+    Y[Y_X] += h * w
+    hs[1] += 1.0
+
+
+@njit
 def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     """One generalized-alpha step of h [s] on Y (ideal or lumped bearing; Chung & Hulbert
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
@@ -560,7 +702,7 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             hs[5 + i] = Q[i] / GW[W_M, i]
         hs[3] = 1.0
     nv = 6 if P[P_BEAR] == 1.0 else 2
-    ga, be = GA_GAMMA, GA_BETA
+    ga = GA_GAMMA
     for i in range(nv):
         GW[W_A0, i] = hs[5 + i]
         GW[W_A, i] = hs[5 + i]
@@ -570,42 +712,10 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     fresh = False
     for it in range(GA_MAXIT):
         if not fresh:
-            # Jacobian column j: finite difference of 1e-4 v_st in unknown j's velocity
-            for j in range(nv):
-                d = 1e-4 * vs / (ga * h) / (r if GA_ROT[j] > 0.0 else 1.0)
-                for i in range(nv):
-                    GW[W_AT, i] = GW[W_A, i]
-                GW[W_AT, j] += d
-                _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
-                for i in range(nv):
-                    GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
+            _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q)
             fresh = True
-        for i in range(nv):
-            for j in range(nv):
-                A[i, j] = GW[i, j]
-            Q[i] = -GW[W_R, i]
-        if not trav:   # the slide is held: its acceleration stays as it is
-            for j in range(nv):
-                A[0, j] = 0.0
-                A[j, 0] = 0.0
-            A[0, 0] = 1.0
-            Q[0] = 0.0
-        solve_small(A, Q, nv)
-        n0 = 0.0
-        for i in range(nv):
-            GW[W_D, i] = Q[i]
-            n0 = max(n0, abs(GW[W_R, i]) * GW[W_S, i])
-        lam = 1.0
-        for _ in range(8):
-            for i in range(nv):
-                GW[W_AT, i] = GW[W_A, i] + lam * GW[W_D, i]
-            _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
-            n1 = 0.0
-            for i in range(nv):
-                n1 = max(n1, abs(GW[W_RT, i]) * GW[W_S, i])
-            if n1 < n0:
-                break
-            lam *= 0.5
+        n0 = _ga_newton_direction(GW, nv, trav, A, Q)
+        lam = _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q)
         conv = True
         for i in range(nv):
             GW[W_A, i] = GW[W_AT, i]
@@ -614,18 +724,7 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             if dv > GA_NTOL * vs:
                 conv = False
         if conv:
-            for i in range(nv):
-                a0 = GW[W_A0, i]
-                a1 = GW[W_A, i]
-                iv = GA_VEL[i]
-                v = Y[iv]
-                ip = GA_POS[i]
-                if ip >= 0:
-                    Y[ip] = Y[ip] + h * v + h * h * ((0.5 - be) * a0 + be * a1)
-                Y[iv] = v + h * ((1.0 - ga) * a0 + ga * a1)
-                hs[5 + i] = a1
-            Y[Y_X] += h * w
-            hs[1] += 1.0
+            _ga_accept(Y, GW, h, w, nv, hs)
             return True
         if it % 3 == 2 or lam < 1.0:
             fresh = False       # slow convergence: a Jacobian at the current iterate
