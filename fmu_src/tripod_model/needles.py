@@ -161,48 +161,18 @@ def _normal(f, kn, m, sn):
 
 
 @njit
-def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
-                  wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
-                  SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2):
-    """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
-    coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
-    unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
-    ND diagnostics.
-
-    Y[y0:] the needle states; o, vo: roller centre and its velocity in T [m, m/s]; ob: bore axis
-    direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
-    (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
-    om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
-    [m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of
-    each needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its
-    standard velocities and its friction moments, gn, gn2 (6).
-    """
+def _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR):
+    """Clear every body's system; each needle's inertial force of the moving frame (its origin
+    accelerating at g [m/s^2]) and its sphere centres SP (spheres evenly along its axis)."""
     n = int(NP[N_N])
     ns = int(NP[N_NS])
-    rn = NP[N_RN]
-    Rt = NP[N_RT]
-    Rb = NP[N_RBR]
     ln = NP[N_LN]
     mn = NP[N_MN]
-    Cs = NP[N_CS]
-    dc = NP[N_DC]
-    zax = NP[N_ZAX]
-    hw = NP[N_HW]
-    mu = NP[N_MU]
-    mur = NP[N_MUR]
-    fric = NP[N_FRIC] > 0.5
-    ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
-    rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
-    hh = h * h
-    # the roller's system in its standard velocities about its centre (b in RS[:, 0], A in
-    # RS[:, 1:7]), mapped to its unknowns at the end
     for i in range(6):
         for k in range(13):
             RS[i, k] = 0.0
     for i in range(10):
         MR[i] = 0.0
-    bR = RS[:, 0]
-    AR6 = RS[:, 1:7]
     for j in range(n):
         q = y0 + N_F * j
         for i in range(6):
@@ -215,7 +185,6 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
             PM[j, i] = 0.0
         for i in range(D_LEN):
             ND[j, i] = 0.0
-        # inertial force of the moving frame
         FN[j, 0] = -mn * g1
         FN[j, 1] = -mn * g2
         FN[j, 2] = -mn * g3
@@ -227,151 +196,184 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
             SP[j, k, 0] = Y[q] + sk * d1
             SP[j, k, 1] = Y[q + 1] + sk * d2
             SP[j, k, 2] = Y[q + 2] + sk * d3
-    for j in range(n):
-        q = y0 + N_F * j
-        p1, p2, p3 = Y[q], Y[q + 1], Y[q + 2]
-        v1, v2, v3 = Y[q + 5], Y[q + 6], Y[q + 7]
-        w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
-        jn = j + 1 if j + 1 < n else 0
-        qn = y0 + N_F * jn
-        Aj = AN[j]
-        Fj = FN[j]
-        Mj = MOM[j]
-        for k in range(ns):
-            P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
-            # --- trunnion (convex cylinder about e3, radius Rt) ---
-            rho = math.sqrt(P1 * P1 + P2 * P2)
-            delta = Rt + rn - rho
-            if delta > 0.0:
-                n1, n2 = P1 / rho, P2 / rho                  # onto the needle
-                f = Cs * delta ** E10_9                     # Table 1, n = 10/9
-                kn = E10_9 * f / delta
-                X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3
-                r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
-                u1 = v1 + w2 * r3 - w3 * r2                  # needle point velocity
-                u2 = v2 + w3 * r1 - w1 * r3
-                u3 = v3 + w1 * r2 - w2 * r1
-                s1 = u1 + om_tr * X2                         # minus the trunnion's
-                s2 = u2 - om_tr * X1
-                s3 = u3 - dd_tr
-                F1, F2, F3, iso = _friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, fric)
-                fd, cd = _normal(f, kn, ms, s1 * n1 + s2 * n2)
-                _contact(F1 + fd * n1, F2 + fd * n2, F3, n1, n2, 0.0, r1, r2, r3,
-                         h * kn * (u1 * n1 + u2 * n2), hh * kn + h * cd - h * iso, h * iso,
-                         Fj, Aj, Mj, gn)
-                if rollr:   # Eq. (12), half of mu_r P D/2 at each of the needle's two races
-                    gr = math.tanh(3.0 * rn * (w3 - om_tr) / vst)
-                    Fj[5] -= 0.5 * mur * f * rn * gr
-                    Aj[5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-                ND[j, D_TRUN] += f
-            # --- roller bore (concave cylinder about the bore axis, radius Rb) ---
-            e1_, e2_, e3_ = P1 - o1, P2 - o2, P3 - o3
-            al = e1_ * ob1 + e2_ * ob2 + e3_ * ob3
-            if abs(al) <= hw:
-                q1, q2, q3 = e1_ - al * ob1, e2_ - al * ob2, e3_ - al * ob3
-                rb = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
-                delta = rb + rn - Rb
-                if delta > 0.0:
-                    n1, n2, n3 = -q1 / rb, -q2 / rb, -q3 / rb   # onto the needle
-                    f = Cs * delta ** E10_9
-                    kn = E10_9 * f / delta
-                    X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3 - rn * n3
-                    r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
-                    u1 = v1 + w2 * r3 - w3 * r2
-                    u2 = v2 + w3 * r1 - w1 * r3
-                    u3 = v3 + w1 * r2 - w2 * r1
-                    R1, R2, R3 = X1 - o1, X2 - o2, X3 - o3
-                    z1 = vo1 + wr2 * R3 - wr3 * R2            # roller point velocity
-                    z2 = vo2 + wr3 * R1 - wr1 * R3
-                    z3 = vo3 + wr1 * R2 - wr2 * R1
-                    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3,
-                                                mu, vst, fric)
-                    fd, cd = _normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
-                    F1 += fd * n1
-                    F2 += fd * n2
-                    F3 += fd * n3
-                    kq = hh * kn + h * cd - h * iso
-                    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3,
-                             C_NEEDLE * h * kn * (u1 * n1 + u2 * n2 + u3 * n3), C_NEEDLE * kq,
-                             C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
-                    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3,
-                             C_ROLLER * h * kn * (z1 * n1 + z2 * n2 + z3 * n3), C_ROLLER * kq,
-                             C_ROLLER * h * iso, bR, AR6, MR, gn2)
-                    if rollr:
-                        gr = math.tanh(3.0 * rn * (w3 - wr3) / vst)
-                        mr = 0.5 * mur * f * rn * gr
-                        cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-                        Fj[5] -= mr
-                        Aj[5, 5] += C_NEEDLE * cr
-                        bR[5] += mr
-                        AR6[5, 5] += C_ROLLER * cr
-                    ND[j, D_BORE] += f
-                    ND[j, D_R1] -= F1
-                    ND[j, D_R2] -= F2
-                    ND[j, D_R3] -= F3
-            # --- next needle, same sphere index ---
-            Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
-            dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
-            delta = dc - dist
-            if delta > 0.0 and jn != j:
-                n1, n2, n3 = -Q1 / dist, -Q2 / dist, -Q3 / dist   # onto needle j
-                f = Cs * delta ** E10_9
-                kn = E10_9 * f / delta
-                X1, X2, X3 = P1 + 0.5 * Q1, P2 + 0.5 * Q2, P3 + 0.5 * Q3
-                r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
-                u1 = v1 + w2 * r3 - w3 * r2
-                u2 = v2 + w3 * r1 - w1 * r3
-                u3 = v3 + w1 * r2 - w2 * r1
-                R1, R2, R3 = X1 - Y[qn], X2 - Y[qn + 1], X3 - Y[qn + 2]
-                W1, W2, W3 = Y[qn + 8], Y[qn + 9], Y[qn + 10]
-                z1 = Y[qn + 5] + W2 * R3 - W3 * R2
-                z2 = Y[qn + 6] + W3 * R1 - W1 * R3
-                z3 = Y[qn + 7] + W1 * R2 - W2 * R1
-                F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3,
-                                            mu, vst, fric)
-                vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
-                fd, cd = _normal(f, kn, 0.5 * ms, vrel)
-                F1 += fd * n1
-                F2 += fd * n2
-                F3 += fd * n3
-                # both needles' own blocks (relative approach rate in the predictor) and the
-                # coupling block UN[j] (row j, column jn): the ring is solved together
-                # (ring_solve), so a touching chain moves as one
-                kq = hh * kn + h * cd - h * iso
-                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, h * kn * vrel, kq, h * iso,
-                         Fj, Aj, Mj, gn)
-                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -h * kn * vrel, kq, h * iso,
-                         FN[jn], AN[jn], MOM[jn], gn2)
-                _add_moments(PM[j], h * iso, r1, r2, r3)
-                for i in range(6):
-                    ci = kq * gn[i]
-                    for l in range(6):
-                        UN[j, i, l] -= ci * gn2[l]
-                ND[j, D_NEIGH] += f
-                ND[jn, D_NEIGH] += f
-        # --- flange (inner end) and retainer (outer end) on the trunnion: axial stops ---
-        z = p3 - d_tr
-        over = abs(z) - zax
-        if over > 0.0:
-            f = Cs * over ** E10_9
-            kn = E10_9 * f / over
-            sg = -1.0 if z > 0.0 else 1.0
-            fd, cd = _normal(f, kn, mn, sg * (v3 - dd_tr))
-            Fj[2] += sg * fd - h * kn * (v3 - dd_tr)
-            Aj[2, 2] += hh * kn + h * cd
-            ND[j, D_FLANGE] += f
-    # friction parts from the moments: each needle's own block, each pair's coupling block
+
+
+@njit
+def _needle_point(Y, q, X1, X2, X3):
+    """Arm r = X - p [m] from needle q's centre to the point X, and that point's velocity."""
+    r1, r2, r3 = X1 - Y[q], X2 - Y[q + 1], X3 - Y[q + 2]
+    w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
+    u1 = Y[q + 5] + w2 * r3 - w3 * r2
+    u2 = Y[q + 6] + w3 * r1 - w1 * r3
+    u3 = Y[q + 7] + w1 * r2 - w2 * r1
+    return r1, r2, r3, u1, u2, u3
+
+
+@njit
+def _sphere_approach(Cs, delta):
+    """Needle sphere on a race or a neighbour: Table 1's line-contact law per sphere,
+    f = C_s delta^(10/9) [N], and its tangent stiffness [N/m]."""
+    f = Cs * delta ** E10_9
+    return f, E10_9 * f / delta
+
+
+@njit
+def _trunnion_contact(Y, q, P1, P2, P3, NP, ms, vst, h, om_tr, dd_tr, Fj, Aj, Mj, gn, NDj):
+    """Sphere (centre P, of needle q) on the trunnion (convex cylinder about e3, radius Rt):
+    Hertz, tanh friction against the trunnion's spin om_tr and slide dd_tr, contact damping,
+    Eq. (12) rolling resistance; into the needle's system."""
+    rn, mu, mur = NP[N_RN], NP[N_MU], NP[N_MUR]
+    rho = math.sqrt(P1 * P1 + P2 * P2)
+    delta = NP[N_RT] + rn - rho
+    if not delta > 0.0:
+        return
+    hh = h * h
+    n1, n2 = P1 / rho, P2 / rho                  # onto the needle
+    f, kn = _sphere_approach(NP[N_CS], delta)
+    X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3
+    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
+    s1 = u1 + om_tr * X2                         # minus the trunnion's
+    s2 = u2 - om_tr * X1
+    s3 = u3 - dd_tr
+    F1, F2, F3, iso = _friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, NP[N_FRIC] > 0.5)
+    fd, cd = _normal(f, kn, ms, s1 * n1 + s2 * n2)
+    _contact(F1 + fd * n1, F2 + fd * n2, F3, n1, n2, 0.0, r1, r2, r3,
+             h * kn * (u1 * n1 + u2 * n2), hh * kn + h * cd - h * iso, h * iso, Fj, Aj, Mj, gn)
+    if NP[N_ROLLR] > 0.5 and mur > 0.0:   # Eq. (12), half of mu_r P D/2 at each race
+        gr = math.tanh(3.0 * rn * (Y[q + 10] - om_tr) / vst)
+        Fj[5] -= 0.5 * mur * f * rn * gr
+        Aj[5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+    NDj[D_TRUN] += f
+
+
+@njit
+def _bore_contact(Y, q, P1, P2, P3, NP, ms, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
+                  wr1, wr2, wr3, Fj, Aj, Mj, gn, bR, AR6, MR, gn2, NDj):
+    """Sphere (centre P, of needle q) in the roller bore (concave cylinder about the bore axis
+    ob through o, radius Rb, only within the roller's width): Hertz, tanh friction on the
+    relative slip, damping, rolling resistance; into the needle's and (scaled) the roller's
+    systems."""
+    rn, mu, mur = NP[N_RN], NP[N_MU], NP[N_MUR]
+    e1_, e2_, e3_ = P1 - o1, P2 - o2, P3 - o3
+    al = e1_ * ob1 + e2_ * ob2 + e3_ * ob3
+    if not abs(al) <= NP[N_HW]:   # (written so that NaN skips, like every test here)
+        return
+    q1, q2, q3 = e1_ - al * ob1, e2_ - al * ob2, e3_ - al * ob3
+    rb = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+    delta = rb + rn - NP[N_RBR]
+    if not delta > 0.0:
+        return
+    hh = h * h
+    n1, n2, n3 = -q1 / rb, -q2 / rb, -q3 / rb   # onto the needle
+    f, kn = _sphere_approach(NP[N_CS], delta)
+    X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3 - rn * n3
+    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
+    R1, R2, R3 = X1 - o1, X2 - o2, X3 - o3
+    z1 = vo1 + wr2 * R3 - wr3 * R2            # roller point velocity
+    z2 = vo2 + wr3 * R1 - wr1 * R3
+    z3 = vo3 + wr1 * R2 - wr2 * R1
+    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst,
+                                NP[N_FRIC] > 0.5)
+    fd, cd = _normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
+    F1 += fd * n1
+    F2 += fd * n2
+    F3 += fd * n3
+    kq = hh * kn + h * cd - h * iso
+    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3,
+             C_NEEDLE * h * kn * (u1 * n1 + u2 * n2 + u3 * n3), C_NEEDLE * kq,
+             C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
+    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3,
+             C_ROLLER * h * kn * (z1 * n1 + z2 * n2 + z3 * n3), C_ROLLER * kq,
+             C_ROLLER * h * iso, bR, AR6, MR, gn2)
+    if NP[N_ROLLR] > 0.5 and mur > 0.0:
+        gr = math.tanh(3.0 * rn * (Y[q + 10] - wr3) / vst)
+        mr = 0.5 * mur * f * rn * gr
+        cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+        Fj[5] -= mr
+        Aj[5, 5] += C_NEEDLE * cr
+        bR[5] += mr
+        AR6[5, 5] += C_ROLLER * cr
+    NDj[D_BORE] += f
+    NDj[D_R1] -= F1
+    NDj[D_R2] -= F2
+    NDj[D_R3] -= F3
+
+
+@njit
+def _neighbour_contact(Y, q, qn, P1, P2, P3, Q1, Q2, Q3, NP, ms, vst, h, Fj, Aj, Mj, gn,
+                       Fn, An, Mn, gn2, PMj, UNj):
+    """Sphere P of needle q on the same sphere of the next needle qn (Q = its centre - P):
+    Hertz, tanh friction, damping; both needles' own blocks and their coupling block UNj (row
+    q, column qn: the ring is solved together, so a touching chain moves as one).  Returns the
+    normal load [N] (0 apart)."""
+    dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
+    delta = NP[N_DC] - dist
+    if not delta > 0.0:
+        return 0.0
+    hh = h * h
+    n1, n2, n3 = -Q1 / dist, -Q2 / dist, -Q3 / dist   # onto needle q
+    f, kn = _sphere_approach(NP[N_CS], delta)
+    X1, X2, X3 = P1 + 0.5 * Q1, P2 + 0.5 * Q2, P3 + 0.5 * Q3
+    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
+    R1, R2, R3, z1, z2, z3 = _needle_point(Y, qn, X1, X2, X3)
+    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, NP[N_MU], vst,
+                                NP[N_FRIC] > 0.5)
+    vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
+    fd, cd = _normal(f, kn, 0.5 * ms, vrel)
+    F1 += fd * n1
+    F2 += fd * n2
+    F3 += fd * n3
+    kq = hh * kn + h * cd - h * iso
+    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, h * kn * vrel, kq, h * iso, Fj, Aj, Mj, gn)
+    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -h * kn * vrel, kq, h * iso, Fn, An, Mn,
+             gn2)
+    _add_moments(PMj, h * iso, r1, r2, r3)
+    for i in range(6):
+        ci = kq * gn[i]
+        for l in range(6):
+            UNj[i, l] -= ci * gn2[l]
+    return f
+
+
+@njit
+def _axial_stops(Y, q, NP, h, d_tr, dd_tr, Fj, Aj, NDj):
+    """The trunnion's flange (inner end) and retainer (outer end): axial stops of needle q at
+    +-zax [m] about the trunnion's material offset d_tr, Hertz with damping, no friction."""
+    p3, v3 = Y[q + 2], Y[q + 7]
+    z = p3 - d_tr
+    over = abs(z) - NP[N_ZAX]
+    if not over > 0.0:
+        return
+    f, kn = _sphere_approach(NP[N_CS], over)
+    sg = -1.0 if z > 0.0 else 1.0
+    fd, cd = _normal(f, kn, NP[N_MN], sg * (v3 - dd_tr))
+    Fj[2] += sg * fd - h * kn * (v3 - dd_tr)
+    Aj[2, 2] += h * h * kn + h * cd
+    NDj[D_FLANGE] += f
+
+
+@njit
+def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
+    """The friction parts of the systems from their moments: each needle's own block, each
+    neighbour pair's coupling block (UN -= sum w G_j G_jn^T) and the roller's block."""
     for j in range(n):
         _moment_block(AN[j], MOM[j], 0.0, 0.0, 0.0)
         if PM[j, 0] != 0.0:
             jn = j + 1 if j + 1 < n else 0
             q, qn = y0 + N_F * j, y0 + N_F * jn
-            for i in range(10):        # UN -= sum w G_j G_jn^T
+            for i in range(10):
                 PM[j, i] = -PM[j, i]
             _moment_block(UN[j], PM[j], Y[q] - Y[qn], Y[q + 1] - Y[qn + 1], Y[q + 2] - Y[qn + 2])
     _moment_block(AR6, MR, 0.0, 0.0, 0.0)
-    # roller unknowns from its standard velocities (t1..t3, r1..r3): ud = t3, om = r3, wd = t2,
-    # b1d = r1, b2d = r2, ed = e1x t1 + ax t3 (rows of the map TM in RS[:, 7:13])
+
+
+@njit
+def _roller_unknowns(RS, e1x, ax, FR, AR):
+    """The roller's system in its standard velocities (b in RS[:, 0], A in RS[:, 1:7]) mapped
+    to its unknowns of kernel.substep: ud = t3, om = r3, wd = t2, b1d = r1, b2d = r2,
+    ed = e1x t1 + ax t3 (rows of the map TM in RS[:, 7:13]); FR = TM b, AR = TM A TM^T."""
+    bR = RS[:, 0]
+    AR6 = RS[:, 1:7]
     TM = RS[:, 7:13]
     TM[0, 2] = 1.0
     TM[1, 5] = 1.0
@@ -393,6 +395,53 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                     for l in range(6):
                         acc += tak * AR6[k, l] * TM[c, l]
             AR[a, c] = acc
+
+
+@njit
+def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
+                  wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
+                  SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2):
+    """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
+    coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
+    unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
+    ND diagnostics.
+
+    Y[y0:] the needle states; o, vo: roller centre and its velocity in T [m, m/s]; ob: bore axis
+    direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
+    (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
+    om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
+    [m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of
+    each needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its
+    standard velocities and its friction moments, gn, gn2 (6).
+    """
+    n = int(NP[N_N])
+    ns = int(NP[N_NS])
+    ms = NP[N_MN] / ns   # the share of a needle's mass on one sphere: sets the contact damping
+    _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR)
+    bR = RS[:, 0]
+    AR6 = RS[:, 1:7]
+    for j in range(n):
+        q = y0 + N_F * j
+        jn = j + 1 if j + 1 < n else 0
+        qn = y0 + N_F * jn
+        Aj, Fj, Mj, NDj = AN[j], FN[j], MOM[j], ND[j]
+        for k in range(ns):
+            P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
+            _trunnion_contact(Y, q, P1, P2, P3, NP, ms, vst, h, om_tr, dd_tr, Fj, Aj, Mj, gn,
+                              NDj)
+            _bore_contact(Y, q, P1, P2, P3, NP, ms, vst, h, o1, o2, o3, vo1, vo2, vo3,
+                          ob1, ob2, ob3, wr1, wr2, wr3, Fj, Aj, Mj, gn, bR, AR6, MR, gn2, NDj)
+            if jn != j:
+                f = _neighbour_contact(Y, q, qn, P1, P2, P3, SP[jn, k, 0] - P1,
+                                       SP[jn, k, 1] - P2, SP[jn, k, 2] - P3, NP, ms, vst, h,
+                                       Fj, Aj, Mj, gn, FN[jn], AN[jn], MOM[jn], gn2, PM[j],
+                                       UN[j])
+                if f > 0.0:
+                    ND[j, D_NEIGH] += f
+                    ND[jn, D_NEIGH] += f
+        _axial_stops(Y, q, NP, h, d_tr, dd_tr, Fj, Aj, NDj)
+    _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR)
+    _roller_unknowns(RS, e1x, ax, FR, AR)
 
 
 @njit
