@@ -91,3 +91,12 @@ def njit(fn):
     if HAVE_NUMBA:
         return _nb.njit(cache=True, nogil=True)(fn)
     return fn
+
+
+def inline(fn):
+    """njit, inlined into its callers at numba's IR level: for the small named pieces of the
+    hot kernels (a real call passing arrays costs reference counting on every argument; the
+    needle contacts run 1000 times a substep)."""
+    if HAVE_NUMBA:
+        return _nb.njit(cache=True, nogil=True, inline="always")(fn)
+    return fn

@@ -7,7 +7,7 @@ direction, y = trunnion axis (nominal).  Forces are reported from the roller on 
 import math
 
 
-from .jit import njit
+from .jit import inline, njit
 from .linalg import solve_small
 from . import needles as NDL
 
@@ -108,14 +108,14 @@ def line_kinematics(x, w, theta, P, out):
         out[13] = 0.0
 
 
-@njit
+@inline
 def hertz_normal_force(K, delta):
     """Roller-groove normal force [N] at the approach delta [m]: Eq. (10) with Table 1's point
     contact, f_n = K delta^(3/2) (K [N/m^1.5] from hertz.hertz_point)."""
     return K * delta ** 1.5
 
 
-@njit
+@inline
 def tanh_friction(mu, fn, vt, vst):
     """Regularised friction, Eq. (11) with model.md's law mu(v) = mu tanh(3 v / v_st): returns
     g = tanh(3 |v_t| / v_st) (the friction force is mu f_n g [N]) and its slope
@@ -124,7 +124,7 @@ def tanh_friction(mu, fn, vt, vst):
     return g, mu * fn * 3.0 / vst * (1.0 - g * g)
 
 
-@njit
+@inline
 def spin_moment(mu, fn, a1, wn, vst):
     """Spin moment [N m] of the elliptical contact about its normal, Eqs. (14)-(16): the
     contact's semi-major axis a = a1 f_n^(1/3) (Eq. 15) and 3/8 mu f_n a, regularised in the
@@ -282,7 +282,7 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
                       SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2)
 
 
-@njit
+@inline
 def slip_sensitivities(r, L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved, G, b):
     """Rows of G: the contact slip's sensitivity d v_t / d v_i to each velocity unknown
     (ud, om[, wd, b1d, b2d][, ed]); b: the groove's force and moment on the roller projected
@@ -310,7 +310,7 @@ def slip_sensitivities(r, L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved
         b[5] = fx
 
 
-@njit
+@inline
 def friction_jacobian(P, h, res, G, nv, A):
     """A = -h J, J the Jacobian of the groove friction (Eq. 11, tanh law) in the unknowns:
     J = -G (slope t t^T + iso (I - t t^T)) G^T with t = v_t/|v_t|, slope the tangent and
@@ -335,7 +335,7 @@ def friction_jacobian(P, h, res, G, nv, A):
             A[i, j] = h * (iso * gg + aniso * gi_t * gj_t)      # -h J
 
 
-@njit
+@inline
 def groove_stiffness_x(P, res, cx, cy):
     """Tangent stiffness [N/m] of the groove's Hertz contact along x: d f_n / d delta (Eq. 10,
     n = 3/2) times n_x^2."""
@@ -345,7 +345,7 @@ def groove_stiffness_x(P, res, cx, cy):
     return 0.0
 
 
-@njit
+@inline
 def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     """Lumped needle row (section 2.4.2) in the implicit step: needle sliding friction on the
     slide, Eq. (12) rolling resistance on the spin, the row's stiffness across the load and in
@@ -383,7 +383,7 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     return Fr, kr
 
 
-@njit
+@inline
 def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh,
                        drag1, drag2, A, b):
     """Needle-resolved bearing in the implicit step: the roller's own inertia and the groove's
@@ -408,7 +408,7 @@ def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, I
                 A[i, j] += AR[i, j]
 
 
-@njit
+@inline
 def hold_slide(A, b, nv):
     """Traverse off: the slide along the trunnion axis is held (ud drops out of the system)."""
     for j in range(nv):
@@ -418,7 +418,7 @@ def hold_slide(A, b, nv):
     b[0] = 0.0
 
 
-@njit
+@inline
 def advance_roller(Y, dv, h, trav, sixdof, resolved, NW):
     """Velocities by the solved increments dv, then positions with the new velocities
     (semi-implicit); the needles of the resolved bearing by their own ring solve."""
@@ -441,7 +441,7 @@ def advance_roller(Y, dv, h, trav, sixdof, resolved, NW):
                               NW[16], NW[17])
 
 
-@njit
+@inline
 def lumped_radial_step(Y, h, m, Fe, ktot):
     """Lumped bearing, radial along the pressing direction: the groove pushes the roller in -x,
     the needles push it back (net force Fe [N], stiffness ktot [N/m]).  Linearly implicit with
@@ -609,7 +609,7 @@ def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
         GW[rr, 0] = 0.0
 
 
-@njit
+@inline
 def _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q):
     """GW[0:nv, 0:nv]: the residual's Jacobian in the accelerations, column j by a finite
     difference of 1e-4 v_st in unknown j's velocity."""
@@ -624,7 +624,7 @@ def _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q):
             GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
 
 
-@njit
+@inline
 def _ga_newton_direction(GW, nv, trav, A, Q):
     """Newton direction GW[W_D] = -J^-1 R (the slide's row held when traverse is off); returns
     the residual's scaled size max |R_i| S_i."""
@@ -646,7 +646,7 @@ def _ga_newton_direction(GW, nv, trav, A, Q):
     return n0
 
 
-@njit
+@inline
 def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
     """The Newton step halved (up to 8 times) until the scaled residual falls below n0 (the
     tanh friction is steep over v_st); trial point in GW[W_AT], its residual in GW[W_RT].
@@ -665,7 +665,7 @@ def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
     return lam
 
 
-@njit
+@inline
 def _ga_accept(Y, GW, h, w, nv, hs):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
     converged a1 (GW[W_A]); a1 kept in hs[5:] for the next step."""

@@ -19,10 +19,18 @@ needles with its and their tangents scaled so the split matrix dominates the cou
 (C_ROLLER, C_NEEDLE; _contact).  The implicit step damps the 300 kHz contact modes of the
 needles (300 times lighter than the roller) instead of resolving them (L-stable); the contact
 damping (_normal) takes the rebound out of free needles hitting a race.
+
+needle_forces' arguments: Y[y0:] the needle states; o, vo: roller centre and its velocity in T
+[m, m/s]; ob: bore axis direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax:
+global x in T (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity
+[m/s]; om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
+[m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of each
+needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its standard
+velocities and its friction moments, gn, gn2 (6).
 """
 import math
 
-from .jit import njit
+from .jit import inline, njit
 
 N_F = 11   # floats per needle in the state vector
 # needle parameter vector NP
@@ -160,7 +168,7 @@ def _normal(f, kn, m, sn):
     return ft, cd
 
 
-@njit
+@inline
 def _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR):
     """Clear every body's system; each needle's inertial force of the moving frame (its origin
     accelerating at g [m/s^2]) and its sphere centres SP (spheres evenly along its axis)."""
@@ -198,18 +206,11 @@ def _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR):
             SP[j, k, 2] = Y[q + 2] + sk * d3
 
 
-@njit
-def _needle_point(Y, q, X1, X2, X3):
-    """Arm r = X - p [m] from needle q's centre to the point X, and that point's velocity."""
-    r1, r2, r3 = X1 - Y[q], X2 - Y[q + 1], X3 - Y[q + 2]
-    w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
-    u1 = Y[q + 5] + w2 * r3 - w3 * r2
-    u2 = Y[q + 6] + w3 * r1 - w1 * r3
-    u3 = Y[q + 7] + w1 * r2 - w2 * r1
-    return r1, r2, r3, u1, u2, u3
+# The contact laws below take and return scalars only: they run for every touching sphere,
+# and an array argument costs reference counting (it doubled the row's cost).  needle_forces
+# adds what they return to the bodies' systems (_contact).
 
-
-@njit
+@inline
 def _sphere_approach(Cs, delta):
     """Needle sphere on a race or a neighbour: Table 1's line-contact law per sphere,
     f = C_s delta^(10/9) [N], and its tangent stiffness [N/m]."""
@@ -217,142 +218,119 @@ def _sphere_approach(Cs, delta):
     return f, E10_9 * f / delta
 
 
-@njit
-def _trunnion_contact(Y, q, P1, P2, P3, NP, ms, vst, h, om_tr, dd_tr, Fj, Aj, Mj, gn, NDj):
-    """Sphere (centre P, of needle q) on the trunnion (convex cylinder about e3, radius Rt):
-    Hertz, tanh friction against the trunnion's spin om_tr and slide dd_tr, contact damping,
-    Eq. (12) rolling resistance; into the needle's system."""
-    rn, mu, mur = NP[N_RN], NP[N_MU], NP[N_MUR]
-    rho = math.sqrt(P1 * P1 + P2 * P2)
-    delta = NP[N_RT] + rn - rho
-    if not delta > 0.0:
-        return
-    hh = h * h
+@inline
+def _point_velocity(v1, v2, v3, w1, w2, w3, r1, r2, r3):
+    """Velocity [m/s] of the body point at arm r from a reference point moving at v, w."""
+    return v1 + w2 * r3 - w3 * r2, v2 + w3 * r1 - w1 * r3, v3 + w1 * r2 - w2 * r1
+
+
+@inline
+def _trunnion_law(P1, P2, P3, rho, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3, c, fric, om_tr,
+                  dd_tr):
+    """A needle sphere (centre P, approach delta; needle at p moving v, w) on the trunnion,
+    convex cylinder about e3 turning at om_tr and sliding at dd_tr: Table 1 normal force with
+    contact damping (_normal), tanh friction (_friction), Eq. (12) rolling resistance (half of
+    mu_r P D/2 at each race).  Returns the force on the needle F [N], n, arm r [m], the
+    _contact coefficients kp, coef, w, the load f [N] and the rolling moment and its tangent.
+    c: the row's constants (needle_forces)."""
+    rn, Cs, ms, mu, mur, vst, h = c
     n1, n2 = P1 / rho, P2 / rho                  # onto the needle
-    f, kn = _sphere_approach(NP[N_CS], delta)
+    f, kn = _sphere_approach(Cs, delta)
     X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3
-    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
+    r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+    u1, u2, u3 = _point_velocity(v1, v2, v3, w1, w2, w3, r1, r2, r3)
     s1 = u1 + om_tr * X2                         # minus the trunnion's
     s2 = u2 - om_tr * X1
     s3 = u3 - dd_tr
-    F1, F2, F3, iso = _friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, NP[N_FRIC] > 0.5)
+    F1, F2, F3, iso = _friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, fric)
     fd, cd = _normal(f, kn, ms, s1 * n1 + s2 * n2)
-    _contact(F1 + fd * n1, F2 + fd * n2, F3, n1, n2, 0.0, r1, r2, r3,
-             h * kn * (u1 * n1 + u2 * n2), hh * kn + h * cd - h * iso, h * iso, Fj, Aj, Mj, gn)
-    if NP[N_ROLLR] > 0.5 and mur > 0.0:   # Eq. (12), half of mu_r P D/2 at each race
-        gr = math.tanh(3.0 * rn * (Y[q + 10] - om_tr) / vst)
-        Fj[5] -= 0.5 * mur * f * rn * gr
-        Aj[5, 5] += h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-    NDj[D_TRUN] += f
+    gr = math.tanh(3.0 * rn * (w3 - om_tr) / vst)
+    mr = 0.5 * mur * f * rn * gr
+    cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+    return (F1 + fd * n1, F2 + fd * n2, F3, n1, n2, r1, r2, r3, h * kn * (u1 * n1 + u2 * n2),
+            h * h * kn + h * cd - h * iso, h * iso, f, mr, cr)
 
 
-@njit
-def _bore_contact(Y, q, P1, P2, P3, NP, ms, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
-                  wr1, wr2, wr3, Fj, Aj, Mj, gn, bR, AR6, MR, gn2, NDj):
-    """Sphere (centre P, of needle q) in the roller bore (concave cylinder about the bore axis
-    ob through o, radius Rb, only within the roller's width): Hertz, tanh friction on the
-    relative slip, damping, rolling resistance; into the needle's and (scaled) the roller's
-    systems."""
-    rn, mu, mur = NP[N_RN], NP[N_MU], NP[N_MUR]
+@inline
+def _bore_gap(P1, P2, P3, o1, o2, o3, ob1, ob2, ob3, hw, Rb, rn):
+    """Sphere centre P against the roller bore (concave cylinder about the axis ob through o,
+    radius Rb, only within the roller's half width hw): its offset q from the bore axis, |q|
+    and the approach delta [m] (-1 outside the width)."""
     e1_, e2_, e3_ = P1 - o1, P2 - o2, P3 - o3
     al = e1_ * ob1 + e2_ * ob2 + e3_ * ob3
-    if not abs(al) <= NP[N_HW]:   # (written so that NaN skips, like every test here)
-        return
+    if not abs(al) <= hw:   # (written so that NaN skips, like every test here)
+        return 0.0, 0.0, 0.0, 1.0, -1.0
     q1, q2, q3 = e1_ - al * ob1, e2_ - al * ob2, e3_ - al * ob3
     rb = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
-    delta = rb + rn - NP[N_RBR]
-    if not delta > 0.0:
-        return
-    hh = h * h
+    return q1, q2, q3, rb, rb + rn - Rb
+
+
+@inline
+def _bore_law(P1, P2, P3, q1, q2, q3, rb, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3,
+              o1, o2, o3, vo1, vo2, vo3, wr1, wr2, wr3, c, fric):
+    """A needle sphere (centre P, offset q from the bore axis; needle at p moving v, w) in the
+    roller bore (roller centre o moving vo, wr): the same laws as _trunnion_law on the
+    relative slip.  Returns the force on the needle F [N], n, the needle's and the roller's
+    arms r, R [m], the tangent stiffness kn [N/m], both points' normal speeds [m/s], the
+    shared coef and the secant iso (each body scales them, see C_NEEDLE), f [N] and the
+    rolling moment and its tangent."""
+    rn, Cs, ms, mu, mur, vst, h = c
     n1, n2, n3 = -q1 / rb, -q2 / rb, -q3 / rb   # onto the needle
-    f, kn = _sphere_approach(NP[N_CS], delta)
+    f, kn = _sphere_approach(Cs, delta)
     X1, X2, X3 = P1 - rn * n1, P2 - rn * n2, P3 - rn * n3
-    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
+    r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+    u1, u2, u3 = _point_velocity(v1, v2, v3, w1, w2, w3, r1, r2, r3)
     R1, R2, R3 = X1 - o1, X2 - o2, X3 - o3
-    z1 = vo1 + wr2 * R3 - wr3 * R2            # roller point velocity
-    z2 = vo2 + wr3 * R1 - wr1 * R3
-    z3 = vo3 + wr1 * R2 - wr2 * R1
-    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst,
-                                NP[N_FRIC] > 0.5)
+    z1, z2, z3 = _point_velocity(vo1, vo2, vo3, wr1, wr2, wr3, R1, R2, R3)   # roller point
+    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
     fd, cd = _normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
-    F1 += fd * n1
-    F2 += fd * n2
-    F3 += fd * n3
-    kq = hh * kn + h * cd - h * iso
-    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3,
-             C_NEEDLE * h * kn * (u1 * n1 + u2 * n2 + u3 * n3), C_NEEDLE * kq,
-             C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
-    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3,
-             C_ROLLER * h * kn * (z1 * n1 + z2 * n2 + z3 * n3), C_ROLLER * kq,
-             C_ROLLER * h * iso, bR, AR6, MR, gn2)
-    if NP[N_ROLLR] > 0.5 and mur > 0.0:
-        gr = math.tanh(3.0 * rn * (Y[q + 10] - wr3) / vst)
-        mr = 0.5 * mur * f * rn * gr
-        cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-        Fj[5] -= mr
-        Aj[5, 5] += C_NEEDLE * cr
-        bR[5] += mr
-        AR6[5, 5] += C_ROLLER * cr
-    NDj[D_BORE] += f
-    NDj[D_R1] -= F1
-    NDj[D_R2] -= F2
-    NDj[D_R3] -= F3
+    gr = math.tanh(3.0 * rn * (w3 - wr3) / vst)
+    mr = 0.5 * mur * f * rn * gr
+    cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+    return (F1 + fd * n1, F2 + fd * n2, F3 + fd * n3, n1, n2, n3, r1, r2, r3, R1, R2, R3,
+            kn, u1 * n1 + u2 * n2 + u3 * n3, z1 * n1 + z2 * n2 + z3 * n3,
+            h * h * kn + h * cd - h * iso, iso, f, mr, cr)
 
 
-@njit
-def _neighbour_contact(Y, q, qn, P1, P2, P3, Q1, Q2, Q3, NP, ms, vst, h, Fj, Aj, Mj, gn,
-                       Fn, An, Mn, gn2, PMj, UNj):
-    """Sphere P of needle q on the same sphere of the next needle qn (Q = its centre - P):
-    Hertz, tanh friction, damping; both needles' own blocks and their coupling block UNj (row
-    q, column qn: the ring is solved together, so a touching chain moves as one).  Returns the
-    normal load [N] (0 apart)."""
-    dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
-    delta = NP[N_DC] - dist
-    if not delta > 0.0:
-        return 0.0
-    hh = h * h
-    n1, n2, n3 = -Q1 / dist, -Q2 / dist, -Q3 / dist   # onto needle q
-    f, kn = _sphere_approach(NP[N_CS], delta)
+@inline
+def _neighbour_law(P1, P2, P3, Q1, Q2, Q3, dist, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3,
+                   pn1, pn2, pn3, vn1, vn2, vn3, wn1, wn2, wn3, c, fric):
+    """A sphere P of one needle (at p moving v, w) on the same sphere of the next needle (at
+    pn moving vn, wn; Q = its sphere centre - P): the same laws, each needle damped with half
+    the sphere's mass.  Returns the force on the first F [N], n, both arms r, R [m], kp, coef,
+    w and f [N]."""
+    rn, Cs, ms, mu, mur, vst, h = c
+    n1, n2, n3 = -Q1 / dist, -Q2 / dist, -Q3 / dist   # onto the first needle
+    f, kn = _sphere_approach(Cs, delta)
     X1, X2, X3 = P1 + 0.5 * Q1, P2 + 0.5 * Q2, P3 + 0.5 * Q3
-    r1, r2, r3, u1, u2, u3 = _needle_point(Y, q, X1, X2, X3)
-    R1, R2, R3, z1, z2, z3 = _needle_point(Y, qn, X1, X2, X3)
-    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, NP[N_MU], vst,
-                                NP[N_FRIC] > 0.5)
+    r1, r2, r3 = X1 - p1, X2 - p2, X3 - p3
+    u1, u2, u3 = _point_velocity(v1, v2, v3, w1, w2, w3, r1, r2, r3)
+    R1, R2, R3 = X1 - pn1, X2 - pn2, X3 - pn3
+    z1, z2, z3 = _point_velocity(vn1, vn2, vn3, wn1, wn2, wn3, R1, R2, R3)
+    F1, F2, F3, iso = _friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
     vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
     fd, cd = _normal(f, kn, 0.5 * ms, vrel)
-    F1 += fd * n1
-    F2 += fd * n2
-    F3 += fd * n3
-    kq = hh * kn + h * cd - h * iso
-    _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, h * kn * vrel, kq, h * iso, Fj, Aj, Mj, gn)
-    _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -h * kn * vrel, kq, h * iso, Fn, An, Mn,
-             gn2)
-    _add_moments(PMj, h * iso, r1, r2, r3)
-    for i in range(6):
-        ci = kq * gn[i]
-        for l in range(6):
-            UNj[i, l] -= ci * gn2[l]
-    return f
+    return (F1 + fd * n1, F2 + fd * n2, F3 + fd * n3, n1, n2, n3, r1, r2, r3, R1, R2, R3,
+            h * kn * vrel, h * h * kn + h * cd - h * iso, h * iso, f)
 
 
-@njit
-def _axial_stops(Y, q, NP, h, d_tr, dd_tr, Fj, Aj, NDj):
-    """The trunnion's flange (inner end) and retainer (outer end): axial stops of needle q at
-    +-zax [m] about the trunnion's material offset d_tr, Hertz with damping, no friction."""
-    p3, v3 = Y[q + 2], Y[q + 7]
+@inline
+def _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h):
+    """The trunnion's flange (inner end) and retainer (outer end): axial stops of a needle
+    (centre height p3 [m], speed v3) at +-zax about the trunnion's material offset d_tr,
+    Table 1 with damping, no friction.  Returns the force along e3 [N] with its implicit
+    part, the tangent added to the needle's e3 row and the load f [N] (0 when clear)."""
     z = p3 - d_tr
-    over = abs(z) - NP[N_ZAX]
+    over = abs(z) - zax
     if not over > 0.0:
-        return
-    f, kn = _sphere_approach(NP[N_CS], over)
+        return 0.0, 0.0, 0.0
+    f, kn = _sphere_approach(Cs, over)
     sg = -1.0 if z > 0.0 else 1.0
-    fd, cd = _normal(f, kn, NP[N_MN], sg * (v3 - dd_tr))
-    Fj[2] += sg * fd - h * kn * (v3 - dd_tr)
-    Aj[2, 2] += h * h * kn + h * cd
-    NDj[D_FLANGE] += f
+    fd, cd = _normal(f, kn, mn, sg * (v3 - dd_tr))
+    return sg * fd - h * kn * (v3 - dd_tr), h * h * kn + h * cd, f
 
 
-@njit
+@inline
 def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
     """The friction parts of the systems from their moments: each needle's own block, each
     neighbour pair's coupling block (UN -= sum w G_j G_jn^T) and the roller's block."""
@@ -367,7 +345,7 @@ def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
     _moment_block(AR6, MR, 0.0, 0.0, 0.0)
 
 
-@njit
+@inline
 def _roller_unknowns(RS, e1x, ax, FR, AR):
     """The roller's system in its standard velocities (b in RS[:, 0], A in RS[:, 1:7]) mapped
     to its unknowns of kernel.substep: ud = t3, om = r3, wd = t2, b1d = r1, b2d = r2,
@@ -404,42 +382,78 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
     """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
     coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
     unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
-    ND diagnostics.
-
-    Y[y0:] the needle states; o, vo: roller centre and its velocity in T [m, m/s]; ob: bore axis
-    direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax: global x in T
-    (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity [m/s];
-    om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
-    [m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of
-    each needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its
-    standard velocities and its friction moments, gn, gn2 (6).
-    """
-    n = int(NP[N_N])
-    ns = int(NP[N_NS])
-    ms = NP[N_MN] / ns   # the share of a needle's mass on one sphere: sets the contact damping
+    ND diagnostics.  Arguments: see the module's docstring."""
+    n, ns = int(NP[N_N]), int(NP[N_NS])
+    rn, Rt, Rb, hw, dc, zax = NP[N_RN], NP[N_RT], NP[N_RBR], NP[N_HW], NP[N_DC], NP[N_ZAX]
+    Cs, mn, mu, mur, fric = NP[N_CS], NP[N_MN], NP[N_MU], NP[N_MUR], NP[N_FRIC] > 0.5
+    ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
+    rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
+    c = (rn, Cs, ms, mu, mur, vst, h)   # one tuple argument: numba inlines calls of < 30
     _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR)
-    bR = RS[:, 0]
-    AR6 = RS[:, 1:7]
+    bR, AR6 = RS[:, 0], RS[:, 1:7]
     for j in range(n):
         q = y0 + N_F * j
+        p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
+        w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
         jn = j + 1 if j + 1 < n else 0
         qn = y0 + N_F * jn
-        Aj, Fj, Mj, NDj = AN[j], FN[j], MOM[j], ND[j]
+        Aj, Fj, Mj = AN[j], FN[j], MOM[j]
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
-            _trunnion_contact(Y, q, P1, P2, P3, NP, ms, vst, h, om_tr, dd_tr, Fj, Aj, Mj, gn,
-                              NDj)
-            _bore_contact(Y, q, P1, P2, P3, NP, ms, vst, h, o1, o2, o3, vo1, vo2, vo3,
-                          ob1, ob2, ob3, wr1, wr2, wr3, Fj, Aj, Mj, gn, bR, AR6, MR, gn2, NDj)
-            if jn != j:
-                f = _neighbour_contact(Y, q, qn, P1, P2, P3, SP[jn, k, 0] - P1,
-                                       SP[jn, k, 1] - P2, SP[jn, k, 2] - P3, NP, ms, vst, h,
-                                       Fj, Aj, Mj, gn, FN[jn], AN[jn], MOM[jn], gn2, PM[j],
-                                       UN[j])
-                if f > 0.0:
-                    ND[j, D_NEIGH] += f
-                    ND[jn, D_NEIGH] += f
-        _axial_stops(Y, q, NP, h, d_tr, dd_tr, Fj, Aj, NDj)
+            rho = math.sqrt(P1 * P1 + P2 * P2)
+            delta = Rt + rn - rho                             # trunnion
+            if delta > 0.0:
+                F1, F2, F3, n1, n2, r1, r2, r3, kp, kq, wi, f, mr, cr = _trunnion_law(
+                    P1, P2, P3, rho, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3, c, fric, om_tr,
+                    dd_tr)
+                _contact(F1, F2, F3, n1, n2, 0.0, r1, r2, r3, kp, kq, wi, Fj, Aj, Mj, gn)
+                if rollr:
+                    Fj[5] -= mr
+                    Aj[5, 5] += cr
+                ND[j, D_TRUN] += f
+            q1, q2, q3, rb, delta = _bore_gap(P1, P2, P3, o1, o2, o3, ob1, ob2, ob3, hw, Rb, rn)
+            if delta > 0.0:                                   # roller bore
+                (F1, F2, F3, n1, n2, n3, r1, r2, r3, R1, R2, R3, kn, un, zn, kq, iso, f, mr,
+                 cr) = _bore_law(P1, P2, P3, q1, q2, q3, rb, delta, p1, p2, p3, v1, v2, v3, w1,
+                                 w2, w3, o1, o2, o3, vo1, vo2, vo3, wr1, wr2, wr3, c, fric)
+                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, C_NEEDLE * h * kn * un,
+                         C_NEEDLE * kq, C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, C_ROLLER * h * kn * zn,
+                         C_ROLLER * kq, C_ROLLER * h * iso, bR, AR6, MR, gn2)
+                if rollr:
+                    Fj[5] -= mr
+                    Aj[5, 5] += C_NEEDLE * cr
+                    bR[5] += mr
+                    AR6[5, 5] += C_ROLLER * cr
+                ND[j, D_BORE] += f
+                ND[j, D_R1] -= F1
+                ND[j, D_R2] -= F2
+                ND[j, D_R3] -= F3
+            Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
+            dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
+            delta = dc - dist                                 # the next needle's sphere k
+            if delta > 0.0 and jn != j:
+                (F1, F2, F3, n1, n2, n3, r1, r2, r3, R1, R2, R3, kp, kq, wi,
+                 f) = _neighbour_law(P1, P2, P3, Q1, Q2, Q3, dist, delta, p1, p2, p3, v1, v2,
+                                     v3, w1, w2, w3, Y[qn], Y[qn + 1], Y[qn + 2], Y[qn + 5],
+                                     Y[qn + 6], Y[qn + 7], Y[qn + 8], Y[qn + 9], Y[qn + 10],
+                                     c, fric)
+                # both needles' own blocks and the coupling block UN[j] (row j, column jn):
+                # the ring is solved together (ring_solve), so a touching chain moves as one
+                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, wi, Fj, Aj, Mj, gn)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, FN[jn], AN[jn],
+                         MOM[jn], gn2)
+                _add_moments(PM[j], wi, r1, r2, r3)
+                for i in range(6):
+                    for l in range(6):
+                        UN[j, i, l] -= kq * gn[i] * gn2[l]
+                ND[j, D_NEIGH] += f
+                ND[jn, D_NEIGH] += f
+        fz, kz, f = _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h)
+        if f > 0.0:
+            Fj[2] += fz
+            Aj[2, 2] += kz
+            ND[j, D_FLANGE] += f
     _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR)
     _roller_unknowns(RS, e1x, ax, FR, AR)
 
