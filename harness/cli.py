@@ -14,10 +14,46 @@ class CliError(Exception):
     """A user error: printed as one line, exit code 2."""
 
 
+def version() -> str:
+    """The installed package's version (pyproject.toml's when run from a source tree)."""
+    from importlib import metadata
+    try:
+        return metadata.version("tripod-thrust")
+    except metadata.PackageNotFoundError:
+        import re
+        from pathlib import Path
+        text = (Path(__file__).resolve().parents[1] / "pyproject.toml").read_text()
+        return re.search(r'^version = "([^"]+)"', text, re.M).group(1)
+
+
+class _Help(argparse.RawDescriptionHelpFormatter):
+    """Every option's help ends with its default (unless it says it, or has none)."""
+
+    def _get_help_string(self, action):
+        h = action.help or ""
+        d = action.default
+        if ("default" in h or d in (None, False, [], argparse.SUPPRESS)
+                or not action.option_strings):
+            return h
+        return f"{h} (default {d})"
+
+
+def _param_epilog(model: str) -> str:
+    """The parameters --set takes, from the parameter table: name, unit, default, range."""
+    rows = [f"parameters for --set NAME=VALUE (SI units; {model} model):"]
+    for q in scene_mod.params_for(model):
+        unit = "" if q.unit == "1" else f" [{q.unit}]"
+        default = (str(q.default).lower() if q.kind == "bool" else
+                   q.default if q.kind == "int" else f"{q.default:g}")
+        rows.append(f"  {q.name}{unit} = {default}, {q.range_text()}: {q.description}")
+    return "\n".join(rows)
+
+
 def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
-    names = ", ".join(f"{q.name} [{q.unit}]" for q in scene_mod.params_for(model))
+    p.epilog = _param_epilog(model)
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
-                   help=f"set a parameter in SI units; names: {names}")
+                   help="set a parameter in SI units (repeatable; names, units, defaults and "
+                        "ranges below)")
     p.add_argument("--theta-deg", type=float, metavar="DEG", help="joint angle in degrees")
     p.add_argument("--whirl-hz", type=float, metavar="HZ", help="whirl frequency in Hz (omega = 2 pi f)")
 
@@ -216,53 +252,63 @@ def cmd_build(args) -> int:
 
 
 def build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="tripod-thrust",
-                                 description="Thrust force of tripod constant-velocity joints.")
+    ap = argparse.ArgumentParser(prog="tripod-thrust", formatter_class=_Help,
+                                 description="Thrust force of tripod constant-velocity joints.",
+                                 epilog="`tripod-thrust COMMAND --help` lists a command's "
+                                        "options with units and defaults.")
+    ap.add_argument("--version", action="version", version=f"%(prog)s {version()}")
     sub = ap.add_subparsers(dest="command", required=True)
-    p = sub.add_parser("compare", help="run the analytic and the contact FMU on a scene and compare orders 1 and 3")
+
+    def add(name, help):
+        return sub.add_parser(name, help=help, description=help, formatter_class=_Help)
+
+    p = add("compare", "run the analytic and the contact FMU on a scene and compare orders 1 and 3")
     _scene_args(p, "contact")
     p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE")
     p.add_argument("--max-cycles", type=int, default=None,
-                   help="cap on whirl cycles; the run stops earlier once orders 1 and 3 change by "
+                   help="cap on whirl cycles, count; the run stops earlier once orders 1 and 3 change by "
                         "less than 0.1 %% from one cycle to the next (default 40)")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s] (default 1e-4)")
     p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_compare)
-    p = sub.add_parser("sweep", help="run an FMU over a parameter grid in parallel (dask)")
+    p = add("sweep", "run an FMU over a parameter grid in parallel (dask)")
     _scene_args(p, "contact")
     p.add_argument("--grid", metavar="NAME=START:STOP:N", action="append", default=[],
                    help="a swept parameter in SI units (repeat for a grid)")
-    p.add_argument("--model", choices=("contact", "analytic"), default="contact")
+    p.add_argument("--model", choices=("contact", "analytic"), default="contact",
+                   help="which FMU to sweep")
     p.add_argument("--scheduler", metavar="ADDRESS",
                    help="address of a running dask.distributed scheduler (default: local processes)")
-    p.add_argument("--workers", type=int, default=2, help="local worker processes (default 2)")
+    p.add_argument("--workers", type=int, default=2, help="local worker processes, count (default 2)")
     p.add_argument("--max-cycles", type=int, default=None,
-                   help="cap on whirl cycles per point; each run stops once periodic (default 40)")
+                   help="cap on whirl cycles per point, count; each run stops once periodic "
+                        "(default 40)")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
-    p.add_argument("--out", metavar="DIR", default="out/sweep")
+    p.add_argument("--out", metavar="DIR", default="out/sweep", help="output folder (CSV, plots)")
     p.set_defaults(func=cmd_sweep)
-    p = sub.add_parser("bench", help="work-precision benchmark, cost per step, run breakdown")
-    p.add_argument("--out", metavar="DIR", default="out/bench")
-    p.add_argument("--runs", type=int, default=5, help="timed runs per setting (median)")
+    p = add("bench", "work-precision benchmark, cost per step, run breakdown")
+    p.add_argument("--out", metavar="DIR", default="out/bench",
+                   help="output folder (tables, CSV, plot)")
+    p.add_argument("--runs", type=int, default=5, help="timed runs per setting, count (median)")
     p.add_argument("--quick", action="store_true", help="skip the whole-process timings")
     p.set_defaults(func=cmd_bench)
-    p = sub.add_parser("stress", help="run the contact FMU far outside the paper's scene")
-    p.add_argument("--out", metavar="DIR", default="out/stress")
+    p = add("stress", "run the contact FMU far outside the paper's scene")
+    p.add_argument("--out", metavar="DIR", default="out/stress", help="output folder (report)")
     p.add_argument("--quick", action="store_true", help="the small subset CI runs")
     p.set_defaults(func=cmd_stress)
-    p = sub.add_parser("paper", help="reproduce the paper's figures and claims (PNG + report.md)")
+    p = add("paper", "reproduce the paper's figures and claims (PNG + report.md)")
     p.add_argument("--out", metavar="DIR", default="out/paper", help="output folder (default out/paper)")
     p.add_argument("--share-bearing", type=int, choices=(1, 2), default=2,
                    help="bearing of the section 4.2 friction study: 2 needle-resolved (default, "
                         "about 2 min), 1 lumped (seconds)")
     p.set_defaults(func=cmd_paper)
-    p = sub.add_parser("build", help="build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
+    p = add("build", "build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)
-    p = sub.add_parser("params", help="print the parameter table (Markdown)")
+    p = add("params", "print the parameter table (Markdown)")
     p.set_defaults(func=cmd_params)
-    p = sub.add_parser("analytic", help="reduced (analytic) model: orders 1 and 3, closed form vs FFT")
+    p = add("analytic", "reduced (analytic) model: orders 1 and 3, closed form vs FFT")
     _scene_args(p, "analytic")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_analytic)

@@ -2,6 +2,7 @@
 import json
 import subprocess
 import sys
+from pathlib import Path
 
 import pytest
 
@@ -53,3 +54,34 @@ def test_readme_parameter_table_is_generated():
     readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
     assert params_markdown() in readme, "README parameter table is stale: paste `tripod-thrust params`"
     assert outputs_markdown() in readme, "README output table is stale: paste `tripod-thrust params`"
+
+
+def test_version_is_the_projects():
+    import re
+    from harness.cli import version
+    root = Path(__file__).resolve().parents[1]
+    want = re.search(r'^version = "([^"]+)"', (root / "pyproject.toml").read_text(), re.M).group(1)
+    p = subprocess.run([sys.executable, "-m", "harness.cli", "--version"], capture_output=True,
+                       text=True, cwd=root)
+    assert p.returncode == 0 and p.stdout.strip() == f"tripod-thrust {want}" == f"tripod-thrust {version()}"
+
+
+def test_every_option_in_help_has_its_default_and_every_parameter_its_unit():
+    import argparse
+    from harness.cli import build_parser
+    from reduced_model import scene as scene_mod
+    ap = build_parser()
+    sub = next(a for a in ap._actions if isinstance(a, argparse._SubParsersAction))
+    for name, p in sub.choices.items():
+        text = " ".join(p.format_help().split())
+        for a in p._actions:
+            if not a.option_strings or a.help == argparse.SUPPRESS or a.dest == "help":
+                continue
+            if a.default not in (None, False, []):
+                # the default as the help prints it, e.g. "(default out/bench)"
+                assert f"default {a.default}" in text or "(default" in (a.help or ""), (name, a.dest)
+        if any(a.dest == "set" for a in p._actions):
+            model = "analytic" if name == "analytic" else "contact"
+            for q in scene_mod.params_for(model):
+                unit = "" if q.unit == "1" else f" [{q.unit}]"
+                assert f" {q.name}{unit} = " in text, (name, q.name)
