@@ -4,7 +4,7 @@ VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
 
-.PHONY: demo test venv fmu bench native-check docs clean
+.PHONY: demo test venv fmu bench native-check docs docs-quick clean
 
 venv: $(STAMP)
 
@@ -38,11 +38,22 @@ native-check: $(STAMP)
 test: $(STAMP)
 	$(BIN)/python -m pytest -q
 
-# regenerate README.md tables and docs/ (per-FMU variables, reference CSV, plot)
-docs: $(STAMP)
-	$(BIN)/python -m reduced_model.docs README.md
+# regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
+# per-FMU variables, reference CSVs and plots, the validation grid, the demo's output, then the
+# benchmarks' measured tables (about 30 min: the work-precision ladder and the stress grid)
+docs: docs-quick
+	$(BIN)/tripod-thrust bench --out out/bench
+	$(BIN)/tripod-thrust stress --out out/stress
+	$(BIN)/python benchmarks/fmu_speed.py --md out/speed.md
+	$(BIN)/python -m harness.docgen --bench out/bench/bench.md --stress out/stress/stress.md \
+	  --speed out/speed.md
+	cp out/bench/work_precision.png docs/
+
+# only what the code alone determines (seconds to minutes): no timings
+docs-quick: $(STAMP)
 	$(BIN)/python -m harness.reference
 	$(BIN)/python -m harness.validation
+	$(BIN)/python -m harness.docgen
 
 clean:
 	rm -rf build out .pytest_cache

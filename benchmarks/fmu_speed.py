@@ -21,11 +21,16 @@ CASES = [
     ("lumped bearing, traverse", {"bearing": 1}),
     ("lumped bearing, no traverse", {"bearing": 1, "traverse": False}),
 ]
+# rows of whole fresh processes, after the in-process CASES
+PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene",
+                "fresh process, empty numba cache: first run (compiles)",
+                "fresh process, same cache: second run (FMPy extracts anew)")
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--runs", type=int, default=5)
+    ap.add_argument("--md", metavar="FILE", help="also write the table into FILE (make docs)")
     args = ap.parse_args()
     fmu = str(ensure_fmu())
     # one fresh process loads the built FMU, warms up (numba cache load), then times whole
@@ -50,17 +55,17 @@ def main():
     with tempfile.TemporaryDirectory() as cache:
         env = dict(os.environ, TRIPOD_NUMBA_CACHE=cache)
         cold, warm = fresh_run(env), fresh_run(env)
-    print(f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
-          f"{args.runs} runs each, median [min-max]\n")
-    print("| case | wall time in one process after warm-up |")
-    print("|---|---|")
-    for name, med, lo, hi in rows:
-        print(f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |")
-    print(f"| fresh `fmpy simulate` process, default scene | {statistics.median(fresh):.2f} s "
-          f"[{min(fresh):.2f}-{max(fresh):.2f}] |")
-    print(f"| fresh process, empty numba cache: first run (compiles) | {cold:.2f} s |")
-    print(f"| fresh process, same cache: second run (FMPy extracts anew) | {warm:.2f} s |")
-
+    lines = [f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
+             f"{args.runs} runs each, median [min-max]", "",
+             "| case | wall time in one process after warm-up |", "|---|---|"]
+    lines += [f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |" for name, med, lo, hi in rows]
+    lines += [f"| {PROCESS_ROWS[0]} | {statistics.median(fresh):.2f} s "
+              f"[{min(fresh):.2f}-{max(fresh):.2f}] |",
+              f"| {PROCESS_ROWS[1]} | {cold:.2f} s |", f"| {PROCESS_ROWS[2]} | {warm:.2f} s |"]
+    print("\n".join(lines))
+    if args.md:
+        Path(args.md).parent.mkdir(parents=True, exist_ok=True)
+        Path(args.md).write_text("\n".join(lines) + "\n")
 
 if __name__ == "__main__":
     main()

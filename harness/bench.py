@@ -137,14 +137,20 @@ def pareto(points):
     return idx
 
 
+# the step-cost table's rows: (label, FMU (None: the bare slave), start values)
+STEP_COST_CASES = {
+    "bare slave (the FMI boundary alone)": (None, {}),
+    "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}),
+    "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}),
+    "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}),
+}
+
+
 def step_costs(runs=5, n=2000, dt=1e-4):
     """Cost per doStep + getReal(Fz) [us] of the bare boundary and the cheapest scenes."""
     rows = []
-    cases = [("bare slave (the FMI boundary alone)", bare_fmu(), {}),
-             ("analytic FMU", ensure_fmu("TripodRollerAnalytic"), {}),
-             ("contact FMU, ideal bearing, no traverse", ensure_fmu("TripodRoller"),
-              {"traverse": False}),
-             ("contact FMU, ideal bearing, traverse (default)", ensure_fmu("TripodRoller"), {})]
+    cases = [(name, bare_fmu() if f is None else ensure_fmu(f), sv)
+             for name, (f, sv) in STEP_COST_CASES.items()]
     for name, fmu, sv in cases:
         r = time_runs(fmu, [{"sv": sv, "dt": dt, "stop": n * dt}], runs, read=("Fz",))[0]
         rows.append((name, r["wall"] / r["n"] * 1e6))
@@ -339,6 +345,10 @@ def _write_wp(out, rows, detail):
     plt.close(fig)
 
 
+BREAKDOWN_PARTS = ("FMI boundary (bare slave)", "slave adapter (inputs, outputs, checks)",
+                   "model Python (per-step setup)", "numba kernel", "total through FMPy")
+
+
 def breakdown(runs=5, dt=1e-4):
     """Where the time of one two-cycle run of the default contact scene goes [s]:
     FMI boundary (bare slave), the slave adapter, the model's Python, the numba kernel."""
@@ -370,7 +380,5 @@ def breakdown(runs=5, dt=1e-4):
         finally:
             K.run_substeps = orig
     model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
-    return {"FMI boundary (bare slave)": bare,
-            "slave adapter (inputs, outputs, checks)": max(fmu - model - bare, 0.0),
-            "model Python (per-step setup)": model - kernel,
-            "numba kernel": kernel, "total through FMPy": fmu}
+    return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - model - bare, 0.0), model - kernel,
+                                      kernel, fmu)))

@@ -15,7 +15,7 @@ from reduced_model.orders import last_cycle_orders
 from .fmus import ensure_fmu
 from .runs import run_fmu, run_settled, settle_line
 
-# Tolerances and their physical reason (README, "Tolerances").
+# Tolerances and their physical reason (docs/validation.md, "compare's tolerances").
 TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
                     "order3": {"amplitude_rel": 0.01, "phase_deg": 1.0}}
 # against the reduced traverse model, ideal bearing: what it leaves out (the roller's inertia
@@ -54,7 +54,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None, dt: fl
 
     The contact FMU runs whole whirl cycles until Fz_mod (and each roller's Fz) is periodic
     within rel_tol (default reduced_model.steady.REL_TOL), at most max_cycles.  Returns the
-    JSON-ready result (see README); arrays of the runs under "_runs" (not JSON) for plotting.
+    JSON-ready result (docs/using-the-fmus.md); arrays of the runs under "_runs" (not JSON) for plotting.
     """
     contact_sc, analytic_sc = split_scene(overrides or {})
     omega = contact_sc["omega"]

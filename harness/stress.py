@@ -22,7 +22,7 @@ from .runs import FmuRunError, run_fmu
 DEG = math.pi / 180
 HZ = 2 * math.pi
 CHATTER_ORDER = 40
-CHATTER_SHARE = 0.05   # power share above order 40 that flags chatter (see README)
+CHATTER_SHARE = 0.05   # power share above order 40 that flags chatter (docs/validation.md, "Stress test")
 OUTS = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed", "roller_spin")
 
 

@@ -48,12 +48,12 @@ def test_bad_input_one_line(args, needle):
     assert p.stdout == ""
 
 
-def test_readme_parameter_table_is_generated():
+def test_parameter_table_in_the_docs_is_generated():
     from pathlib import Path
     from reduced_model.docs import outputs_markdown, params_markdown
-    readme = (Path(__file__).resolve().parents[1] / "README.md").read_text()
-    assert params_markdown() in readme, "README parameter table is stale: paste `tripod-thrust params`"
-    assert outputs_markdown() in readme, "README output table is stale: paste `tripod-thrust params`"
+    doc = (Path(__file__).resolve().parents[1] / "docs" / "using-the-fmus.md").read_text()
+    assert params_markdown() in doc, "docs/using-the-fmus.md parameter table is stale: make docs"
+    assert outputs_markdown() in doc, "docs/using-the-fmus.md output table is stale: make docs"
 
 
 def test_version_is_the_projects():

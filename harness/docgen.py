@@ -1,0 +1,221 @@
+"""Generated blocks of README.md and docs/*.md: one registry of what each block holds, how
+`make docs` regenerates it and how the docs test knows it is current.
+
+A block is marked in the Markdown as
+    <!-- generated: NAME -->
+    ...
+    <!-- end generated -->
+Exact blocks (tables and outputs that depend on the code only) are regenerated and compared
+text for text.  Measured blocks (timings) cannot be reproduced exactly; they are written from
+one benchmark run, and the test checks that their rows are the cases today's code measures
+(a case added, dropped or renamed without a new run fails).
+"""
+from __future__ import annotations
+
+import re
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+DOCS = ROOT / "docs"
+FILES = [ROOT / "README.md"] + sorted(DOCS.glob("*.md"))
+_BLOCK = re.compile(r"<!-- generated: (.+?) -->\n(.*?)<!-- end generated -->", re.S)
+
+
+def blocks(text: str) -> list[tuple[str, str]]:
+    """(name, content) of every generated block in a Markdown text, in order."""
+    return [(m.group(1), m.group(2)) for m in _BLOCK.finditer(text)]
+
+
+def replace(text: str, name: str, content: str) -> str:
+    """The text with block ``name``'s content replaced (every occurrence)."""
+    content = content.rstrip("\n") + "\n"
+    return re.sub(rf"(<!-- generated: {re.escape(name)} -->\n).*?(<!-- end generated -->)",
+                  lambda m: m.group(1) + content + m.group(2), text, flags=re.S)
+
+
+# --- exact blocks --------------------------------------------------------------------------
+
+def _params() -> str:
+    from reduced_model.docs import variables_markdown
+    return variables_markdown()
+
+
+def _analytic() -> str:
+    """`tripod-thrust analytic` on the paper's scene, as a console block."""
+    from harness.cli import format_analytic
+    from reduced_model.analysis import analytic_report
+    return "```\n$ tripod-thrust analytic\n" + format_analytic(analytic_report({})) + "\n```"
+
+
+def _traverse_grid() -> str:
+    from harness.validation import grid_rows, markdown
+    return markdown(grid_rows())
+
+
+def _demo() -> str:
+    """What `make demo` prints: `tripod-thrust compare --out out`, run in a scratch folder."""
+    import subprocess
+    import tempfile
+    exe = Path(sys.executable).with_name("tripod-thrust")
+    with tempfile.TemporaryDirectory() as tmp:
+        p = subprocess.run([str(exe), "compare", "--out", "out"], cwd=tmp, capture_output=True,
+                           text=True, timeout=900)
+    if p.returncode != 0:
+        raise RuntimeError(p.stderr[-2000:])
+    return "```\n" + p.stdout.rstrip("\n") + "\n```"
+
+
+def _mask_wall(text: str) -> str:
+    """Timings are measured, not reproducible: the wall-time line loses its numbers."""
+    return re.sub(r"^(wall time:).*$", r"\1 ...", text, flags=re.M)
+
+
+EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic}
+# reproducible except for their timings (compared with the wall-time line masked)
+RUN = {"make demo": _demo}
+SLOW_EXACT = {"traverse grid": _traverse_grid}   # 27 contact runs: tests/test_traverse.py
+
+
+# --- measured blocks: the rows today's code would measure ----------------------------------
+
+def _first_column(content: str) -> list[str]:
+    rows = [r for r in content.splitlines() if r.startswith("|")][2:]
+    return [r.split("|")[1].strip() for r in rows]
+
+
+def _step_cost_rows():
+    from harness.bench import STEP_COST_CASES
+    return list(STEP_COST_CASES)
+
+
+def _breakdown_rows():
+    from harness.bench import BREAKDOWN_PARTS
+    return list(BREAKDOWN_PARTS)
+
+
+def _work_precision_rows():
+    from harness.bench import ladder
+    return [r[0] for r in ladder()]
+
+
+def _side_by_side_rows():
+    from harness.bench import ladder
+    labels = dict.fromkeys(r[0] for r in ladder() if r[0].startswith("contact bearing 0"))
+    return [label.split(", ", 1)[1] for label in labels] + ["generalized-alpha stepped in Python"]
+
+
+def _stress_rows():
+    from harness.stress import cases
+    return [c[0] for c in cases()]
+
+
+def _fmu_speed_rows():
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import fmu_speed
+    return [name for name, _ in fmu_speed.CASES] + list(fmu_speed.PROCESS_ROWS)
+
+
+def _work_precision_check(content: str) -> list[str]:
+    from harness.bench import GA_PYTHON, GA_PYTHON_STEPS
+    want = _work_precision_rows() + [GA_PYTHON] * len(GA_PYTHON_STEPS)
+    got = _first_column(content)
+    return [] if got == want else [f"work-precision rows {got} != today's ladder {want}"]
+
+
+MEASURED = {   # name: (rows today's code measures, the command that writes the block)
+    "bench: step cost": (_step_cost_rows, "tripod-thrust bench"),
+    "bench: breakdown": (_breakdown_rows, "tripod-thrust bench"),
+    "bench: work-precision": (None, "tripod-thrust bench"),
+    "bench: side by side": (_side_by_side_rows, "tripod-thrust bench"),
+    "make bench": (_fmu_speed_rows, "make bench"),
+    "tripod-thrust stress": (_stress_rows, "tripod-thrust stress"),
+}
+
+
+def problems(path: Path, slow: bool = False) -> list[str]:
+    """Why the generated blocks of one file are not current (empty: they are)."""
+    out = []
+    for name, content in blocks(path.read_text()):
+        where = f"{path.relative_to(ROOT)}: block '{name}'"
+        if name in EXACT or (slow and name in SLOW_EXACT):
+            new = (EXACT.get(name) or SLOW_EXACT[name])().rstrip("\n") + "\n"
+            if new != content:
+                out.append(f"{where} is stale: run `make docs`")
+        elif name in SLOW_EXACT:
+            pass
+        elif name in RUN:
+            if _mask_wall(RUN[name]().rstrip("\n") + "\n") != _mask_wall(content):
+                out.append(f"{where}: today's output differs (timings aside): run `make docs`")
+        elif name in MEASURED:
+            rows, cmd = MEASURED[name]
+            if rows is None:
+                out += [f"{where}: {p}" for p in _work_precision_check(content)]
+            elif _first_column(content) != rows():
+                out.append(f"{where}: rows {_first_column(content)} are not the cases today's "
+                           f"code measures {rows()}: rerun `{cmd}` (make docs)")
+        else:
+            out.append(f"{where}: no generator registered in harness/docgen.py")
+    return out
+
+
+def update_exact(files=FILES) -> list[Path]:
+    """Rewrite every exact block in the files; returns the files that changed."""
+    changed = []
+    for path in files:
+        text = path.read_text()
+        new = text
+        for name, _ in blocks(text):
+            gen = EXACT.get(name) or SLOW_EXACT.get(name) or RUN.get(name)
+            if gen:
+                new = replace(new, name, gen())
+        if new != text:
+            path.write_text(new)
+            changed.append(path)
+    return changed
+
+
+def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
+                    speed_md: Path | None = None, files=FILES) -> list[Path]:
+    """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
+    stress.md of `tripod-thrust stress`, the table `make bench` prints."""
+    new_blocks = {}
+    if bench_md:
+        sections = re.split(r"^## .*$", Path(bench_md).read_text(), flags=re.M)
+        titles = re.findall(r"^## (.*)$", Path(bench_md).read_text(), flags=re.M)
+        by = dict(zip(titles, (s.strip("\n") for s in sections[1:])))
+        for key, title in (("bench: step cost", "Cost per doStep"),
+                           ("bench: breakdown", "Where one run goes"),
+                           ("bench: work-precision", "Work-precision"),
+                           ("bench: side by side", "Side by side")):
+            new_blocks[key] = next(v for t, v in by.items() if t.startswith(title))
+    if stress_md:
+        new_blocks["tripod-thrust stress"] = Path(stress_md).read_text()
+    if speed_md:
+        new_blocks["make bench"] = Path(speed_md).read_text()
+    changed = []
+    for path in files:
+        text = path.read_text()
+        new = text
+        for name, content in new_blocks.items():
+            new = replace(new, name, content)
+        if new != text:
+            path.write_text(new)
+            changed.append(path)
+    return changed
+
+
+if __name__ == "__main__":
+    import argparse
+    ap = argparse.ArgumentParser(description="regenerate the generated blocks of the docs")
+    ap.add_argument("--bench", metavar="BENCH.md", help="bench.md of one `tripod-thrust bench` run")
+    ap.add_argument("--stress", metavar="STRESS.md", help="stress.md of `tripod-thrust stress`")
+    ap.add_argument("--speed", metavar="SPEED.md", help="the table `make bench` printed")
+    ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
+    a = ap.parse_args()
+    if a.check:
+        bad = [p for f in FILES for p in problems(f)]
+        print("\n".join(bad) or "every generated block is current")
+        sys.exit(1 if bad else 0)
+    for p in update_exact() + update_measured(a.bench, a.stress, a.speed):
+        print("updated", p.relative_to(ROOT))
