@@ -40,6 +40,15 @@ def reference_table(r: dict) -> np.ndarray:
     return np.column_stack(cols)[::REF_EVERY]
 
 
+def reference_csv_text(tab: np.ndarray) -> str:
+    """The reference table as its CSV holds it (10 significant digits)."""
+    import io
+    f = io.StringIO()
+    np.savetxt(f, tab, delimiter=",", header=",".join(("time",) + REF_OUTPUTS), comments="",
+               fmt="%.10g")
+    return f.getvalue()
+
+
 def write_docs(names=FMU_NAMES) -> list[Path]:
     import matplotlib
     matplotlib.use("Agg")
@@ -51,8 +60,7 @@ def write_docs(names=FMU_NAMES) -> list[Path]:
         r = reference_run(name)
         tab = reference_table(r)
         csv = DOCS / f"{name}_ref.csv"
-        np.savetxt(csv, tab, delimiter=",", header=",".join(("time",) + REF_OUTPUTS),
-                   comments="", fmt="%.10g")
+        csv.write_text(reference_csv_text(tab))
         fig, ax = plt.subplots(figsize=(8, 4.5))
         ax.plot(r["time"], r["Fz_mod"], label="Fz_mod")
         ax.plot(r["time"], r["Fz"], "--", label="Fz")
