@@ -43,10 +43,11 @@ test: $(STAMP)
 # benchmarks' measured tables (about 30 min: the work-precision ladder and the stress grid)
 docs: docs-quick
 	$(BIN)/tripod-thrust bench --out out/bench
+	$(BIN)/tripod-thrust bench --peer --out out/bench
 	$(BIN)/tripod-thrust stress --out out/stress
 	$(BIN)/python benchmarks/fmu_speed.py --md out/speed.md
 	$(BIN)/python -m harness.docgen --bench out/bench/bench.md --stress out/stress/stress.md \
-	  --speed out/speed.md
+	  --speed out/speed.md --peers out/bench/peers.md
 	cp out/bench/work_precision.png docs/
 
 # only what the code alone determines (seconds to minutes): no timings

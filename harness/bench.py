@@ -382,3 +382,57 @@ def breakdown(runs=5, dt=1e-4):
     model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
     return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - model - bare, 0.0), model - kernel,
                                       kernel, fmu)))
+
+
+# --- peers on the same equations (tripod-thrust bench --peer) ------------------------------
+PEER_FMU = [({}, 1e-3), ({}, 1e-4), ({"max_substep": 2.5e-5}, 1e-4),   # integrator 4, ideal
+            ({"max_substep": 1.25e-5}, 1e-4)]
+PEER_IVP = [("LSODA", 1e-3), ("LSODA", 1e-4), ("LSODA", 1e-5), ("Radau", 1e-3), ("Radau", 1e-4)]
+PEER_IVP_QUICK = [("LSODA", 1e-3), ("LSODA", 1e-4), ("Radau", 1e-3)]
+
+
+def peers(runs=5, quick=False, log=print):
+    """The contact FMU (through FMI, integrator 4, ideal bearing, traverse) beside scipy's
+    solve_ivp on the same equations (harness.peers), two whirl cycles of the paper's scene, in
+    one run: median wall time and order-3 error of Fz' against one converged reference (the
+    bench's; quick: the FMU at a 12.5 us step, itself within 2e-5 of it).  Each solve_ivp row
+    gets the ratio of its time to the cheapest FMU setting at least as accurate."""
+    from . import peers as pr
+    ref_sv, ref_dt = ({"max_substep": 1.25e-5}, 1e-4) if quick else REFERENCES["contact bearing 0"][1:]
+    r = time_runs(ensure_fmu("TripodRoller"), [{"sv": ref_sv, "dt": ref_dt, "stop": STOP}], 1)[0]
+    ref = orders_of(r["y"], ref_dt)
+    log(f"reference: order 3 {ref[3][0]:.5f} N at {ref[3][1]:.3f} deg")
+    fmu = time_runs(ensure_fmu("TripodRoller"),
+                    [{"sv": sv, "dt": dt, "stop": STOP} for sv, dt in PEER_FMU], runs)
+    rows = []
+    for (sv, dt), t in zip(PEER_FMU, fmu):
+        setting = ", ".join(f"{k}={v:g}" for k, v in sv.items()) or "defaults"
+        rows.append({"engine": "contact FMU through FMI (integrator 4)",
+                     "setting": f"{setting}, dt={dt:g}", "time_s": t["wall"],
+                     "err_order3": rel_err(orders_of(t["y"], dt), ref)[3]})
+    pr.solve_ivp_run("LSODA", 1e-3, cycles=0.05)      # warm-up: the force kernel's cache
+    for method, rtol in (PEER_IVP_QUICK if quick else PEER_IVP):
+        walls = []
+        for _ in range(1 if quick else runs):
+            t, y, st, wall = pr.solve_ivp_run(method, rtol)
+            walls.append(wall)
+        rows.append({"engine": f"scipy solve_ivp {method}", "setting": f"rtol={rtol:g}",
+                     "time_s": statistics.median(walls),
+                     "err_order3": rel_err(orders_of(y, t[0]), ref)[3], "nfev": st["nfev"]})
+        log(f"{rows[-1]['engine']} {rows[-1]['setting']}: {rows[-1]['time_s']:.3f} s, "
+            f"err3 {rows[-1]['err_order3']:.2e}")
+    fmu_rows = [x for x in rows if x["engine"].startswith("contact FMU")]
+    for x in rows:
+        ok = [f["time_s"] for f in fmu_rows if f["err_order3"] <= x["err_order3"]]
+        x["ratio"] = (x["time_s"] / min(ok) if ok and x not in fmu_rows else float("nan"))
+    return rows
+
+
+def peers_markdown(rows) -> str:
+    lines = ["| engine | setting | time, two cycles [s] | order-3 error | time / FMU at equal error |",
+             "|---|---|---|---|---|"]
+    for x in rows:
+        ratio = "-" if math.isnan(x["ratio"]) else f"{x['ratio']:.1f}"
+        lines.append(f"| {x['engine']} | {x['setting']} | {x['time_s']:.4f} | "
+                     f"{x['err_order3']:.1e} | {ratio} |")
+    return "\n".join(lines)

@@ -203,6 +203,13 @@ def cmd_bench(args) -> int:
     from harness import bench
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
+    if args.peer:
+        rows = bench.peers(runs=args.runs, quick=args.quick, log=lambda m: print(m, flush=True))
+        table = bench.peers_markdown(rows)
+        (out / "peers.md").write_text(table + "\n")
+        print(table)
+        print(f"written: {out}/peers.md")
+        return 0
     lines = ["# Benchmark", "", "## Cost per doStep (+ getReal of Fz), 1e-4 s steps", "",
              "| FMU, scene | us per step | ratio to the bare boundary |", "|---|---|---|"]
     costs = bench.step_costs(runs=args.runs)
@@ -291,7 +298,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--out", metavar="DIR", default="out/bench",
                    help="output folder (tables, CSV, plot)")
     p.add_argument("--runs", type=int, default=5, help="timed runs per setting, count (median)")
-    p.add_argument("--quick", action="store_true", help="skip the whole-process timings")
+    p.add_argument("--quick", action="store_true",
+                   help="skip the whole-process timings; with --peer: fewer rows, one run each")
+    p.add_argument("--peer", action="store_true",
+                   help="only the peer table: the contact FMU beside scipy solve_ivp (LSODA, "
+                        "Radau) on the same equations, time against order-3 error")
     p.set_defaults(func=cmd_bench)
     p = add("stress", "run the contact FMU far outside the paper's scene")
     p.add_argument("--out", metavar="DIR", default="out/stress", help="output folder (report)")

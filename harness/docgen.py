@@ -105,6 +105,12 @@ def _side_by_side_rows():
     return [label.split(", ", 1)[1] for label in labels] + ["generalized-alpha stepped in Python"]
 
 
+def _peer_rows():
+    from harness.bench import PEER_FMU, PEER_IVP
+    return (["contact FMU through FMI (integrator 4)"] * len(PEER_FMU)
+            + [f"scipy solve_ivp {m}" for m, _ in PEER_IVP])
+
+
 def _stress_rows():
     from harness.stress import cases
     return [c[0] for c in cases()]
@@ -128,6 +134,7 @@ MEASURED = {   # name: (rows today's code measures, the command that writes the 
     "bench: breakdown": (_breakdown_rows, "tripod-thrust bench"),
     "bench: work-precision": (None, "tripod-thrust bench"),
     "bench: side by side": (_side_by_side_rows, "tripod-thrust bench"),
+    "bench: peers": (_peer_rows, "tripod-thrust bench --peer"),
     "make bench": (_fmu_speed_rows, "make bench"),
     "tripod-thrust stress": (_stress_rows, "tripod-thrust stress"),
 }
@@ -176,10 +183,14 @@ def update_exact(files=FILES) -> list[Path]:
 
 
 def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
-                    speed_md: Path | None = None, files=FILES) -> list[Path]:
+                    speed_md: Path | None = None, peers_md: Path | None = None,
+                    files=FILES) -> list[Path]:
     """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
-    stress.md of `tripod-thrust stress`, the table `make bench` prints."""
+    stress.md of `tripod-thrust stress`, the table `make bench` prints, peers.md of
+    `tripod-thrust bench --peer`."""
     new_blocks = {}
+    if peers_md:
+        new_blocks["bench: peers"] = Path(peers_md).read_text()
     if bench_md:
         sections = re.split(r"^## .*$", Path(bench_md).read_text(), flags=re.M)
         titles = re.findall(r"^## (.*)$", Path(bench_md).read_text(), flags=re.M)
@@ -211,11 +222,12 @@ if __name__ == "__main__":
     ap.add_argument("--bench", metavar="BENCH.md", help="bench.md of one `tripod-thrust bench` run")
     ap.add_argument("--stress", metavar="STRESS.md", help="stress.md of `tripod-thrust stress`")
     ap.add_argument("--speed", metavar="SPEED.md", help="the table `make bench` printed")
+    ap.add_argument("--peers", metavar="PEERS.md", help="peers.md of `tripod-thrust bench --peer`")
     ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
     a = ap.parse_args()
     if a.check:
         bad = [p for f in FILES for p in problems(f)]
         print("\n".join(bad) or "every generated block is current")
         sys.exit(1 if bad else 0)
-    for p in update_exact() + update_measured(a.bench, a.stress, a.speed):
+    for p in update_exact() + update_measured(a.bench, a.stress, a.speed, a.peers):
         print("updated", p.relative_to(ROOT))
