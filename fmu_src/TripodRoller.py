@@ -5,6 +5,7 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 """
 import copy
 import math
+import os
 import sys
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
@@ -33,6 +34,8 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self._params = register_table(self, "contact")
         self.model = None
         self._checked = None
+        self._fast = None          # the compiled step offered to the native layer (fast.py)
+        self._fast_args = None
         if not jit.HAVE_NUMBA and jit.ENABLED:     # say once what this Python lacks
             need = [r for r in requirements(self.resources or "") if r.startswith("numba")]
             self.log(f"numba is missing in this Python ({sys.executable}, "
@@ -47,6 +50,51 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self.model = JointModel(self._param_values())
         self.log(self.model.info(self.theta, self.omega, self.F_press, self.torque),
                  Fmi2Status.ok, "logAll")
+        self._fast = None
+        self._fast_args = self._fast_arrays()
+
+    def _fast_arrays(self):
+        """What the native layer needs to step without Python: one roller, ideal or lumped
+        bearing, numba present (TRIPOD_FAST=0 turns it off, for comparison)."""
+        r = self.model.rollers[0]
+        arrays = r.fast_arrays()
+        if (len(self.model.rollers) != 1 or arrays is None or not jit.HAVE_NUMBA
+                or os.environ.get("TRIPOD_FAST", "1") == "0"):
+            return None
+        from tripod_model import fast
+        import numpy as np
+        vr = {v.name: ref for ref, v in self.vars.items()}
+        self._fast_outputs = np.zeros(fast.N_OUT)
+        arrays = arrays[:3] + (self._fast_outputs,) + arrays[3:]
+        return {"step": fast.step, "addresses": [a.ctypes.data for a in arrays],
+                "arrays": arrays, "out_vrs": [vr[n] for n in fast.OUTPUT_NAMES],
+                "in_vrs": [vr[n] for n in _INPUTS], "names": fast.OUTPUT_NAMES}
+
+    def _offer_fast(self, step_size, out):
+        """After a step through Python: the outputs where the native layer reads them, and
+        the compiled step for the next steps at these inputs and this step size."""
+        f = self._fast_args
+        if f is None:
+            return
+        for i, name in enumerate(f["names"]):
+            self._fast_outputs[i] = out[name]
+        self._fast_hs1 = self.model.rollers[0]._hs[1]
+        self._fast_dt = step_size
+        self._fast = (f["step"].address, step_size, f["out_vrs"], f["in_vrs"],
+                      [float(getattr(self, n)) for n in _INPUTS], f["addresses"])
+
+    def _fast_sync(self, k):
+        """The native layer took k compiled steps: count them, take their outputs."""
+        self.model.rollers[0].fast_synced(k, self._fast_dt, self._fast_hs1)
+        self._fast_hs1 = self.model.rollers[0]._hs[1]
+        for name, v in zip(self._fast_args["names"], self._fast_outputs):
+            setattr(self, name, float(v))
+
+    def _fast_failed(self, current_time, code):
+        """A compiled step failed (2: a non-finite output; else an exception in it)."""
+        why = ("non-finite output" if code == 2 else
+               "the compiled step raised (see the process's stderr)")
+        self.log(f"{why} at t = {current_time:g} s; step rejected", Fmi2Status.error)
 
     def terminate(self):
         if self.model is not None:   # what the integrator did, for a user who checks
@@ -64,6 +112,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             self.model.set_state(copy.deepcopy(state["model"]))
 
     def _advance(self, current_time, step_size):
+        self._fast = None
         key = (self.theta, self.omega, self.F_press, self.torque)
         if key != self._checked:       # validate inputs only when they change
             for name, value in zip(_INPUTS, key):
@@ -77,4 +126,5 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             return False
         for k, v in out.items():
             setattr(self, k, v)
+        self._offer_fast(step_size, out)
         return True

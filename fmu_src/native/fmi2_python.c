@@ -380,6 +380,14 @@ typedef struct {
     char *category, *message;
 } Msg;
 
+/* the slave's compiled step (fmu_src/tripod_model/fast.py: Y, P, OP, OUT, then work arrays);
+   1 = outputs written, anything else = failed (a non-finite output, or an exception) */
+#define FAST_ARGS 14
+#define FAST_OUT 3
+typedef int32_t (*FastStep)(double *, double *, double *, double *, double *, double *,
+                            double *, double *, double *, double *, double *, double *,
+                            double *, double *);
+
 typedef struct {
     char *name, *resources, *module, *guid;
     int visible;
@@ -402,6 +410,18 @@ typedef struct {
     int n_pending, cap_pending;
     char **strings;               /* fmi2GetString results, valid until the next call */
     size_t n_strings;
+    /* The fast path: a compiled step the slave offers after a step through Python (its
+       attribute _fast), run for the next steps of the same size at unchanged inputs without
+       entering Python; the slave counts them when Python is next entered (_fast_sync). */
+    FastStep fast;                /* NULL: every step goes through Python */
+    double *fast_p[FAST_ARGS];    /* its arguments; fast_p[FAST_OUT] the outputs */
+    double fast_dt;               /* the step size it was offered for [s] */
+    int fast_fresh;               /* fast_p[FAST_OUT] holds the outputs of the last step */
+    int fast_said;                /* the log has said once that the fast path runs */
+    long fast_pending;            /* fast steps the slave has not counted yet */
+    int *fast_out;                /* per value reference: its place in the outputs, or -1 */
+    int *fast_in;                 /* per value reference: 1 if an input of the fast step */
+    double *fast_in_value;        /* per value reference: that input's value */
 } Inst;
 
 typedef struct {
@@ -568,6 +588,14 @@ static void release_slave(Inst *c)
     free(c->var_set);
     c->var_type = c->var_set = NULL;
     c->n_vars = 0;
+    c->fast = NULL;
+    c->fast_fresh = 0;
+    c->fast_pending = 0;
+    free(c->fast_out);
+    free(c->fast_in);
+    free(c->fast_in_value);
+    c->fast_out = c->fast_in = NULL;
+    c->fast_in_value = NULL;
 }
 
 /* Create the slave object through the bridge and bind its methods.  With the GIL. */
@@ -641,7 +669,84 @@ static fmi2Status finish(Inst *c, fmi2Status status)
     return status;
 }
 
-#define GIL_BEGIN PyGILState_STATE gil_ = PyGILState_Ensure();
+/* Let the slave count the steps the fast path took before Python sees the instance again
+   (its time, step counters and output variables).  With the GIL. */
+static void fast_sync(Inst *c)
+{
+    if (c->fast_pending <= 0 || !c->slave) return;
+    PyObject *m = PyObject_GetAttrString(c->slave, "_fast_sync");
+    PyObject *r = m ? PyObject_CallFunction(m, "(l)", c->fast_pending) : NULL;
+    c->fast_pending = 0;
+    if (!r) {
+        char *why = take_exception(c);
+        logf_(c, fmi2Error, "counting the compiled steps: %s", why);
+        free(why);
+    }
+    xdecref(r);
+    xdecref(m);
+}
+
+/* No fast step until the slave offers one again (inputs set, state restored, reset). */
+static void fast_off(Inst *c)
+{
+    c->fast = NULL;
+    c->fast_fresh = 0;
+}
+
+/* After a step through Python: take the fast step the slave offers, if any.  The slave's
+   _fast is None or (address, step size, output value references, input value references,
+   their values, the FAST_ARGS array addresses).  With the GIL. */
+static void fast_take(Inst *c)
+{
+    fast_off(c);
+    PyObject *f = PyObject_GetAttrString(c->slave, "_fast");
+    if (!f) {
+        PyErr_Clear();
+        return;
+    }
+    if (f == Py_None_ || !c->n_vars) {
+        Py_DecRef(f);
+        return;
+    }
+    if (!c->fast_out) c->fast_out = malloc((size_t)c->n_vars * sizeof *c->fast_out);
+    if (!c->fast_in) c->fast_in = calloc((size_t)c->n_vars, sizeof *c->fast_in);
+    if (!c->fast_in_value) c->fast_in_value = calloc((size_t)c->n_vars, sizeof(double));
+    PyObject *it[6] = {NULL};
+    for (int i = 0; i < 6; ++i) it[i] = PySequence_GetItem(f, i);
+    int ok = c->fast_out && c->fast_in && c->fast_in_value && it[0] && it[1] && it[2] &&
+             it[3] && it[4] && it[5];
+    FastStep fn = NULL;
+    if (ok) {
+        fn = (FastStep)(intptr_t)PyLong_AsLong(it[0]);
+        c->fast_dt = PyFloat_AsDouble(it[1]);
+        for (long v = 0; v < c->n_vars; ++v) c->fast_out[v] = -1;
+        for (ssize_t i = 0; ok && i < PyList_Size(it[2]); ++i) {
+            long vr = PyLong_AsLong(PyList_GetItem(it[2], i));
+            if (vr >= 0 && vr < c->n_vars) c->fast_out[vr] = (int)i;
+        }
+        for (long v = 0; v < c->n_vars; ++v) c->fast_in[v] = 0;
+        for (ssize_t i = 0; ok && i < PyList_Size(it[3]); ++i) {
+            long vr = PyLong_AsLong(PyList_GetItem(it[3], i));
+            if (vr >= 0 && vr < c->n_vars) {
+                c->fast_in[vr] = 1;
+                c->fast_in_value[vr] = PyFloat_AsDouble(PyList_GetItem(it[4], i));
+            }
+        }
+        for (int i = 0; ok && i < FAST_ARGS; ++i)
+            c->fast_p[i] = (double *)(intptr_t)PyLong_AsLong(PyList_GetItem(it[5], i));
+        ok = !PyErr_Occurred() && fn;
+    }
+    for (int i = 0; i < 6; ++i) xdecref(it[i]);
+    Py_DecRef(f);
+    if (!ok) {
+        PyErr_Clear();
+        return;
+    }
+    c->fast = fn;
+    c->fast_fresh = 1;
+}
+
+#define GIL_BEGIN PyGILState_STATE gil_ = PyGILState_Ensure(); fast_sync(c);
 #define GIL_END        \
     drain_slave_log(c); \
     PyGILState_Release(gil_);
@@ -795,6 +900,7 @@ static fmi2Status call_and_move(Inst *c, const char *fn, PyObject *method, unsig
     if (!c) return fmi2Error;
     if (!allowed(c, fn, phases)) return finish(c, fmi2Error);
     fmi2Status st = fmi2OK;
+    fast_off(c);
     GIL_BEGIN
     PyObject *r = PyObject_CallObject(method, NULL);
     if (r) c->phase = next;
@@ -912,6 +1018,14 @@ static fmi2Status get_values(Inst *c, int kind, const fmi2ValueReference vr[], s
         logf_(c, fmi2Error, "%s: NULL array", FN[kind]);
         return finish(c, fmi2Error);
     }
+    if (kind == REAL && c->fast_fresh) {      /* outputs of the last step, without Python */
+        size_t i = 0;
+        while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_out[vr[i]] >= 0) ++i;
+        if (i == nvr) {
+            for (i = 0; i < nvr; ++i) ((fmi2Real *)out)[i] = c->fast_p[FAST_OUT][c->fast_out[vr[i]]];
+            return fmi2OK;
+        }
+    }
     fmi2Status st = fmi2OK;
     GIL_BEGIN
     PyObject *l = vr_list(c, FN[kind], kind, vr, nvr, 0);
@@ -960,6 +1074,15 @@ static fmi2Status set_values(Inst *c, int kind, const fmi2ValueReference vr[], s
         logf_(c, fmi2Error, "%s: NULL array", FN[kind]);
         return finish(c, fmi2Error);
     }
+    if (kind == REAL && c->fast && c->phase == STEP_COMPLETE) {
+        /* a master that sets every input each step: unchanged values need no Python */
+        size_t i = 0;
+        while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_in[vr[i]] &&
+               c->fast_in_value[vr[i]] == ((const fmi2Real *)values)[i])
+            ++i;
+        if (i == nvr) return fmi2OK;
+    }
+    fast_off(c);
     fmi2Status st = fmi2OK;
     GIL_BEGIN
     PyObject *l = vr_list(c, FN[kind], kind, vr, nvr, 1);
@@ -1064,6 +1187,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
     State *s = as_state(c, "fmi2SetFMUstate", FMUstate);
     if (!s) return finish(c, fmi2Error);
     fmi2Status st = fmi2OK;
+    fast_off(c);
     GIL_BEGIN
     PyObject *r = PyObject_CallFunction(c->m_set_state, "(O)", s->obj);
     if (r) {
@@ -1211,6 +1335,35 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
+    if (c->fast && communicationStepSize == c->fast_dt) {
+        double **p = c->fast_p;
+        int32_t ok = c->fast(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10],
+                             p[11], p[12], p[13]);
+        c->fast_pending++;            /* the state has moved, whatever the outcome */
+        if (ok == 1) {
+            c->fast_fresh = 1;
+            c->last_ok_time = currentCommunicationPoint + communicationStepSize;
+            if (c->fast_said) return fmi2OK;
+            c->fast_said = 1;
+            logf_(c, fmi2OK, "fmi2DoStep: from t = %g s, steps at unchanged inputs run "
+                  "compiled, without entering Python", currentCommunicationPoint);
+            return finish(c, fmi2OK);
+        }
+        fast_off(c);                  /* the slave says why, as for a step through Python */
+        GIL_BEGIN
+        PyObject *m = PyObject_GetAttrString(c->slave, "_fast_failed");
+        PyObject *r = m ? PyObject_CallFunction(m, "(di)", currentCommunicationPoint, (int)ok)
+                        : NULL;
+        if (!r) PyErr_Clear();
+        xdecref(r);
+        xdecref(m);
+        c->phase = STEP_FAILED;
+        c->last_ok_time = currentCommunicationPoint;
+        c->wants_to_terminate = 1;
+        GIL_END
+        return finish(c, fmi2Discard);
+    }
+    fast_off(c);
     GIL_BEGIN
     PyObject *r = PyObject_CallFunction(c->m_step, "(dd)", currentCommunicationPoint,
                                         communicationStepSize);
@@ -1218,6 +1371,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         st = fail(c, "fmi2DoStep");
     } else if (PyObject_IsTrue(r) > 0) {
         c->last_ok_time = currentCommunicationPoint + communicationStepSize;
+        fast_take(c);
     } else {
         c->phase = STEP_FAILED;
         c->last_ok_time = currentCommunicationPoint;

@@ -86,6 +86,7 @@ class ContactModel:
         self._GW = np.zeros((K.NV + 8, K.NV))   # generalized-alpha work array
         self.time = 0.0
         self.substeps = 0
+        self._OP = np.zeros(6)     # the operating point of the last step (fast.OP_*)
         self._started = False
         self._key = None   # inputs of the last step, and what was derived from them
         self._op = None
@@ -324,6 +325,7 @@ class ContactModel:
             self._key = key
         vst, n, h, x0 = self._op
         self.P[K.P_VST] = vst
+        self._OP[:] = (theta, omega, F_press, x0, h, n)
         acc = self._hs[1]
         K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
                        h, n, self.out, self._L, self._res, self._Y1, self._Y2,
@@ -331,6 +333,20 @@ class ContactModel:
         self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
         self.time += dt
         return self.outputs(F_press)
+
+    def fast_arrays(self):
+        """The arrays fast.step works on, in its argument order (after OUT, which the caller
+        owns); None where it cannot run (needle-resolved bearing)."""
+        if self.NW is not None:
+            return None
+        return (self.Y, self.P, self._OP, self._L, self._res, self._Y1, self._Y2, self._G,
+                self._A, self._b, self._hs, self._GW, self.out)
+
+    def fast_synced(self, k, dt, hs1_before):
+        """Count k steps of dt [s] that fast.step took (hs[1] was hs1_before)."""
+        self.time += k * dt
+        self.substeps += (int(self._hs[1] - hs1_before) if self.p["integrator"] >= 3
+                          else int(self._OP[5]) * k)
 
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
