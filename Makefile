@@ -41,9 +41,10 @@ test: $(STAMP)
 # regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
 # per-FMU variables, reference CSVs and plots, the validation grid, the demo's output, then the
 # benchmarks' measured tables (about 30 min: the work-precision ladder and the stress grid)
+BENCH_RUNS ?= 5
 docs: docs-quick
-	$(BIN)/tripod-thrust bench --out out/bench
-	$(BIN)/tripod-thrust bench --peer --out out/bench
+	$(BIN)/tripod-thrust bench --runs $(BENCH_RUNS) --out out/bench
+	$(BIN)/tripod-thrust bench --peer --runs $(BENCH_RUNS) --out out/bench
 	$(BIN)/tripod-thrust stress --out out/stress
 	$(BIN)/python benchmarks/fmu_speed.py --md out/speed.md
 	$(BIN)/python -m harness.docgen --bench out/bench/bench.md --stress out/stress/stress.md \

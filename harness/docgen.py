@@ -71,7 +71,40 @@ def _mask_wall(text: str) -> str:
     return re.sub(r"^(wall time:).*$", r"\1 ...", text, flags=re.M)
 
 
-EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic}
+def _cells(content: str, first: str) -> list[str]:
+    """The cells of the table row whose first cell starts with ``first``."""
+    for r in content.splitlines():
+        cells = [c.strip() for c in r.split("|")[1:-1]]
+        if cells and cells[0].startswith(first):
+            return cells
+    raise KeyError(first)
+
+
+def _readme_speed() -> str:
+    """README's speed summary, taken from docs/benchmarks.md's measured blocks (one run)."""
+    bm = dict(blocks((DOCS / "benchmarks.md").read_text()))
+    spd, cost, wp = bm["make bench"], bm["bench: step cost"], bm["bench: work-precision"]
+    two = _cells(spd, "ideal bearing, traverse (default)")[1].split(" [")[0]
+    fresh = _cells(spd, "fresh `fmpy simulate` process")[1].split(" [")[0]
+    ana = _cells(cost, "analytic FMU")[2]
+    con = _cells(cost, "contact FMU, ideal bearing, traverse (default)")[2]
+    res = next(r for r in wp.splitlines() if r.startswith("| contact bearing 2")
+               and "| yes |" in r)
+    needles = [c.strip() for c in res.split("|")[1:-1]][4]
+    link = "[benchmarks](docs/benchmarks.md"
+    return "\n".join([
+        "| run (paper's scene, this 2-core machine) | time | full table |", "|---|---|---|",
+        f"| contact FMU, two whirl cycles through FMPy, in process | {two} | "
+        f"{link}#two-cycles-through-fmpy-make-bench) |",
+        f"| a fresh `fmpy simulate` process of the contact FMU | {fresh} | same |",
+        f"| cost of a step against the bare FMI boundary: analytic / contact FMU | {ana}x / "
+        f"{con}x | {link}#cost-per-step-tripod-thrust-bench) |",
+        f"| needle-resolved bearing (46 needles x 7 spheres), two cycles, in process | "
+        f"{needles} s | {link}#run-time-against-error-tripod-thrust-bench) |"])
+
+
+EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
+         "readme: speed": _readme_speed}
 # reproducible except for their timings (compared with the wall-time line masked)
 RUN = {"make demo": _demo}
 SLOW_EXACT = {"traverse grid": _traverse_grid}   # 27 contact runs: tests/test_traverse.py
@@ -229,5 +262,7 @@ if __name__ == "__main__":
         bad = [p for f in FILES for p in problems(f)]
         print("\n".join(bad) or "every generated block is current")
         sys.exit(1 if bad else 0)
-    for p in update_exact() + update_measured(a.bench, a.stress, a.speed, a.peers):
+    # measured blocks first: the README's speed summary is read from them
+    for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers)
+                           + update_exact()):
         print("updated", p.relative_to(ROOT))
