@@ -100,7 +100,7 @@ def _readme_speed() -> str:
         f"| cost of a step against the bare FMI boundary: analytic / contact FMU | {ana}x / "
         f"{con}x | {link}#cost-per-step-tripod-thrust-bench) |",
         f"| needle-resolved bearing (46 needles x 7 spheres), two cycles, in process | "
-        f"{needles} s | {link}#run-time-against-error-tripod-thrust-bench) |"])
+        f"{float(needles):.1f} s | {link}#run-time-against-error-tripod-thrust-bench) |"])
 
 
 EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
