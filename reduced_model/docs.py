@@ -28,25 +28,5 @@ def outputs_markdown() -> str:
     return "\n".join(rows)
 
 
-START, END = "<!-- generated: tripod-thrust params -->", "<!-- end generated -->"
-
-
 def variables_markdown() -> str:
     return params_markdown() + "\n\n" + outputs_markdown()
-
-
-def update_file(path) -> bool:
-    """Rewrite the generated block of a Markdown file; True if it changed."""
-    from pathlib import Path
-    text = Path(path).read_text()
-    i, j = text.index(START) + len(START), text.index(END)
-    new = text[:i] + "\n" + variables_markdown() + "\n" + text[j:]
-    if new != text:
-        Path(path).write_text(new)
-    return new != text
-
-
-if __name__ == "__main__":
-    import sys
-    for f in sys.argv[1:]:
-        print(f, "updated" if update_file(f) else "up to date")
