@@ -15,7 +15,7 @@ $(STAMP): pyproject.toml
 	  apt-get install -y -qq gcc; } || { echo "make: a C compiler is needed (apt-get install gcc)"; exit 1; }
 	test -x $(BIN)/python || $(PY) -m venv $(VENV)
 	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test]'
+	$(BIN)/python -m pip install --quiet -e '.[test,peer]' || $(BIN)/python -m pip install --quiet -e '.[test]'
 	touch $(STAMP)
 
 # the main job: both FMUs (built when missing or stale) compared on the paper's scene

@@ -389,14 +389,27 @@ PEER_FMU = [({}, 1e-3), ({}, 1e-4), ({"max_substep": 2.5e-5}, 1e-4),   # integra
             ({"max_substep": 1.25e-5}, 1e-4)]
 PEER_IVP = [("LSODA", 1e-3), ("LSODA", 1e-4), ("LSODA", 1e-5), ("Radau", 1e-3), ("Radau", 1e-4)]
 PEER_IVP_QUICK = [("LSODA", 1e-3), ("LSODA", 1e-4), ("Radau", 1e-3)]
+PEER_EXUDYN = [1e-4, 5e-5, 2e-5]          # Exudyn's fixed step h [s] (extra `peer`)
+PEER_EXUDYN_QUICK = [1e-4]
+EXUDYN = "Exudyn (multibody engine), generalized-alpha"
+
+
+def exudyn_version():
+    """Exudyn's version, or None when the extra `peer` is not installed."""
+    try:
+        import exudyn
+    except ImportError:
+        return None
+    return exudyn.__version__
 
 
 def peers(runs=5, quick=False, log=print):
     """The contact FMU (through FMI, integrator 4, ideal bearing, traverse) beside scipy's
-    solve_ivp on the same equations (harness.peers), two whirl cycles of the paper's scene, in
-    one run: median wall time and order-3 error of Fz' against one converged reference (the
-    bench's; quick: the FMU at a 12.5 us step, itself within 2e-5 of it).  Each solve_ivp row
-    gets the ratio of its time to the cheapest FMU setting at least as accurate."""
+    solve_ivp on the same equations and Exudyn's multibody model of the same roller (when
+    installed; harness.peers), two whirl cycles of the paper's scene, in one run: median wall
+    time and order-3 error of Fz' against one converged reference (the bench's; quick: the FMU
+    at a 12.5 us step, itself within 2e-5 of it).  Each peer row gets the ratio of its time to
+    the cheapest FMU setting at least as accurate."""
     from . import peers as pr
     ref_sv, ref_dt = ({"max_substep": 1.25e-5}, 1e-4) if quick else REFERENCES["contact bearing 0"][1:]
     r = time_runs(ensure_fmu("TripodRoller"), [{"sv": ref_sv, "dt": ref_dt, "stop": STOP}], 1)[0]
@@ -421,6 +434,20 @@ def peers(runs=5, quick=False, log=print):
                      "err_order3": rel_err(orders_of(y, t[0]), ref)[3], "nfev": st["nfev"]})
         log(f"{rows[-1]['engine']} {rows[-1]['setting']}: {rows[-1]['time_s']:.3f} s, "
             f"err3 {rows[-1]['err_order3']:.2e}")
+    ver = exudyn_version()
+    if ver is None:
+        log("Exudyn not installed (pip install -e '.[peer]'): its rows are left out")
+    for h in (PEER_EXUDYN_QUICK if quick else PEER_EXUDYN) if ver else ():
+        walls = []
+        for _ in range(1 if quick else runs):
+            t, y, st, wall = pr.exudyn_run(h)
+            walls.append(wall)
+        rows.append({"engine": EXUDYN, "setting": f"exudyn {ver}, h={h:g}",
+                     "time_s": statistics.median(walls),
+                     "err_order3": rel_err(orders_of(y, t[0]), ref)[3],
+                     "extra_steps": st["extra_steps"]})
+        log(f"{rows[-1]['engine']} {rows[-1]['setting']}: {rows[-1]['time_s']:.3f} s, "
+            f"err3 {rows[-1]['err_order3']:.2e} ({st['extra_steps']} steps cut by Newton)")
     fmu_rows = [x for x in rows if x["engine"].startswith("contact FMU")]
     for x in rows:
         ok = [f["time_s"] for f in fmu_rows if f["err_order3"] <= x["err_order3"]]

@@ -139,9 +139,9 @@ def _side_by_side_rows():
 
 
 def _peer_rows():
-    from harness.bench import PEER_FMU, PEER_IVP
+    from harness.bench import EXUDYN, PEER_EXUDYN, PEER_FMU, PEER_IVP
     return (["contact FMU through FMI (integrator 4)"] * len(PEER_FMU)
-            + [f"scipy solve_ivp {m}" for m, _ in PEER_IVP])
+            + [f"scipy solve_ivp {m}" for m, _ in PEER_IVP] + [EXUDYN] * len(PEER_EXUDYN))
 
 
 def _stress_rows():

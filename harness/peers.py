@@ -1,4 +1,4 @@
-"""Peers of the contact FMU on the same equations, for `tripod-thrust bench --peer`.
+"""Peers of the contact FMU on the same roller, for `tripod-thrust bench --peer`.
 
 scipy's solve_ivp is what a Python user writes first: the roller's equations of the ideal
 bearing with traverse (slide u along the trunnion axis, its rate, the spin rate; the whirl
@@ -6,6 +6,9 @@ angle w t drives the trunnion), the right-hand side the kernel's own compiled fo
 (kernel.ga_forces: Hertz contact, tanh friction, spin moment, driving accelerations), so the
 two differ only in how they integrate.  Outputs Fz' at the communication instants from the
 dense solution, like the FMU's.
+
+Exudyn (optional extra `peer`) is a general multibody engine: it builds the roller's equations
+itself from rigid bodies and joints, so only the contact law is shared (exudyn_run).
 """
 from __future__ import annotations
 
@@ -58,3 +61,119 @@ def solve_ivp_run(method: str = "LSODA", rtol: float = 1e-6, params=None, cycles
         K.ga_forces(Y, P, theta, w, x0, L, res, Q, M)
         out[k] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
     return t_eval, out, {"nfev": sol.nfev, "status": sol.status}, wall
+
+
+def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
+               spectral_radius: float = 0.9):
+    """``cycles`` whirl cycles of the scene (ideal bearing) in Exudyn, at a fixed step h [s].
+
+    The engine's own multibody model, not the kernel's equations of motion: the trunnion is a
+    rigid body driven along the kernel's trunnion motion (trunnion_line: Eqs. 1, 5, 18; its
+    axis a through Q) by a generic joint with time offsets; the roller a rigid body (mass m,
+    inertia I_t, I_t, I_s) on it by a cylindrical joint (slide along a free with traverse, spin
+    about a free): the ideal needle bearing.  The groove's Hertz force, tanh friction and spin
+    moment (kernel.groove_contact) act on the roller as user loads, Python callbacks at each
+    evaluation.  Exudyn's generalized-alpha (index 3, spectral radius 0.9), Newton with a
+    numerical system Jacobian; a step whose Newton iteration fails is cut by the engine.
+    Returns (t [s], Fz' [N], {"steps", "extra_steps"}, wall time of the solve [s]).
+    """
+    import exudyn as exu
+    from exudyn.itemInterface import GenericJoint, LoadForceVector, LoadTorqueVector, \
+        MarkerBodyRigid, SensorNode
+    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotXYZ2RotationMatrix
+
+    m = ContactModel(dict(params or {}, bearing=0))
+    p = m.p
+    theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
+    m.start(theta, w, F)
+    P = m.P
+    P[K.P_VST] = m.v_st(theta, w)
+    x0 = m.pressing_offset(F)
+    s, pitch, roll = P[K.P_S], P[K.P_PITCH] > 0.5, P[K.P_ROLL] > 0.5
+    # the joint frame at rest: local z along the trunnion axis (global y), local x = x
+    J0 = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+    dt = 1e-7   # central differences of the prescribed motion in time [s]
+
+    def pose(t):   # Q [m] and the Tait-Bryan angles (x, y, z) that turn J0's z onto a [rad]
+        qz, ax, ay, az = K.trunnion_line(m.phase + w * t, theta, s, pitch, roll)
+        return np.array([x0, 0.0, qz, math.atan2(az, ay), math.asin(ax), 0.0])
+
+    def rot(t):
+        return J0 @ RotXYZ2RotationMatrix(pose(t)[3:])
+
+    def ang_vel(t):   # skew(omega) = R' R^T
+        W = (rot(t + dt) - rot(t - dt)) @ rot(t).T / (2 * dt)
+        return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+    sc = exu.SystemContainer()
+    mbs = sc.AddSystem()
+    ground = mbs.CreateGround()
+    q0, R0, w0 = pose(0.0)[:3], rot(0.0), ang_vel(0.0)
+    v0 = (pose(dt)[:3] - pose(-dt)[:3]) / (2 * dt)
+    trunnion = mbs.CreateRigidBody(inertia=RigidBodyInertia(1.0, np.diag([1e-3] * 3)),
+                                   referencePosition=q0, referenceRotationMatrix=R0,
+                                   initialVelocity=v0, initialAngularVelocity=w0)
+    mg = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=J0)))
+    mt = mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion))
+    mbs.AddObject(GenericJoint(
+        markerNumbers=[mg, mt], constrainedAxes=[1] * 6,
+        offsetUserFunction=lambda mbs, t, i, par: list(pose(t)),
+        offsetUserFunction_t=lambda mbs, t, i, par: list((pose(t + dt) - pose(t - dt)) / (2 * dt))))
+    a0 = R0[:, 2]
+    wr0 = w0 + (m.Y[K.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
+    roller = mbs.CreateRigidBody(
+        inertia=RigidBodyInertia(P[K.P_M], np.diag([P[K.P_IT], P[K.P_IT], P[K.P_IS]])),
+        referencePosition=q0, referenceRotationMatrix=R0, initialVelocity=v0,
+        initialAngularVelocity=wr0)
+    mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=roller))
+    slide = 0 if p["traverse"] else 1
+    mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion)), mr],
+                               constrainedAxes=[1, 1, slide, 1, 1, 0]))
+    node = mbs.GetObject(roller)["nodeNumber"]
+    res = np.zeros(19)
+    OV = exu.OutputVariableType
+
+    def contact(mbs):
+        c = mbs.GetNodeOutput(node, OV.Position)
+        v = mbs.GetNodeOutput(node, OV.Velocity)
+        om = mbs.GetNodeOutput(node, OV.AngularVelocity)
+        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
+        return res
+
+    mbs.AddLoad(LoadForceVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
+                                list(contact(mbs)[0:3])))
+    mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
+                                 list(contact(mbs)[3:6])))
+    sens = [mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=o, storeInternal=True,
+                                     writeToFile=False))
+            for o in (OV.Position, OV.Velocity, OV.AngularVelocity)]
+    mbs.Assemble()
+    T = cycles * 2 * math.pi / w
+    ss = exu.SimulationSettings()
+    ss.timeIntegration.endTime = T
+    ss.timeIntegration.numberOfSteps = int(round(T / h))
+    ss.timeIntegration.verboseMode = 0
+    ss.timeIntegration.generalizedAlpha.spectralRadius = spectral_radius
+    ss.timeIntegration.newton.numericalDifferentiation.doSystemWideDifferentiation = True
+    ss.solution.file.write = False
+    ss.solution.sensors.writePeriod = 0.0   # every step
+    t0 = time.perf_counter()
+    ok = mbs.SolveDynamic(ss)
+    wall = time.perf_counter() - t0
+    if not ok:
+        raise RuntimeError(f"Exudyn did not converge at h = {h:g} s")
+    pos, vel, om = (mbs.GetSensorStoredData(k) for k in sens)
+    n_out = int(round(T / dt_out))
+    t_out = dt_out * np.arange(1, n_out + 1)
+    # Fz' at every step, then at the communication instants: Exudyn cuts a step whose Newton
+    # iteration fails into smaller ones, which shifts its grid off them, so linear in time
+    # between the steps (the resampling the order analysis does anyway)
+    tt = pos[:, 0]
+    fz = np.zeros(len(tt))
+    for i in range(len(tt)):
+        c, v, o = pos[i, 1:], vel[i, 1:], om[i, 1:]
+        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], o[0], o[1], o[2], P, res)
+        fz[i] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
+    out = np.interp(t_out, tt, fz)
+    cut = len(tt) - 1 - int(round(T / h))   # the extra steps of the cut ones
+    return t_out, out, {"steps": len(tt) - 1, "extra_steps": cut}, wall
