@@ -302,7 +302,8 @@ def build_parser() -> argparse.ArgumentParser:
                    help="skip the whole-process timings; with --peer: fewer rows, one run each")
     p.add_argument("--peer", action="store_true",
                    help="only the peer table: the contact FMU beside scipy solve_ivp (LSODA, "
-                        "Radau) on the same equations, time against order-3 error")
+                        "Radau) on the same equations and Exudyn's multibody model of the same "
+                        "roller (extra 'peer'), time against order-3 error")
     p.set_defaults(func=cmd_bench)
     p = add("stress", "run the contact FMU far outside the paper's scene")
     p.add_argument("--out", metavar="DIR", default="out/stress", help="output folder (report)")

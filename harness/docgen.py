@@ -91,6 +91,8 @@ def _readme_speed() -> str:
     res = next(r for r in wp.splitlines() if r.startswith("| contact bearing 2")
                and "| yes |" in r)
     needles = [c.strip() for c in res.split("|")[1:-1]][4]
+    # the cheapest Exudyn row: its order-3 error and its time against the FMU's at that error
+    ex = _cells(bm["bench: peers"], "Exudyn")
     link = "[benchmarks](docs/benchmarks.md"
     return "\n".join([
         "| run (paper's scene, this 2-core machine) | time | full table |", "|---|---|---|",
@@ -100,7 +102,9 @@ def _readme_speed() -> str:
         f"| cost of a step against the bare FMI boundary: analytic / contact FMU | {ana}x / "
         f"{con}x | {link}#cost-per-step-tripod-thrust-bench) |",
         f"| needle-resolved bearing (46 needles x 7 spheres), two cycles, in process | "
-        f"{float(needles):.1f} s | {link}#run-time-against-error-tripod-thrust-bench) |"])
+        f"{float(needles):.1f} s | {link}#run-time-against-error-tripod-thrust-bench) |",
+        f"| the same roller in Exudyn (a multibody engine), at equal order-3 error ({ex[3]}) | "
+        f"{ex[4]}x the FMU's time | {link}#beside-peers-on-the-same-roller-tripod-thrust-bench---peer) |"])
 
 
 EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
