@@ -489,15 +489,88 @@ def _solve6(A, B, nc):
 
 
 @njit
+def _touching(U):
+    """Whether a coupling block holds anything (the two needles touch or rub)."""
+    for i in range(6):
+        for l in range(6):
+            if U[i, l] != 0.0:
+                return True
+    return False
+
+
+@njit
 def ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
     """Solve the needles' coupled implicit system in place: block j has diagonal AN[j] (mass
     included), coupling UN[j] to block j+1 (mod n, the ring closes) and UN[j-1]^T to block
     j-1, right-hand side h FN[j]; the velocity increments replace FN.
 
-    Block tridiagonal elimination on blocks 0..n-2 bordered by block n-1 (which closes the
-    ring): x_j = y_j - Z_j x_{n-1}, then the border's 6 x 6 system.  About 1300 multiply-adds
-    a needle.  CW (n x 6 x 6), XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays.
+    Where two neighbours do not touch the ring is open: then a chain from the needle after that
+    gap (chain_solve).  A closed ring (every needle touching the next): block tridiagonal
+    elimination bordered by the block that closes it (_closed_ring_solve).
+    CW (n x 6 x 6), XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays.
     """
+    for k in range(n):
+        if not _touching(UN[k]):
+            _chain_solve(AN, UN, FN, h, n, (k + 1) % n, CW, XW, S, T)
+            return
+    _closed_ring_solve(AN, UN, FN, h, n, CW, XW, S, T)
+
+
+@njit
+def _chain_solve(AN, UN, FN, h, n, j0, CW, XW, S, T):
+    """The ring opened before needle j0 (UN[j0 - 1] = 0): block tridiagonal elimination along
+    j0, j0 + 1, ... (mod n); a gap further on leaves its coupling column out (C_j = 0).  About
+    600 multiply-adds a touching needle, 150 a free one."""
+    prev = -1   # the previous needle of the chain when it touches this one
+    for m in range(n):
+        j = (j0 + m) % n
+        for i in range(6):
+            for l in range(6):
+                S[i, l] = AN[j, i, l]
+            T[i, 6] = h * FN[j, i]
+        if prev >= 0:   # subtract L C_prev and L X_prev, L = UN[prev]^T
+            for i in range(6):
+                for q in range(6):
+                    lim = UN[prev, q, i]
+                    if lim != 0.0:
+                        for l in range(6):
+                            S[i, l] -= lim * CW[prev, q, l]
+                        T[i, 6] -= lim * XW[prev, q, 0]
+        nxt = m < n - 1 and _touching(UN[j])
+        if nxt:
+            for i in range(6):
+                for l in range(6):
+                    T[i, l] = UN[j, i, l]
+            _solve6(S, T, 7)
+        else:
+            for i in range(6):
+                T[i, 0] = T[i, 6]
+            _solve6(S, T, 1)
+            for i in range(6):
+                T[i, 6] = T[i, 0]
+        for i in range(6):
+            for l in range(6):
+                CW[j, i, l] = T[i, l] if nxt else 0.0
+            XW[j, i, 0] = T[i, 6]
+        prev = j if nxt else -1
+    # back substitution: x_j = X_j - C_j x_next
+    jn = -1
+    for m in range(n - 1, -1, -1):
+        j = (j0 + m) % n
+        for i in range(6):
+            acc = XW[j, i, 0]
+            if jn >= 0:
+                for l in range(6):
+                    acc -= CW[j, i, l] * FN[jn, l]
+            FN[j, i] = acc
+        jn = j if m > 0 and _touching(UN[(j0 + m - 1) % n]) else -1
+
+
+@njit
+def _closed_ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
+    """Every needle touches the next: block tridiagonal elimination on blocks 0..n-2 bordered
+    by block n-1 (which closes the ring): x_j = y_j - Z_j x_{n-1}, then the border's 6 x 6
+    system.  About 1300 multiply-adds a needle."""
     M = n - 1
     for k in range(M):
         for i in range(6):
