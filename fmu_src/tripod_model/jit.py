@@ -5,8 +5,8 @@ Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
 numba keys its on-disk cache on the source file's folder, and FMPy extracts an FMU to a new
 temporary folder each run, so the bundled kernel would recompile (about 3 s) on every run.
 A cache locator keyed on the package name and the content hash of the package's sources
-keeps one cache for the source tree and every extracted copy: ~/.cache/tripod-thrust/numba,
-or TRIPOD_NUMBA_CACHE.
+keeps one cache for the source tree and every extracted copy of the same version:
+~/.cache/tripod-thrust/numba-pyXY/tripod_model-<hash>, or under TRIPOD_NUMBA_CACHE.
 """
 import os
 import sys
@@ -59,7 +59,10 @@ def _install_stable_locator():
         def __init__(self, py_func, py_file):
             self._py_file = py_file
             self._lineno = py_func.__code__.co_firstlineno
-            self._cache_path = os.path.join(CACHE_DIR, "tripod_model")
+            # a folder per source version: two versions of the FMU on one machine (a release
+            # beside its successor) would otherwise overwrite each other's index and recompile
+            # (about 11 s) on every alternate run
+            self._cache_path = os.path.join(CACHE_DIR, "tripod_model-" + _package_hash()[:16])
 
         def get_cache_path(self):
             return self._cache_path

@@ -1,0 +1,30 @@
+"""The compiled kernel's on-disk cache (tripod_model/jit.py): one folder per source version,
+shared by the source tree and every extracted copy of that version (FMPy extracts an FMU to a
+new folder each run), so two versions on one machine never overwrite each other's cache."""
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[1]
+
+
+def _cache_path(pkg_parent: Path) -> str:
+    code = ("import sys; sys.path.insert(0, sys.argv[1]); from tripod_model import kernel; "
+            "print(kernel.run_substeps._cache._cache_path)")
+    p = subprocess.run([sys.executable, "-c", code, str(pkg_parent)], capture_output=True,
+                       text=True, timeout=120, check=True)
+    return p.stdout.strip().splitlines()[-1]
+
+
+def test_cache_folder_per_source_version(tmp_path):
+    tree = _cache_path(ROOT / "fmu_src")
+    same, changed = tmp_path / "same", tmp_path / "changed"
+    for d in (same, changed):
+        shutil.copytree(ROOT / "fmu_src" / "tripod_model", d / "tripod_model",
+                        ignore=shutil.ignore_patterns("__pycache__"))
+    k = changed / "tripod_model" / "kernel.py"
+    k.write_text(k.read_text() + "\n# another version\n")
+    assert _cache_path(same) == tree          # an extracted copy finds the tree's cache
+    assert _cache_path(changed) != tree       # another version keeps its own
+    assert Path(tree).name.startswith("tripod_model-")
