@@ -1,7 +1,8 @@
 """Speed of the contact FMU through FMPy, in one process after warm-up (issue: FMU speed).
 
 Two whirl cycles of the paper's scene at a 1e-4 s communication step; median of N runs for the
-ideal and the lumped bearing, with and without traverse; plus a fresh `fmpy simulate` process.
+ideal and the lumped bearing, with and without traverse; plus fresh `fmpy simulate` processes
+with the prebuilt kernel and with numba compiling it.
 Prints a Markdown table.  Usage: python benchmarks/fmu_speed.py [--runs N]
 """
 import argparse
@@ -22,9 +23,10 @@ CASES = [
     ("lumped bearing, no traverse", {"bearing": 1, "traverse": False}),
 ]
 # rows of whole fresh processes, after the in-process CASES
-PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene",
-                "fresh process, empty numba cache: first run (compiles)",
-                "fresh process, same cache: second run (FMPy extracts anew)")
+PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene (prebuilt kernel, no numba)",
+                "the same with numba compiling the kernel (TRIPOD_AOT=0), cache warm",
+                "numba, empty cache: first run (compiles)",
+                "numba, same cache: second run (FMPy extracts anew)")
 
 
 def main():
@@ -48,12 +50,17 @@ def main():
                        capture_output=True, env=env)
         return time.perf_counter() - t0
 
-    fresh = [fresh_run() for _ in range(args.runs)]
-    # an empty numba cache: the first fresh process compiles, the second must not
     import os
     import tempfile
+    fresh = [fresh_run() for _ in range(args.runs)]
+    # numba instead of the prebuilt kernel (what the needle-resolved bearing, or a build
+    # without the prebuilt library, pays): a warm cache, then an empty one, where the first
+    # fresh process compiles and the second must not
+    jit_env = dict(os.environ, TRIPOD_AOT="0")
+    fresh_run(jit_env)
+    jit = [fresh_run(jit_env) for _ in range(args.runs)]
     with tempfile.TemporaryDirectory() as cache:
-        env = dict(os.environ, TRIPOD_NUMBA_CACHE=cache)
+        env = dict(jit_env, TRIPOD_NUMBA_CACHE=cache)
         cold, warm = fresh_run(env), fresh_run(env)
     lines = [f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
              f"{args.runs} runs each, median [min-max]", "",
@@ -61,7 +68,9 @@ def main():
     lines += [f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |" for name, med, lo, hi in rows]
     lines += [f"| {PROCESS_ROWS[0]} | {statistics.median(fresh):.2f} s "
               f"[{min(fresh):.2f}-{max(fresh):.2f}] |",
-              f"| {PROCESS_ROWS[1]} | {cold:.2f} s |", f"| {PROCESS_ROWS[2]} | {warm:.2f} s |"]
+              f"| {PROCESS_ROWS[1]} | {statistics.median(jit):.2f} s "
+              f"[{min(jit):.2f}-{max(jit):.2f}] |",
+              f"| {PROCESS_ROWS[2]} | {cold:.2f} s |", f"| {PROCESS_ROWS[3]} | {warm:.2f} s |"]
     print("\n".join(lines))
     if args.md:
         Path(args.md).parent.mkdir(parents=True, exist_ok=True)

@@ -14,10 +14,16 @@ from pythonfmu.enums import Fmi2Status
 from fmi2bridge import requirements
 from reduced_model.scene import check_value
 from slavekit import Guarded, PickleState, register_table
-from tripod_model import jit
+from tripod_model import native
 from tripod_model.model import JointModel
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
+
+
+def _have_numba():
+    """Whether this Python has numba, without importing it (the prebuilt kernel needs none)."""
+    import importlib.util
+    return importlib.util.find_spec("numba") is not None
 
 
 class TripodRoller(Guarded, PickleState, Fmi2Slave):
@@ -36,7 +42,8 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self._checked = None
         self._fast = None          # the compiled step offered to the native layer (fast.py)
         self._fast_args = None
-        if not jit.HAVE_NUMBA and jit.ENABLED:     # say once what this Python lacks
+        if not _have_numba() and os.environ.get("TRIPOD_NUMBA", "1") != "0":
+            # say once what this Python lacks
             need = [r for r in requirements(self.resources or "") if r.startswith("numba")]
             self.log(f"numba is missing in this Python ({sys.executable}, "
                      f"{sys.version.split()[0]}): the contact kernel runs as plain Python, "
@@ -55,20 +62,29 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
 
     def _fast_arrays(self):
         """What the native layer needs to step without Python: one roller, ideal or lumped
-        bearing, numba present (TRIPOD_FAST=0 turns it off, for comparison)."""
+        bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off, for
+        comparison)."""
         r = self.model.rollers[0]
         arrays = r.fast_arrays()
-        if (len(self.model.rollers) != 1 or arrays is None or not jit.HAVE_NUMBA
+        if (len(self.model.rollers) != 1 or arrays is None
                 or os.environ.get("TRIPOD_FAST", "1") == "0"):
             return None
-        from tripod_model import fast
+        fn = native.step_function()
+        if fn is not None:
+            address = native.address(fn)
+        elif _have_numba() and os.environ.get("TRIPOD_NUMBA", "1") != "0":
+            from tripod_model import fast
+            address = fast.step.address
+        else:
+            return None
         import numpy as np
+        from tripod_model.layout import N_OUT, OUTPUT_NAMES
         vr = {v.name: ref for ref, v in self.vars.items()}
-        self._fast_outputs = np.zeros(fast.N_OUT)
+        self._fast_outputs = np.zeros(N_OUT)
         arrays = arrays[:3] + (self._fast_outputs,) + arrays[3:]
-        return {"step": fast.step, "addresses": [a.ctypes.data for a in arrays],
-                "arrays": arrays, "out_vrs": [vr[n] for n in fast.OUTPUT_NAMES],
-                "in_vrs": [vr[n] for n in _INPUTS], "names": fast.OUTPUT_NAMES}
+        return {"address": address, "addresses": [a.ctypes.data for a in arrays],
+                "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
+                "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
 
     def _offer_fast(self, step_size, out):
         """After a step through Python: the outputs where the native layer reads them, and
@@ -80,7 +96,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             self._fast_outputs[i] = out[name]
         self._fast_hs1 = self.model.rollers[0]._hs[1]
         self._fast_dt = step_size
-        self._fast = (f["step"].address, step_size, f["out_vrs"], f["in_vrs"],
+        self._fast = (f["address"], step_size, f["out_vrs"], f["in_vrs"],
                       [float(getattr(self, n)) for n in _INPUTS], f["addresses"])
 
     def _fast_sync(self, k):

@@ -33,6 +33,8 @@ BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
 RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",)}
 
 NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
+AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt kernel
+AOT_DIR = BUILD / "aot"
 BRIDGE = FMU_SRC / "fmi2bridge.py"     # the native layer's Python side, in every FMU
 NATIVE_LIB = BUILD / "native" / "fmi2_python.so"
 PLATFORM = "linux64"
@@ -40,6 +42,8 @@ PLATFORM = "linux64"
 
 def _sources(name):
     files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
+    if name == "TripodRoller":
+        files += list(AOT)
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
     return files
@@ -76,6 +80,19 @@ def native_library(force=False) -> Path:
     return NATIVE_LIB
 
 
+def prebuilt_kernel(force=False) -> tuple[Path, Path]:
+    """build/aot/_step.{so,json}: the contact kernel's step compiled ahead of time (aot.py),
+    rebuilt when missing or older than the kernel's sources."""
+    lib, meta = AOT_DIR / "_step.so", AOT_DIR / "_step.json"
+    srcs = list((FMU_SRC / "tripod_model").glob("*.py")) + list(AOT)
+    if (not force and lib.exists() and meta.exists()
+            and all(lib.stat().st_mtime >= f.stat().st_mtime for f in srcs)):
+        return lib, meta
+    sys.path.insert(0, str(FMU_SRC))
+    import aot
+    return aot.build_step_library(AOT_DIR)
+
+
 def _requirements(names) -> str:
     """requirements.txt lines for ``names``, with the version ranges of pyproject.toml."""
     import tomllib
@@ -85,11 +102,13 @@ def _requirements(names) -> str:
     return "".join(d + "\n" for d in pick)
 
 
-def package(script, dest, project_files=(), requirements="", patch_xml=None) -> Path:
+def package(script, dest, project_files=(), requirements="", patch_xml=None,
+            extra=()) -> Path:
     """Build the FMU of the slave in ``script`` at ``dest`` with our native layer.
 
     project_files go to resources/; requirements: resources/requirements.txt (what the FMU's
-    Python must have); patch_xml: bytes -> bytes applied to modelDescription.xml."""
+    Python must have); patch_xml: bytes -> bytes applied to modelDescription.xml; extra:
+    (file, path in the FMU) pairs added as they are."""
     from pythonfmu import FmuBuilder
     lib = native_library()
     dest = Path(dest)
@@ -114,6 +133,8 @@ def package(script, dest, project_files=(), requirements="", patch_xml=None) -> 
             # the interpreter that built the FMU: a C host's first guess at a Python to start
             zout.writestr("resources/python.txt", sys.executable + "\n")
             zout.writestr("resources/requirements.txt", requirements)
+            for f, arc in extra:
+                zout.write(f, arc)
         dest.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(tmp_fmu), dest)
     return dest
@@ -175,8 +196,11 @@ def build(name="TripodRoller", force=False) -> Path:
         return dest
     if force:
         native_library(force=True)
+    extra = ()
+    if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
+        extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
     return package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
-                   _units_and_ranges)
+                   _units_and_ranges, extra)
 
 
 if __name__ == "__main__":

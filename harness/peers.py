@@ -157,13 +157,13 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
     ss.timeIntegration.newton.numericalDifferentiation.doSystemWideDifferentiation = True
     ss.solution.file.write = False
     ss.solution.sensors.writePeriod = 0.0   # every step
-    exu.SetWriteToConsole(False)   # its note on the user functions' allocations, every run
+    exu.config.printToConsole = False   # its note on the user functions' allocations
     try:
         t0 = time.perf_counter()
         ok = mbs.SolveDynamic(ss)
         wall = time.perf_counter() - t0
     finally:
-        exu.SetWriteToConsole(True)
+        exu.config.printToConsole = True
     if not ok:
         raise RuntimeError(f"Exudyn did not converge at h = {h:g} s")
     pos, vel, om = (mbs.GetSensorStoredData(k) for k in sens)

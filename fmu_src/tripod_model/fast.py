@@ -14,11 +14,8 @@ from numba import carray, cfunc, types
 from . import kernel as K
 from .jit import njit
 
-# the operating point the step runs at, written by ContactModel.step
-(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_LEN) = range(7)
-OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
-                "roller_spin", "Fz_joint", "Fz_2", "Fz_3")
-N_OUT = len(OUTPUT_NAMES)
+from .layout import (OP_F, OP_H, OP_LEN, OP_N, OP_THETA, OP_W, OP_X0,  # noqa: F401
+                     N_OUT, OUTPUT_NAMES)
 
 _d = types.CPointer(types.float64)
 SIGNATURE = types.int32(*([_d] * 14))

@@ -21,27 +21,15 @@ except ImportError:   # numba is optional: the kernel runs as Python, slower
     _nb = None
     HAVE_NUMBA = False
 
-_PKG_DIR = os.path.dirname(os.path.abspath(__file__))
 CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
     os.path.expanduser("~"), ".cache", "tripod-thrust",
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
 
 
-_HASH = None
-
-
 def _package_hash():
-    """Content hash of every .py file of this package (the same in every extracted copy)."""
-    global _HASH
-    if _HASH is None:
-        import hashlib
-        h = hashlib.sha256()
-        for name in sorted(os.listdir(_PKG_DIR)):
-            if name.endswith(".py"):
-                with open(os.path.join(_PKG_DIR, name), "rb") as f:
-                    h.update(name.encode() + b"\0" + f.read())
-        _HASH = h.hexdigest()
-    return _HASH
+    """Content hash of every .py file of this package (native.source_hash)."""
+    from .native import source_hash
+    return source_hash()
 
 
 def _install_stable_locator():

@@ -11,19 +11,13 @@ from .jit import inline, njit
 from .linalg import solve_small
 from . import needles as NDL
 
-# --- parameter vector layout (float64 array P) ---
-(P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
- P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN) = range(32)
-# --- state vector layout (float64 array Y) ---
-# whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
-# radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
-# lumped bearing only: radial offset w along e2 = a x e1 and tilts b1, b2 about e1, e2
-# (e1 = the pressing direction normal to the trunnion axis), with their rates
-(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
-NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
-# --- output vector layout ---
-(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
+from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
+    P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
+    P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
+    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN,
+    Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN, NV,
+    O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN,
+    W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
 
 HX = 2e-4   # whirl-angle step for finite-difference derivatives of the driving motions [rad]
 
@@ -537,7 +531,6 @@ GA_POS = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
 GA_VEL = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
 GA_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # rows of the generalized-alpha work array GW (NV + 8 rows of NV): the Jacobian, then vectors
-(W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
 
 
 @njit

@@ -13,7 +13,7 @@ from reduced_model import scene as scene_mod
 from reduced_model.friction import v_st_auto
 from reduced_model.sliding import amplitude_A, amplitude_B
 
-from . import hertz, kernel as K, needles as NDL
+from . import hertz, layout as K, layout as NDL, native   # numba only when needed (_run)
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 
@@ -87,6 +87,7 @@ class ContactModel:
         self.time = 0.0
         self.substeps = 0
         self._OP = np.zeros(6)     # the operating point of the last step (fast.OP_*)
+        self._addresses = None     # of the arrays the prebuilt kernel steps (native.py)
         self._started = False
         self._key = None   # inputs of the last step, and what was derived from them
         self._op = None
@@ -283,7 +284,8 @@ class ContactModel:
         rn = 0.5 * p["d_needle"]
         E = self.Y[K.Y_E]
         om = self.Y[K.Y_OM]
-        d0 = K.trunnion_axial(self.phase, theta, p["s"], p["axial"])
+        from .kernel import trunnion_axial
+        d0 = trunnion_axial(self.phase, theta, p["s"], p["axial"])
         for j in range(n):
             psi = 2 * math.pi * j / n
             c, s = math.cos(psi), math.sin(psi)
@@ -327,12 +329,36 @@ class ContactModel:
         self.P[K.P_VST] = vst
         self._OP[:] = (theta, omega, F_press, x0, h, n)
         acc = self._hs[1]
-        K.run_substeps(self.Y, self.P, float(theta), float(omega), float(F_press), x0,
-                       h, n, self.out, self._L, self._res, self._Y1, self._Y2,
-                       self._G, self._A, self._b, self.NW, self._hs, self._GW)
+        self._run(float(theta), float(omega), float(F_press), x0, h, n)
         self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
         self.time += dt
         return self.outputs(F_press)
+
+    def _run(self, theta, omega, F_press, x0, h, n):
+        """n substeps of h [s] at the operating point (also in self._OP): through the prebuilt
+        kernel when the FMU ships one for these sources (native.py: no numba needed), else
+        through the kernel numba compiles; the same compiled code, the same results."""
+        fn = native.step_function() if self.NW is None else None
+        if fn is not None:
+            if self._addresses is None:
+                arrays = self.fast_arrays()
+                self._fout = np.zeros(K.N_OUT)
+                self._addresses = [a.ctypes.data for a in arrays[:3] + (self._fout,) + arrays[3:]]
+            if fn(*self._addresses) == 0:
+                raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
+                                         "(a division by zero)")
+            return
+        from . import kernel
+        kernel.run_substeps(self.Y, self.P, theta, omega, F_press, x0, h, n, self.out,
+                            self._L, self._res, self._Y1, self._Y2, self._G, self._A, self._b,
+                            self.NW, self._hs, self._GW)
+
+    def kernel_name(self) -> str:
+        """Which compiled kernel steps this roller (for the FMU's log)."""
+        if self.NW is None and native.step_function() is not None:
+            return "prebuilt (no numba at run time)"
+        from . import jit
+        return "numba" if jit.HAVE_NUMBA else "plain Python (numba missing or off)"
 
     def fast_arrays(self):
         """The arrays fast.step works on, in its argument order (after OUT, which the caller
@@ -458,4 +484,5 @@ class JointModel:
         h = r.substep(theta, omega, F, vst)
         return (f"{len(self.rollers)} roller(s), bearing {self.p['bearing']}, traverse "
                 f"{self.p['traverse']}; pressing {F:.6g} N per roller, v_st {vst:.4g} m/s, "
-                f"substep {h:.3g} s, pressing offset {r.pressing_offset(F):.6g} m")
+                f"substep {h:.3g} s, pressing offset {r.pressing_offset(F):.6g} m; kernel "
+                f"{r.kernel_name()}")

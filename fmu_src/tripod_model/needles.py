@@ -32,14 +32,10 @@ import math
 
 from .jit import inline, njit
 
-N_F = 11   # floats per needle in the state vector
-# needle parameter vector NP
-(N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
- N_MU, N_MUR, N_FRIC, N_ROLLR, N_LEN) = range(18)
-# diagnostics per needle, ND[j, :]
-(D_BORE, D_TRUN, D_NEIGH, D_FLANGE, D_R1, D_R2, D_R3, D_LEN) = range(8)
-# D_BORE, D_TRUN, D_NEIGH, D_FLANGE: summed normal loads [N] on the bore, trunnion, next
-# needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
+from .layout import (  # noqa: F401  (re-exported: NDL.N_F etc.)
+    N_F, N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
+    N_MU, N_MUR, N_FRIC, N_ROLLR, N_LEN,
+    D_BORE, D_TRUN, D_NEIGH, D_FLANGE, D_R1, D_R2, D_R3, D_LEN)
 
 E10_9 = 10.0 / 9.0
 C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, _contact)

@@ -1,0 +1,36 @@
+"""Array layouts shared by the compiled kernel and the Python around it: what each slot of the
+parameter, state, output and operating-point vectors holds.  Plain Python (no numba), so the
+model can be set up and stepped through a prebuilt kernel without importing numba.
+"""
+# --- parameter vector layout (float64 array P) ---
+(P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
+ P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
+ P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN) = range(32)
+# --- state vector layout (float64 array Y) ---
+# whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
+# radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
+# lumped bearing only: radial offset w along e2 = a x e1 and tilts b1, b2 about e1, e2
+# (e1 = the pressing direction normal to the trunnion axis), with their rates
+(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
+NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
+# --- output vector layout ---
+(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
+# generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own
+(W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
+
+# --- needle-resolved bearing (needles.py) ---
+N_F = 11   # floats per needle in the state vector
+# needle parameter vector NP
+(N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
+ N_MU, N_MUR, N_FRIC, N_ROLLR, N_LEN) = range(18)
+# diagnostics per needle, ND[j, :]
+(D_BORE, D_TRUN, D_NEIGH, D_FLANGE, D_R1, D_R2, D_R3, D_LEN) = range(8)
+# D_BORE, D_TRUN, D_NEIGH, D_FLANGE: summed normal loads [N] on the bore, trunnion, next
+# needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
+
+# --- the communication step as a C function (fast.py) ---
+# the operating point it runs at, written by ContactModel.step
+(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_LEN) = range(7)
+OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
+                "roller_spin", "Fz_joint", "Fz_2", "Fz_3")
+N_OUT = len(OUTPUT_NAMES)
