@@ -78,75 +78,14 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
     Returns (t [s], Fz' [N], {"steps", "extra_steps"}, wall time of the solve [s]).
     """
     import exudyn as exu
-    from exudyn.itemInterface import GenericJoint, LoadForceVector, LoadTorqueVector, \
-        MarkerBodyRigid, SensorNode
-    from exudyn.rigidBodyUtilities import RigidBodyInertia, RotXYZ2RotationMatrix
 
     m = ContactModel(dict(params or {}, bearing=0))
     p = m.p
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
-    P = m.P
-    P[K.P_VST] = m.v_st(theta, w)
-    x0 = m.pressing_offset(F)
-    s, pitch, roll = P[K.P_S], P[K.P_PITCH] > 0.5, P[K.P_ROLL] > 0.5
-    # the joint frame at rest: local z along the trunnion axis (global y), local x = x
-    J0 = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
-    dt = 1e-7   # central differences of the prescribed motion in time [s]
-
-    def pose(t):   # Q [m] and the Tait-Bryan angles (x, y, z) that turn J0's z onto a [rad]
-        qz, ax, ay, az = K.trunnion_line(m.phase + w * t, theta, s, pitch, roll)
-        return np.array([x0, 0.0, qz, math.atan2(az, ay), math.asin(ax), 0.0])
-
-    def rot(t):
-        return J0 @ RotXYZ2RotationMatrix(pose(t)[3:])
-
-    def ang_vel(t):   # skew(omega) = R' R^T
-        W = (rot(t + dt) - rot(t - dt)) @ rot(t).T / (2 * dt)
-        return np.array([W[2, 1], W[0, 2], W[1, 0]])
-
-    sc = exu.SystemContainer()
-    mbs = sc.AddSystem()
-    ground = mbs.CreateGround()
-    q0, R0, w0 = pose(0.0)[:3], rot(0.0), ang_vel(0.0)
-    v0 = (pose(dt)[:3] - pose(-dt)[:3]) / (2 * dt)
-    trunnion = mbs.CreateRigidBody(inertia=RigidBodyInertia(1.0, np.diag([1e-3] * 3)),
-                                   referencePosition=q0, referenceRotationMatrix=R0,
-                                   initialVelocity=v0, initialAngularVelocity=w0)
-    mg = mbs.AddMarker(MarkerBodyRigid(bodyNumber=ground, localHT=exu.HT(rotation=J0)))
-    mt = mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion))
-    mbs.AddObject(GenericJoint(
-        markerNumbers=[mg, mt], constrainedAxes=[1] * 6,
-        offsetUserFunction=lambda mbs, t, i, par: list(pose(t)),
-        offsetUserFunction_t=lambda mbs, t, i, par: list((pose(t + dt) - pose(t - dt)) / (2 * dt))))
-    a0 = R0[:, 2]
-    wr0 = w0 + (m.Y[K.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
-    roller = mbs.CreateRigidBody(
-        inertia=RigidBodyInertia(P[K.P_M], np.diag([P[K.P_IT], P[K.P_IT], P[K.P_IS]])),
-        referencePosition=q0, referenceRotationMatrix=R0, initialVelocity=v0,
-        initialAngularVelocity=wr0)
-    mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=roller))
-    slide = 0 if p["traverse"] else 1
-    mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion)), mr],
-                               constrainedAxes=[1, 1, slide, 1, 1, 0]))
-    node = mbs.GetObject(roller)["nodeNumber"]
-    res = np.zeros(19)
-    OV = exu.OutputVariableType
-
-    def contact(mbs):
-        c = mbs.GetNodeOutput(node, OV.Position)
-        v = mbs.GetNodeOutput(node, OV.Velocity)
-        om = mbs.GetNodeOutput(node, OV.AngularVelocity)
-        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
-        return res
-
-    mbs.AddLoad(LoadForceVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
-                                list(contact(mbs)[0:3])))
-    mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
-                                 list(contact(mbs)[3:6])))
-    sens = [mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=o, storeInternal=True,
-                                     writeToFile=False))
-            for o in (OV.Position, OV.Velocity, OV.AngularVelocity)]
+    m.P[K.P_VST] = m.v_st(theta, w)
+    mbs = exu.SystemContainer().AddSystem()
+    sensors = _exudyn_roller(mbs, m, _TrunnionMotion(m, theta, w, m.pressing_offset(F)))
     mbs.Assemble()
     T = cycles * 2 * math.pi / w
     ss = exu.SimulationSettings()
@@ -166,18 +105,97 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
         exu.config.printToConsole = True
     if not ok:
         raise RuntimeError(f"Exudyn did not converge at h = {h:g} s")
-    pos, vel, om = (mbs.GetSensorStoredData(k) for k in sens)
-    n_out = int(round(T / dt_out))
-    t_out = dt_out * np.arange(1, n_out + 1)
+    pos, vel, om = (mbs.GetSensorStoredData(k) for k in sensors)
     # Fz' at every step, then at the communication instants: Exudyn cuts a step whose Newton
     # iteration fails into smaller ones, which shifts its grid off them, so linear in time
     # between the steps (the resampling the order analysis does anyway)
-    tt = pos[:, 0]
-    fz = np.zeros(len(tt))
-    for i in range(len(tt)):
-        c, v, o = pos[i, 1:], vel[i, 1:], om[i, 1:]
-        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], o[0], o[1], o[2], P, res)
-        fz[i] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
-    out = np.interp(t_out, tt, fz)
-    cut = len(tt) - 1 - int(round(T / h))   # the extra steps of the cut ones
-    return t_out, out, {"steps": len(tt) - 1, "extra_steps": cut}, wall
+    t_out = dt_out * np.arange(1, int(round(T / dt_out)) + 1)
+    fz = [_fz_prime(m.P, F, c, v, o) for c, v, o in zip(pos[:, 1:], vel[:, 1:], om[:, 1:])]
+    steps = len(pos) - 1
+    return (t_out, np.interp(t_out, pos[:, 0], fz),
+            {"steps": steps, "extra_steps": steps - int(round(T / h))}, wall)
+
+
+class _TrunnionMotion:
+    """The trunnion frame along the kernel's motion at time t [s]: Q [m] and the Tait-Bryan
+    angles (x, y, z) [rad] that turn the rest frame J0 (local z along the trunnion axis, global
+    y) onto the axis a; its rotation matrix and angular velocity [rad/s] (central differences)."""
+    J0 = np.array([[1.0, 0.0, 0.0], [0.0, 0.0, 1.0], [0.0, -1.0, 0.0]])
+    DT = 1e-7   # [s]
+
+    def __init__(self, m, theta, w, x0):
+        P = m.P
+        self.args = (theta, P[K.P_S], P[K.P_PITCH] > 0.5, P[K.P_ROLL] > 0.5)
+        self.x_start, self.w, self.x0 = m.phase, w, x0
+
+    def pose(self, t):
+        qz, ax, ay, az = K.trunnion_line(self.x_start + self.w * t, *self.args)
+        return np.array([self.x0, 0.0, qz, math.atan2(az, ay), math.asin(ax), 0.0])
+
+    def rate(self, t):
+        return (self.pose(t + self.DT) - self.pose(t - self.DT)) / (2 * self.DT)
+
+    def rot(self, t):
+        from exudyn.rigidBodyUtilities import RotXYZ2RotationMatrix
+        return self.J0 @ RotXYZ2RotationMatrix(self.pose(t)[3:])
+
+    def ang_vel(self, t):   # skew(omega) = R' R^T
+        W = (self.rot(t + self.DT) - self.rot(t - self.DT)) @ self.rot(t).T / (2 * self.DT)
+        return np.array([W[2, 1], W[0, 2], W[1, 0]])
+
+
+def _exudyn_roller(mbs, m, motion):
+    """The driven trunnion, the roller on its cylindrical joint and the groove's loads in the
+    Exudyn system mbs; returns the sensors of the roller's position, velocity and angular
+    velocity (global, every step)."""
+    import exudyn as exu
+    from exudyn.itemInterface import GenericJoint, LoadForceVector, LoadTorqueVector, \
+        MarkerBodyRigid, SensorNode
+    from exudyn.rigidBodyUtilities import RigidBodyInertia
+    P = m.P
+    q0, R0, w0, v0 = motion.pose(0.0)[:3], motion.rot(0.0), motion.ang_vel(0.0), motion.rate(0.0)[:3]
+    trunnion = mbs.CreateRigidBody(inertia=RigidBodyInertia(1.0, np.diag([1e-3] * 3)),
+                                   referencePosition=q0, referenceRotationMatrix=R0,
+                                   initialVelocity=v0, initialAngularVelocity=w0)
+    mg = mbs.AddMarker(MarkerBodyRigid(bodyNumber=mbs.CreateGround(),
+                                       localHT=exu.HT(rotation=motion.J0)))
+    mbs.AddObject(GenericJoint(
+        markerNumbers=[mg, mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion))],
+        constrainedAxes=[1] * 6, offsetUserFunction=lambda mbs, t, i, par: list(motion.pose(t)),
+        offsetUserFunction_t=lambda mbs, t, i, par: list(motion.rate(t))))
+    a0 = R0[:, 2]
+    wr0 = w0 + (m.Y[K.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
+    roller = mbs.CreateRigidBody(
+        inertia=RigidBodyInertia(P[K.P_M], np.diag([P[K.P_IT], P[K.P_IT], P[K.P_IS]])),
+        referencePosition=q0, referenceRotationMatrix=R0, initialVelocity=v0,
+        initialAngularVelocity=wr0)
+    mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=roller))
+    slide = 0 if m.p["traverse"] else 1
+    mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion)),
+                                              mr], constrainedAxes=[1, 1, slide, 1, 1, 0]))
+    node = mbs.GetObject(roller)["nodeNumber"]
+    res = np.zeros(19)
+    OV = exu.OutputVariableType
+
+    def contact(mbs):
+        c = mbs.GetNodeOutput(node, OV.Position)
+        v = mbs.GetNodeOutput(node, OV.Velocity)
+        om = mbs.GetNodeOutput(node, OV.AngularVelocity)
+        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
+        return res
+
+    mbs.AddLoad(LoadForceVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
+                                list(contact(mbs)[0:3])))
+    mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
+                                 list(contact(mbs)[3:6])))
+    return [mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=o, storeInternal=True,
+                                     writeToFile=False))
+            for o in (OV.Position, OV.Velocity, OV.AngularVelocity)]
+
+
+def _fz_prime(P, F, c, v, om):
+    """Fz' = Fz F_press / Fx [N] of the roller at centre c [m], velocity v [m/s], angular
+    velocity om [rad/s] (global), as the FMU computes it."""
+    res = np.zeros(19)
+    K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
+    return res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0

@@ -88,6 +88,7 @@ class ContactModel:
         self.substeps = 0
         self._OP = np.zeros(6)     # the operating point of the last step (fast.OP_*)
         self._addresses = None     # of the arrays the prebuilt kernel steps (native.py)
+        self._fout = np.zeros(K.N_OUT)   # its output slot for the FMU (unused here)
         self._started = False
         self._key = None   # inputs of the last step, and what was derived from them
         self._op = None
@@ -342,7 +343,6 @@ class ContactModel:
         if fn is not None:
             if self._addresses is None:
                 arrays = self.fast_arrays()
-                self._fout = np.zeros(K.N_OUT)
                 self._addresses = [a.ctypes.data for a in arrays[:3] + (self._fout,) + arrays[3:]]
             if fn(*self._addresses) == 0:
                 raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "

@@ -3,7 +3,7 @@ built (fmu_src/aot.py), loaded here with ctypes.  A scene without resolved needl
 through it and never imports numba: a fresh process saves numba's import and start-up (about
 0.6 s of a 1.3 s `fmpy simulate`).  The library is used only when it was built from exactly
 these sources (their content hash); otherwise, or with TRIPOD_AOT=0, the kernel is compiled
-by numba as before.
+by numba as before (TRIPOD_NUMBA=0: plain Python, neither).
 """
 import ctypes
 import hashlib
@@ -38,8 +38,8 @@ def step_function():
 
 
 def _load():
-    if os.environ.get("TRIPOD_AOT", "1") == "0":
-        return None
+    if os.environ.get("TRIPOD_AOT", "1") == "0" or os.environ.get("TRIPOD_NUMBA", "1") == "0":
+        return None   # TRIPOD_NUMBA=0 asks for plain Python: no compiled kernel at all
     try:
         with open(os.path.join(_DIR, META)) as f:
             meta = json.load(f)
