@@ -26,6 +26,9 @@ def _have_numba():
     return importlib.util.find_spec("numba") is not None
 
 
+_NUMBA_ON = os.environ.get("TRIPOD_NUMBA", "1") != "0"   # 0: plain Python on purpose
+
+
 class TripodRoller(Guarded, PickleState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
@@ -42,7 +45,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self._checked = None
         self._fast = None          # the compiled step offered to the native layer (fast.py)
         self._fast_args = None
-        if not _have_numba() and os.environ.get("TRIPOD_NUMBA", "1") != "0":
+        if _NUMBA_ON and not _have_numba():
             # say once what this Python lacks
             need = [r for r in requirements(self.resources or "") if r.startswith("numba")]
             self.log(f"numba is missing in this Python ({sys.executable}, "
@@ -72,7 +75,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         fn = native.step_function()
         if fn is not None:
             address = native.address(fn)
-        elif _have_numba() and os.environ.get("TRIPOD_NUMBA", "1") != "0":
+        elif _NUMBA_ON and _have_numba():
             from tripod_model import fast
             address = fast.step.address
         else:

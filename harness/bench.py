@@ -424,30 +424,27 @@ def peers(runs=5, quick=False, log=print):
                      "setting": f"{setting}, dt={dt:g}", "time_s": t["wall"],
                      "err_order3": rel_err(orders_of(t["y"], dt), ref)[3]})
     pr.solve_ivp_run("LSODA", 1e-3, cycles=0.05)      # warm-up: the force kernel's cache
-    for method, rtol in (PEER_IVP_QUICK if quick else PEER_IVP):
+    n = 1 if quick else runs
+
+    def peer_row(engine, setting, run):
+        """Median wall time of n runs of run() and the order-3 error of the last."""
         walls = []
-        for _ in range(1 if quick else runs):
-            t, y, st, wall = pr.solve_ivp_run(method, rtol)
+        for _ in range(n):
+            t, y, st, wall = run()
             walls.append(wall)
-        rows.append({"engine": f"scipy solve_ivp {method}", "setting": f"rtol={rtol:g}",
-                     "time_s": statistics.median(walls),
-                     "err_order3": rel_err(orders_of(y, t[0]), ref)[3], "nfev": st["nfev"]})
-        log(f"{rows[-1]['engine']} {rows[-1]['setting']}: {rows[-1]['time_s']:.3f} s, "
-            f"err3 {rows[-1]['err_order3']:.2e}")
+        rows.append(dict(st, engine=engine, setting=setting, time_s=statistics.median(walls),
+                         err_order3=rel_err(orders_of(y, t[0]), ref)[3]))
+        log(f"{engine} {setting}: {rows[-1]['time_s']:.3f} s, err3 {rows[-1]['err_order3']:.2e}"
+            f" ({st})")
+
+    for method, rtol in (PEER_IVP_QUICK if quick else PEER_IVP):
+        peer_row(f"scipy solve_ivp {method}", f"rtol={rtol:g}",
+                 lambda: pr.solve_ivp_run(method, rtol))
     ver = exudyn_version()
     if ver is None:
         log("Exudyn not installed (pip install -e '.[peer]'): its rows are left out")
     for h in (PEER_EXUDYN_QUICK if quick else PEER_EXUDYN) if ver else ():
-        walls = []
-        for _ in range(1 if quick else runs):
-            t, y, st, wall = pr.exudyn_run(h)
-            walls.append(wall)
-        rows.append({"engine": EXUDYN, "setting": f"exudyn {ver}, h={h:g}",
-                     "time_s": statistics.median(walls),
-                     "err_order3": rel_err(orders_of(y, t[0]), ref)[3],
-                     "extra_steps": st["extra_steps"]})
-        log(f"{rows[-1]['engine']} {rows[-1]['setting']}: {rows[-1]['time_s']:.3f} s, "
-            f"err3 {rows[-1]['err_order3']:.2e} ({st['extra_steps']} steps cut by Newton)")
+        peer_row(EXUDYN, f"exudyn {ver}, h={h:g}", lambda: pr.exudyn_run(h))
     fmu_rows = [x for x in rows if x["engine"].startswith("contact FMU")]
     for x in rows:
         ok = [f["time_s"] for f in fmu_rows if f["err_order3"] <= x["err_order3"]]

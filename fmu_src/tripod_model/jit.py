@@ -11,6 +11,8 @@ keeps one cache for the source tree and every extracted copy of the same version
 import os
 import sys
 
+from .native import source_hash   # the sources' content hash (no numba there)
+
 ENABLED = os.environ.get("TRIPOD_NUMBA", "1") != "0"    # False: plain Python on purpose
 try:
     if not ENABLED:
@@ -24,12 +26,6 @@ except ImportError:   # numba is optional: the kernel runs as Python, slower
 CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
     os.path.expanduser("~"), ".cache", "tripod-thrust",
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
-
-
-def _package_hash():
-    """Content hash of every .py file of this package (native.source_hash)."""
-    from .native import source_hash
-    return source_hash()
 
 
 def _install_stable_locator():
@@ -50,7 +46,7 @@ def _install_stable_locator():
             # a folder per source version: two versions of the FMU on one machine (a release
             # beside its successor) would otherwise overwrite each other's index and recompile
             # (about 11 s) on every alternate run
-            self._cache_path = os.path.join(CACHE_DIR, "tripod_model-" + _package_hash()[:16])
+            self._cache_path = os.path.join(CACHE_DIR, "tripod_model-" + source_hash()[:16])
 
         def get_cache_path(self):
             return self._cache_path
@@ -58,7 +54,7 @@ def _install_stable_locator():
         def get_source_stamp(self):
             # numba stamps only the function's own file; a kernel calls into other files of
             # the package (needles.py, linalg.py), so stamp the whole package's source
-            return _package_hash()
+            return source_hash()
 
         @classmethod
         def from_function(cls, py_func, py_file):
