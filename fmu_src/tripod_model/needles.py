@@ -501,7 +501,7 @@ def ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
     j-1, right-hand side h FN[j]; the velocity increments replace FN.
 
     Where two neighbours do not touch the ring is open: then a chain from the needle after that
-    gap (chain_solve).  A closed ring (every needle touching the next): block tridiagonal
+    gap (_chain_solve).  A closed ring (every needle touching the next): block tridiagonal
     elimination bordered by the block that closes it (_closed_ring_solve).
     CW (n x 6 x 6), XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays.
     """
@@ -549,17 +549,16 @@ def _chain_solve(AN, UN, FN, h, n, j0, CW, XW, S, T):
                 CW[j, i, l] = T[i, l] if nxt else 0.0
             XW[j, i, 0] = T[i, 6]
         prev = j if nxt else -1
-    # back substitution: x_j = X_j - C_j x_next
-    jn = -1
+    # back substitution: x_j = X_j - C_j x_next (C_j = 0 at a gap, and after the chain's end)
     for m in range(n - 1, -1, -1):
         j = (j0 + m) % n
+        jn = (j + 1) % n
         for i in range(6):
             acc = XW[j, i, 0]
-            if jn >= 0:
+            if m < n - 1:
                 for l in range(6):
                     acc -= CW[j, i, l] * FN[jn, l]
             FN[j, i] = acc
-        jn = j if m > 0 and _touching(UN[(j0 + m - 1) % n]) else -1
 
 
 @njit
