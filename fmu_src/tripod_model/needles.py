@@ -42,7 +42,7 @@ C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0
 C_NEEDLE = 5.0
 
 
-@njit
+@inline
 def _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, coef, w, b, A, MOM, gn):
     """Add one contact to one body's linearly implicit system in its standard velocities
     (v1, v2, v3, w1, w2, w3 about its reference point; the contact point at r from it):
@@ -72,7 +72,7 @@ def _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, coef, w, b, A, MOM, gn):
         _add_moments(MOM, w, r1, r2, r3)
 
 
-@njit
+@inline
 def _add_moments(MOM, w, r1, r2, r3):
     """MOM += w (1, r, r r^T): the weight, first and (symmetric) second moments of r."""
     MOM[0] += w
