@@ -121,3 +121,15 @@ def test_ring_solve_against_dense_solve(gaps):
         NDL.ring_solve(AN.copy(), UN.copy(), got, h, n, np.zeros((n, 6, 6)),
                        np.zeros((n, 6, 7)), np.zeros((6, 6)), np.zeros((6, 13)))
         assert np.allclose(got, expect, rtol=1e-9, atol=1e-12), n
+
+
+def test_fast_tanh_matches_math_tanh():
+    # the row's tanh (one exp instead of libm's tanh) against math.tanh: relative error below
+    # 1e-12 from 1e-12 to saturation, either sign, across the series/exp switch at 1e-4, and
+    # NaN stays NaN (the contact tests are written so that NaN skips)
+    xs = np.concatenate([np.logspace(-12, 2, 4001), [1e-4, 19.0, 0.0, 1e300]])
+    for x in np.concatenate([xs, -xs]):
+        want = math.tanh(x)
+        got = NDL._tanh(float(x))
+        assert abs(got - want) <= 1e-12 * abs(want), x
+    assert math.isnan(NDL._tanh(float("nan")))
