@@ -128,13 +128,26 @@ def rel_err(o, ref):
     return e
 
 
-def pareto(points):
-    """Indices of the non-dominated (time, error) points (smaller is better in both)."""
+def pareto(points, t_margin=0.0, e_margin=0.0):
+    """Indices of the non-dominated (time, error) points (smaller is better in both).
+
+    With margins, differences within them are ties: a point dominates another only if it is no
+    worse than time x (1 + t_margin) and error + e_margin, and better than time x (1 - t_margin)
+    or error - e_margin (the needle row's chaos: see CHAOTIC)."""
     idx = []
     for i, (t, e) in enumerate(points):
-        if not any((t2 <= t and e2 <= e) and (t2 < t or e2 < e) for t2, e2 in points):
+        if not any(t2 <= t * (1 + t_margin) and e2 <= e + e_margin
+                   and (t2 < t * (1 - t_margin) or e2 < e - e_margin) for t2, e2 in points):
             idx.append(i)
     return idx
+
+
+# Model families whose single runs are realizations of a chaotic system, with the spread one
+# realization to the next (docs/validation.md, `needle_speed.py --ensemble 6`): the needle
+# row's order 3 spreads by 1 %, its run time by +-20 % (17.5-25.9 s, 41,000-67,000 substeps)
+# at the same setting.  Each setting is timed on one realization, so smaller differences are
+# no evidence that one setting beats another.
+CHAOTIC = {"contact bearing 2": (0.20, 0.01)}
 
 
 # the step-cost table's rows: (label, FMU (None: the bare slave), start values)
@@ -289,7 +302,8 @@ def work_precision(out, runs=5, fresh=True, log=print):
     # Pareto front over every model and setting, per model family
     for fam in sorted({r["model"].split(",")[0] for r in rows}):
         mine = [r for r in rows if r["model"].startswith(fam)]
-        front = pareto([(r["in_process_s"], max(r["err_order3"], 1e-12)) for r in mine])
+        front = pareto([(r["in_process_s"], max(r["err_order3"], 1e-12)) for r in mine],
+                       *CHAOTIC.get(fam, (0.0, 0.0)))
         for j, r in enumerate(mine):
             r["pareto"] = j in front
     detail = {m: rel_err(refs[m], refs["contact bearing 2"])[3] for m in refs}

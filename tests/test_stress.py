@@ -31,6 +31,13 @@ def test_chatter_share_separates_physics_from_sampling_noise():
 def test_pareto_and_error_measure():
     pts = [(1.0, 1e-2), (2.0, 1e-3), (3.0, 2e-3), (0.5, 5e-2), (2.0, 1e-2)]
     assert pareto(pts) == [0, 1, 3]
+    # with margins (a chaotic model: 20 % in time, 0.01 in error are ties) a point 5 % faster
+    # and 0.004 more accurate no longer dominates; one 30 % faster, or 0.015 more accurate at
+    # the same time, still does
+    pts = [(1.0, 0.019), (0.95, 0.015), (2.0, 0.004)]
+    assert pareto(pts) == [1, 2] and pareto(pts, 0.2, 0.01) == [0, 1, 2]
+    assert pareto([(1.0, 0.019), (0.7, 0.019)], 0.2, 0.01) == [1]
+    assert pareto([(1.0, 0.019), (1.0, 0.004)], 0.2, 0.01) == [1]
     ref = {1: (2.0, 10.0), 3: (4.0, -30.0)}
     e = rel_err({1: (2.0, 10.0), 3: (4.0 * 1.01, -30.0)}, ref)
     assert e[1] == 0.0 and e[3] == pytest.approx(0.01)
