@@ -4,6 +4,7 @@ References come from the reduced model (Eqs. 18-27 with the spin-inertia term), 
 no physics code with the contact model (only the parameter table and the v_st convention).
 """
 import math
+import re
 import zipfile
 from functools import lru_cache
 from xml.etree import ElementTree as ET
@@ -164,8 +165,11 @@ def test_lumped_bearing_needle_friction_effect(fmu):
 def test_invalid_parameter_rejected_with_reason(fmu):
     with pytest.raises(FmuRunError, match=r"bearing.*allowed range"):
         run({"bearing": 7})
-    with pytest.raises(FmuRunError, match=r"theta.*allowed range"):
+    with pytest.raises(FmuRunError, match=r"theta.*allowed range") as e:
         run({"theta": 1.0})
+    # the log names the Python running the FMU by its version number (once a cut-off banner)
+    assert re.search(r"FMU log: Python \d+\.\d+\.\d+\S* (of the host process|started by this FMU)",
+                     str(e.value)), str(e.value)
 
 
 def test_fmu_logs_what_the_integrator_did(fmu):

@@ -317,8 +317,9 @@ static char *start_python(const char *exe, const char *resources, void **lib_out
     PySys_SetObject("path", path);
     Py_DecRef(path);
     PySys_SetObject(STARTED_MARK, Py_None_);      /* for a later load of this library */
-    g_origin = format("Python %.20s from %s (%s), started by this FMU", Py_GetVersion(),
-                      real_exe, libpath);
+    const char *ver = Py_GetVersion();   /* "3.11.7 (main, ...": the number only */
+    g_origin = format("Python %.*s from %s (%s), started by this FMU", (int)strcspn(ver, " "),
+                      ver, real_exe, libpath);
     PyEval_SaveThread();    /* release the GIL: any thread takes it with PyGILState_Ensure */
     free(out);
     *lib_out = lib;
@@ -350,7 +351,8 @@ static char *ensure_python(const char *resources)
             g_owned = PySys_GetObject(STARTED_MARK) != NULL;
             PyGILState_Release(gil);
             free(g_origin);
-            g_origin = format("Python %.20s %s", Py_GetVersion(),
+            const char *ver = Py_GetVersion();
+            g_origin = format("Python %.*s %s", (int)strcspn(ver, " "), ver,
                               g_owned ? "started by this FMU earlier" : "of the host process");
             g_ready = 1;
             goto done;
