@@ -62,6 +62,10 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
                  Fmi2Status.ok, "logAll")
         self._fast = None
         self._fast_args = self._fast_arrays()
+        # the outputs at the start time, not their declared zeros
+        for k, v in self.model.initial_outputs(self.theta, self.omega, self.F_press,
+                                               self.torque).items():
+            setattr(self, k, v)
 
     def _fast_arrays(self):
         """What the native layer needs to step without Python: one roller, ideal or lumped

@@ -42,6 +42,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._thrust = None
         self._table = None
         self._prepare()
+        self._write_outputs()   # the outputs at the start time, not their declared zeros
 
     def _prepare(self):
         """Check the inputs and, when the operating point changed, re-derive the constants and
@@ -77,13 +78,19 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
     def _advance(self, current_time, step_size):
         self._prepare()
         w = self._scene["omega"] * step_size
+        for i in range(len(self._x)):
+            self._x[i] += w
+        self._write_outputs()
+        return True
+
+    def _write_outputs(self):
+        """Every output at the rollers' present whirl angles self._x [rad]."""
         F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
         fz = []
         if self._table is not None:
             at = self._table.at
-            for i in range(len(self._x)):
-                self._x[i] += w
-                r = at(self._x[i])
+            for i, x in enumerate(self._x):
+                r = at(x)
                 if i == 0:
                     Fz, Fz_mod, Fx, Fy, slip = r
                 fz.append(r[0])
@@ -92,9 +99,8 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             self.slip_speed = slip
         else:
             at = self._thrust.at
-            for i in range(len(self._x)):
-                self._x[i] += w
-                r = at(self._x[i])
+            for i, x in enumerate(self._x):
+                r = at(x)
                 if i == 0:
                     _, _, ft, V, phi, _ = r
                 fz.append(r[0])
@@ -107,4 +113,3 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self.Fz_joint = sum(fz)
         self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
         self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
-        return True

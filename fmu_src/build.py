@@ -185,8 +185,20 @@ def _units_and_ranges(xml: bytes) -> bytes:
                     typ.set("max", repr(float(p.hi)) if typ.tag == "Real" else str(int(p.hi)))
         elif name in out_units and typ.tag == "Real":
             typ.set("unit", out_units[name])
+    _initial_unknowns(root)
     ET.indent(root)
     return b'<?xml version="1.0" encoding="UTF-8"?>\n' + ET.tostring(root, encoding="utf-8")
+
+
+def _initial_unknowns(root):
+    """ModelStructure/InitialUnknowns: the outputs the FMU calculates at initialisation
+    (initial = calculated; pythonfmu writes no such list, and FMI 2.0 requires it)."""
+    idx = [str(i) for i, sv in enumerate(root.iter("ScalarVariable"), start=1)
+           if sv.get("causality") == "output" and sv.get("initial", "calculated") != "exact"]
+    if idx:
+        iu = ET.SubElement(root.find("ModelStructure"), "InitialUnknowns")
+        for i in idx:
+            ET.SubElement(iu, "Unknown", index=i)
 
 
 def build(name="TripodRoller", force=False) -> Path:

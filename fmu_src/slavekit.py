@@ -24,18 +24,20 @@ def register_table(slave, model, outputs=None):
             caus, var = Fmi2Causality.parameter, Fmi2Variability.fixed
         slave.register_variable(_TYPES[p.kind](p.name, causality=caus, variability=var,
                                                description=p.description))
+    # outputs are calculated at initialisation (the model's values at the start time; the
+    # build lists them as InitialUnknowns), so they declare no start value
     for name, _unit, desc in OUTPUTS:
         if outputs is None or name in outputs:
             setattr(slave, name, 0.0)
             slave.register_variable(Real(name, causality=Fmi2Causality.output,
                                          variability=Fmi2Variability.continuous,
-                                         initial=Fmi2Initial.exact, description=desc))
+                                         initial=Fmi2Initial.calculated, description=desc))
     for name, desc, owner in INT_OUTPUTS:
         if owner == model:
             setattr(slave, name, 0)
             slave.register_variable(Integer(name, causality=Fmi2Causality.output,
                                             variability=Fmi2Variability.discrete,
-                                            initial=Fmi2Initial.exact, description=desc))
+                                            initial=Fmi2Initial.calculated, description=desc))
     return params
 
 

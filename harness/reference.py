@@ -22,7 +22,8 @@ def variables_markdown(fmu) -> str:
     rows = ["| name | start | unit | causality | variability | description |",
             "|---|---|---|---|---|---|"]
     for v in md.modelVariables:
-        start = "" if v.start is None else v.start
+        # outputs without a start value are calculated at initialisation (the start state's)
+        start = v.start if v.start is not None else (v.initial or "")
         unit = v.unit or ("" if v.type != "Real" else "1")
         du = f" (display {v.displayUnit})" if getattr(v, "displayUnit", None) else ""
         rows.append(f"| `{v.name}` | {start} | {unit}{du} | {v.causality} | {v.variability} "

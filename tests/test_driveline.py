@@ -46,6 +46,35 @@ def test_torque_drives_pressing_and_wins(name):
     assert np.allclose(tq["Fx"], base["Fx"], rtol=1e-9)
 
 
+def test_outputs_at_start_time_are_the_start_state():
+    """At t = 0 the contact FMU reports its start state, not the outputs' declared zeros: the
+    roller starts pressed onto the groove at the Hertz deflection of F_press (Fx = F_press) and
+    rolling without slip at whirl angle 0 (spin = s tan(theta) omega / r, model.md)."""
+    from reduced_model.scene import defaults
+    p = defaults("contact")
+    r = run_fmu(ensure_fmu("TripodRoller"), {"n_rollers": 3}, stop_time=1e-3,
+                output_interval=1e-4)
+    assert r["time"][0] == 0.0
+    assert r["Fx"][0] == pytest.approx(p["F_press"], rel=1e-6)
+    spin = p["s"] * math.tan(p["theta"]) * p["omega"] / p["r_roller"]
+    assert r["roller_spin"][0] == pytest.approx(spin, rel=1e-9)
+    assert r["Fz_joint"][0] == pytest.approx(r["Fz"][0] + r["Fz_2"][0] + r["Fz_3"][0], abs=1e-12)
+    assert abs(r["Fx"][1] - r["Fx"][0]) < 0.01 * p["F_press"]   # no jump into the first step
+
+
+def test_analytic_outputs_at_start_time_are_the_models():
+    """The analytic FMU at t = 0 reports the reduced traverse model at whirl angle 0 (the
+    library's own evaluation), not zeros."""
+    from reduced_model.scene import defaults, validate
+    from reduced_model.traverse import Traverse
+    Fz, Fz_mod, Fx, Fy, slip = Traverse(validate(defaults("analytic"), "analytic")).at(0.0)
+    r = run_fmu(ensure_fmu("TripodRollerAnalytic"), {}, stop_time=1e-3, output_interval=1e-4)
+    for name, want in (("Fz", Fz), ("Fz_mod", Fz_mod), ("Fx", Fx), ("Fy", Fy),
+                       ("slip_speed", slip), ("Fz_joint", Fz)):
+        assert r[name][0] == pytest.approx(want, rel=1e-9, abs=1e-12), name
+    assert Fx > 0.5 * defaults("analytic")["F_press"]   # a pressed roller, not a zero
+
+
 def _worker(name, check, ints=None):
     p = subprocess.run([sys.executable, str(Path(__file__).with_name("fmi_worker.py")),
                         str(ensure_fmu(name)), check, json.dumps(ints or {})],

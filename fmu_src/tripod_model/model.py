@@ -316,6 +316,17 @@ class ContactModel:
         """
         if not self._started:
             self.start(theta, omega, F_press)
+        vst, n, h, x0 = self._operating_point(dt, theta, omega, F_press)
+        self._OP[:] = (theta, omega, F_press, x0, h, n)
+        acc = self._hs[1]
+        self._run(float(theta), float(omega), float(F_press), x0, h, n)
+        self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
+        self.time += dt
+        return self.outputs(F_press)
+
+    def _operating_point(self, dt, theta, omega, F_press):
+        """(v_st [m/s], substeps n, substep [s], pressing offset [m]) of a step of dt [s] at
+        these inputs, re-derived only when they change; sets P's v_st and largest substep."""
         key = (dt, theta, omega, F_press)
         if key != self._key:   # operating point changed: re-derive v_st, substep, offset
             vst = self.v_st(theta, omega)
@@ -326,14 +337,23 @@ class ContactModel:
             # stiff stick mode (which the error estimate handles)
             self.P[K.P_HMAX] = self.substep(theta, omega, F_press, vst, stiff=False)
             self._key = key
-        vst, n, h, x0 = self._op
-        self.P[K.P_VST] = vst
-        self._OP[:] = (theta, omega, F_press, x0, h, n)
-        acc = self._hs[1]
-        self._run(float(theta), float(omega), float(F_press), x0, h, n)
-        self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
-        self.time += dt
-        return self.outputs(F_press)
+        self.P[K.P_VST] = self._op[0]
+        return self._op
+
+    def initial_outputs(self, theta, omega, F_press):
+        """The outputs at the start state these inputs give (what the FMU reports at its
+        start time), without a step and without moving the model: the first step still
+        starts from the inputs it is given."""
+        saved, key, op = self.get_state(), self._key, self._op
+        P, OP = self.P.copy(), self._OP.copy()
+        self.start(theta, omega, F_press)
+        _, _, h, x0 = self._operating_point(1e-4, theta, omega, F_press)
+        self._OP[:] = (theta, omega, F_press, x0, h, 0)      # zero substeps: outputs only
+        self._run(float(theta), float(omega), float(F_press), x0, h, 0)
+        out = self.outputs(F_press)
+        self.set_state(saved)
+        self.P[:], self._OP[:], self._key, self._op = P, OP, key, op
+        return out
 
     def _run(self, theta, omega, F_press, x0, h, n):
         """n substeps of h [s] at the operating point (also in self._OP): through the prebuilt
@@ -428,6 +448,16 @@ def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1
     return rec
 
 
+def _joint_outputs(outs):
+    """Roller 1's outputs plus the joint's: Fz_joint (the housing thrust, the sum of the
+    rollers' Fz [N]), Fz_2, Fz_3 (0 with one roller)."""
+    o = dict(outs[0])
+    o["Fz_joint"] = sum(x["Fz"] for x in outs)
+    o["Fz_2"] = outs[1]["Fz"] if len(outs) > 1 else 0.0
+    o["Fz_3"] = outs[2]["Fz"] if len(outs) > 2 else 0.0
+    return o
+
+
 class JointModel:
     """``n_rollers`` (1 or 3) rollers of one joint at whirl phases 0, 120, 240 deg.
 
@@ -450,12 +480,12 @@ class JointModel:
     def step(self, dt, theta, omega, F_press, torque=0.0):
         """Advance every roller by dt [s]; returns roller 1's outputs plus Fz_joint, Fz_2, Fz_3."""
         F = self.pressing(F_press, torque)
-        outs = [r.step(dt, theta, omega, F) for r in self.rollers]
-        o = dict(outs[0])
-        o["Fz_joint"] = sum(x["Fz"] for x in outs)
-        o["Fz_2"] = outs[1]["Fz"] if len(outs) > 1 else 0.0
-        o["Fz_3"] = outs[2]["Fz"] if len(outs) > 2 else 0.0
-        return o
+        return _joint_outputs([r.step(dt, theta, omega, F) for r in self.rollers])
+
+    def initial_outputs(self, theta, omega, F_press, torque=0.0):
+        """The outputs of step() at the start state, without a step (the FMU's start time)."""
+        F = self.pressing(F_press, torque)
+        return _joint_outputs([r.initial_outputs(theta, omega, F) for r in self.rollers])
 
     def get_state(self) -> list:
         return [r.get_state() for r in self.rollers]
