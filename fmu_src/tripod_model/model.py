@@ -347,6 +347,7 @@ class ContactModel:
         saved, key, op = self.get_state(), self._key, self._op
         P, OP = self.P.copy(), self._OP.copy()
         self.start(theta, omega, F_press)
+        # any step size: only the substep and the pressing offset are used, no substep is taken
         _, _, h, x0 = self._operating_point(1e-4, theta, omega, F_press)
         self._OP[:] = (theta, omega, F_press, x0, h, 0)      # zero substeps: outputs only
         self._run(float(theta), float(omega), float(F_press), x0, h, 0)
