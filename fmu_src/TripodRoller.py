@@ -62,6 +62,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
                  Fmi2Status.ok, "logAll")
         self._fast = None
         self._fast_args = self._fast_arrays()
+        self._steps = [0, 0]       # communication steps compiled, through Python (the log)
         # the outputs at the start time, not their declared zeros
         for k, v in self.model.initial_outputs(self.theta, self.omega, self.F_press,
                                                self.torque).items():
@@ -93,7 +94,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
                 "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
                 "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
 
-    def _offer_fast(self, step_size, out):
+    def _offer_fast(self, out):
         """After a step through Python: the outputs where the native layer reads them, and
         the compiled step for the next steps at these inputs and this step size."""
         f = self._fast_args
@@ -102,13 +103,16 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         for i, name in enumerate(f["names"]):
             self._fast_outputs[i] = out[name]
         self._fast_hs1 = self.model.rollers[0]._hs[1]
-        self._fast_dt = step_size
-        self._fast = (f["address"], step_size, f["out_vrs"], f["in_vrs"],
+        # the step the operating point was derived for: a step_size that differs from it
+        # by the rounding of the master's times (model.same_step) took that step
+        self._fast_dt = self.model.rollers[0].step_dt
+        self._fast = (f["address"], self._fast_dt, f["out_vrs"], f["in_vrs"],
                       [float(getattr(self, n)) for n in _INPUTS], f["addresses"])
 
     def _fast_sync(self, k):
         """The native layer took k compiled steps: count them, take their outputs."""
         self.model.rollers[0].fast_synced(k, self._fast_dt, self._fast_hs1)
+        self._steps[0] += k
         self._fast_hs1 = self.model.rollers[0]._hs[1]
         for name, v in zip(self._fast_args["names"], self._fast_outputs):
             setattr(self, name, float(v))
@@ -122,6 +126,8 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
     def terminate(self):
         if self.model is not None:   # what the integrator did, for a user who checks
             self.log(self.model.summary(), Fmi2Status.ok, "logAll")
+            self.log(f"communication steps: {self._steps[0]} compiled, {self._steps[1]} "
+                     "through Python", Fmi2Status.ok, "logAll")
 
     # FMU state: the registered variables plus the model's internal arrays, deep-copied, so a
     # rollback (get state, run, set state, run) reproduces the outputs bit for bit
@@ -136,6 +142,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
 
     def _advance(self, current_time, step_size):
         self._fast = None
+        self._steps[1] += 1
         key = (self.theta, self.omega, self.F_press, self.torque)
         if key != self._checked:       # validate inputs only when they change
             for name, value in zip(_INPUTS, key):
@@ -149,5 +156,5 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             return False
         for k, v in out.items():
             setattr(self, k, v)
-        self._offer_fast(step_size, out)
+        self._offer_fast(out)
         return True

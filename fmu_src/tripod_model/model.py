@@ -6,6 +6,7 @@ What the FMU slave adapts.  Problem (parameters), integrator (kernel.run_substep
 from __future__ import annotations
 
 import math
+import sys
 
 import numpy as np
 
@@ -16,6 +17,17 @@ from reduced_model.sliding import amplitude_A, amplitude_B
 from . import hertz, layout as K, layout as NDL, native   # numba only when needed (_run)
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
+
+
+STEP_ROUNDING = 64 * sys.float_info.epsilon
+
+
+def same_step(dt, dt0, t):
+    """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
+    a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
+    Such a step reuses dt0's operating point; the native layer's fast path applies the same
+    rule (fmu_src/native/fmi2_python.c), so the two paths take the same steps."""
+    return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
 
 
 class ContactModel:
@@ -328,6 +340,9 @@ class ContactModel:
         """(v_st [m/s], substeps n, substep [s], pressing offset [m]) of a step of dt [s] at
         these inputs, re-derived only when they change; sets P's v_st and largest substep."""
         key = (dt, theta, omega, F_press)
+        if (self._key is not None and key[1:] == self._key[1:]
+                and same_step(dt, self._key[0], self.time)):
+            key = self._key    # the same step, up to the rounding of the master's times
         if key != self._key:   # operating point changed: re-derive v_st, substep, offset
             vst = self.v_st(theta, omega)
             h = self.substep(theta, omega, F_press, vst)
@@ -339,6 +354,11 @@ class ContactModel:
             self._key = key
         self.P[K.P_VST] = self._op[0]
         return self._op
+
+    @property
+    def step_dt(self):
+        """The communication step [s] the present operating point was derived for."""
+        return self._key[0]
 
     def initial_outputs(self, theta, omega, F_press):
         """The outputs at the start state these inputs give (what the FMU reports at its
