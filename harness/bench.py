@@ -128,18 +128,21 @@ def rel_err(o, ref):
     return e
 
 
-def pareto(points, t_margin=0.0, e_margin=0.0):
-    """Indices of the non-dominated (time, error) points (smaller is better in both).
+def dominates(p, q, t_margin=0.0, e_margin=0.0):
+    """Whether (time, error) point p dominates q (smaller is better in both).
 
-    With margins, differences within them are ties: a point dominates another only if it is no
-    worse than time x (1 + t_margin) and error + e_margin, and better than time x (1 - t_margin)
-    or error - e_margin (the needle row's chaos: see CHAOTIC)."""
-    idx = []
-    for i, (t, e) in enumerate(points):
-        if not any(t2 <= t * (1 + t_margin) and e2 <= e + e_margin
-                   and (t2 < t * (1 - t_margin) or e2 < e - e_margin) for t2, e2 in points):
-            idx.append(i)
-    return idx
+    With margins, differences within them are ties: p dominates q only if it is no worse than
+    time x (1 + t_margin) and error + e_margin, and better than time x (1 - t_margin) or
+    error - e_margin (the needle row's chaos: see CHAOTIC)."""
+    (t2, e2), (t, e) = p, q
+    return (t2 <= t * (1 + t_margin) and e2 <= e + e_margin
+            and (t2 < t * (1 - t_margin) or e2 < e - e_margin))
+
+
+def pareto(points, t_margin=0.0, e_margin=0.0):
+    """Indices of the non-dominated (time, error) points (see dominates)."""
+    return [i for i, q in enumerate(points)
+            if not any(dominates(p, q, t_margin, e_margin) for p in points)]
 
 
 # Model families whose single runs are realizations of a chaotic system, with the spread one
@@ -263,7 +266,7 @@ def work_precision(out, runs=5, fresh=True, log=print):
         r = time_runs(ensure_fmu(name), [{"sv": sv, "dt": dt, "stop": STOP}], runs=1)[0]
         refs[model] = orders_of(r["y"], dt)
         log(f"reference {model}: order 3 {refs[model][3][0]:.4f} N at {refs[model][3][1]:.2f} deg")
-    rows = []
+    rows, cases = [], {}   # cases: id(row) -> its ladder entry, for _retime_off_front
     lad = ladder()
     by_fmu = {}
     for i, (label, name, sv, dt, default) in enumerate(lad):
@@ -283,6 +286,7 @@ def work_precision(out, runs=5, fresh=True, log=print):
         rows.append({"model": label, "setting": f"{setting}, dt={dt:g}", "default": default,
                      "in_process_s": r["wall"], "whole_process_s": whole,
                      "err_order1": err[1], "err_order3": err[3]})
+        cases[id(rows[-1])] = lad[i]
         log(f"{label:34s} {rows[-1]['setting']:34s} {r['wall']:.4f} s  err3 {err[3]:.2e}")
     # the generalized-alpha step stepped from Python (an engine with force callbacks), in this
     # process after a warm-up: the same ideal-bearing model, so the same reference
@@ -299,16 +303,50 @@ def work_precision(out, runs=5, fresh=True, log=print):
                      "err_order1": err[1], "err_order3": err[3]})
         log(f"{GA_PYTHON:34s} {rows[-1]['setting']:34s} {rows[-1]['in_process_s']:.4f} s  "
             f"err3 {err[3]:.2e}")
-    # Pareto front over every model and setting, per model family
-    for fam in sorted({r["model"].split(",")[0] for r in rows}):
-        mine = [r for r in rows if r["model"].startswith(fam)]
-        front = pareto([(r["in_process_s"], max(r["err_order3"], 1e-12)) for r in mine],
-                       *CHAOTIC.get(fam, (0.0, 0.0)))
-        for j, r in enumerate(mine):
-            r["pareto"] = j in front
+    _mark_fronts(rows)
+    _retime_off_front(rows, cases, runs, log)
     detail = {m: rel_err(refs[m], refs["contact bearing 2"])[3] for m in refs}
     _write_wp(out, rows, detail)
     return rows, detail
+
+
+def _point(r):
+    return r["in_process_s"], max(r["err_order3"], 1e-12)
+
+
+def _mark_fronts(rows):
+    """r["pareto"]: on the Pareto front of its model family (the label before the comma)."""
+    for fam in sorted({r["model"].split(",")[0] for r in rows}):
+        mine = [r for r in rows if r["model"].startswith(fam)]
+        front = pareto([_point(r) for r in mine], *CHAOTIC.get(fam, (0.0, 0.0)))
+        for j, r in enumerate(mine):
+            r["pareto"] = j in front
+
+
+def _retime_off_front(rows, cases, runs, log=print):
+    """Time again a default that came out dominated, alternating run by run with the settings
+    that beat it, and keep those medians: the rows are timed one after the other, so a slow
+    spell of this shared machine (it has lasted minutes) can put a default behind a setting that
+    is not faster.  cases: id(row) -> its ladder entry; rows without one (the generalized-alpha
+    rows stepped in this process) keep their times."""
+    for r in [r for r in rows if r["default"] and not r["pareto"]]:
+        fam = r["model"].split(",")[0]
+        margins = CHAOTIC.get(fam, (0.0, 0.0))
+        beat = [q for q in rows if q["model"].startswith(fam) and id(q) in cases
+                and dominates(_point(q), _point(r), *margins)]
+        if id(r) not in cases or not beat:
+            continue
+        walls = {id(q): [] for q in [r] + beat}
+        for _ in range(runs):
+            for q in [r] + beat:
+                _, name, sv, dt, _ = cases[id(q)]
+                res = time_runs(ensure_fmu(name), [{"sv": sv, "dt": dt, "stop": STOP}], runs=1)
+                walls[id(q)].append(res[0]["wall"])
+        for q in [r] + beat:
+            log(f"re-timed, alternating: {q['model']} {q['setting']}: {q['in_process_s']:.4f} "
+                f"-> {statistics.median(walls[id(q)]):.4f} s")
+            q["in_process_s"] = statistics.median(walls[id(q)])
+    _mark_fronts(rows)
 
 
 def _whole(s):
