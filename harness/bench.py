@@ -266,7 +266,7 @@ def work_precision(out, runs=5, fresh=True, log=print):
         r = time_runs(ensure_fmu(name), [{"sv": sv, "dt": dt, "stop": STOP}], runs=1)[0]
         refs[model] = orders_of(r["y"], dt)
         log(f"reference {model}: order 3 {refs[model][3][0]:.4f} N at {refs[model][3][1]:.2f} deg")
-    rows, cases = [], {}   # cases: id(row) -> its ladder entry, for _retime_off_front
+    rows, entry_of = [], {}   # id(row) -> its ladder entry, for _retime_off_front
     lad = ladder()
     by_fmu = {}
     for i, (label, name, sv, dt, default) in enumerate(lad):
@@ -286,7 +286,7 @@ def work_precision(out, runs=5, fresh=True, log=print):
         rows.append({"model": label, "setting": f"{setting}, dt={dt:g}", "default": default,
                      "in_process_s": r["wall"], "whole_process_s": whole,
                      "err_order1": err[1], "err_order3": err[3]})
-        cases[id(rows[-1])] = lad[i]
+        entry_of[id(rows[-1])] = lad[i]
         log(f"{label:34s} {rows[-1]['setting']:34s} {r['wall']:.4f} s  err3 {err[3]:.2e}")
     # the generalized-alpha step stepped from Python (an engine with force callbacks), in this
     # process after a warm-up: the same ideal-bearing model, so the same reference
@@ -304,7 +304,7 @@ def work_precision(out, runs=5, fresh=True, log=print):
         log(f"{GA_PYTHON:34s} {rows[-1]['setting']:34s} {rows[-1]['in_process_s']:.4f} s  "
             f"err3 {err[3]:.2e}")
     _mark_fronts(rows)
-    _retime_off_front(rows, cases, runs, log)
+    _retime_off_front(rows, entry_of, runs, log)
     detail = {m: rel_err(refs[m], refs["contact bearing 2"])[3] for m in refs}
     _write_wp(out, rows, detail)
     return rows, detail

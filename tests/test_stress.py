@@ -84,3 +84,25 @@ def test_dominated_default_is_timed_again_alternating(monkeypatch, again, on_fro
     assert calls == [0, 1, 0, 1, 0, 1]                 # alternating, three runs each
     assert rows[0]["in_process_s"] == again[0] and rows[1]["in_process_s"] == again[1]
     assert rows[0]["pareto"] is on_front
+
+
+def test_work_precision_pipeline_on_a_small_ladder(tmp_path, monkeypatch):
+    """The bench's work-precision pass end to end (timing, orders, fronts, re-timing, tables,
+    plot) on two cheap analytic settings: `make docs` runs it for about 30 min, so a slip in the
+    plumbing must show here first."""
+    from harness import bench, genalpha
+    monkeypatch.setattr(bench, "REFERENCES", {
+        "analytic": ("TripodRollerAnalytic", {}, 5e-4),
+        "contact bearing 2": ("TripodRollerAnalytic", {}, 5e-4)})   # the detail line's anchor
+    monkeypatch.setattr(bench, "ladder", lambda: [
+        ("analytic", "TripodRollerAnalytic", {}, 2e-3, True),
+        ("analytic", "TripodRollerAnalytic", {}, 1e-3, False)])
+    monkeypatch.setattr(bench, "GA_PYTHON_STEPS", ())
+    monkeypatch.setattr(genalpha, "simulate", lambda *a, **k: None)
+    rows, detail = bench.work_precision(tmp_path, runs=1, fresh=False, log=lambda m: None)
+    assert [r["setting"] for r in rows] == ["defaults, dt=0.002", "defaults, dt=0.001"]
+    assert all(isinstance(r["pareto"], bool) for r in rows) and any(r["pareto"] for r in rows)
+    assert rows[1]["err_order3"] < rows[0]["err_order3"]   # the finer step is closer to 5e-4's
+    assert detail["analytic"] == 0.0
+    for f in ("work_precision.md", "work_precision.csv", "work_precision.png"):
+        assert (tmp_path / f).stat().st_size > 0
