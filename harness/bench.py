@@ -58,11 +58,17 @@ def instance(sv):
     s.exitInitializationMode()
     return s
 
-def run(sv, dt, n):
+def run(sv, dt, n, vary=()):
     s = instance(sv)
     ys = np.empty((n, len(out_vr)))
+    # inputs a master moves every step (by 1e-3 of their start values, slowly)
+    in_vr = [vr[k].valueReference for k in vary]
+    in0 = [float(sv.get(k, vr[k].start)) for k in vary]
     t0 = time.perf_counter()
     for i in range(n):
+        if in_vr:
+            f = 1.0 + 1e-3 * math.sin(1e-2 * i)
+            s.setReal(in_vr, [f * v for v in in0])
         s.doStep(i * dt, dt)
         ys[i] = s.getReal(out_vr)
     wall = time.perf_counter() - t0
@@ -73,10 +79,11 @@ def run(sv, dt, n):
 res = []
 for case in req["cases"]:
     n = int(round(case["stop"] / case["dt"]))
-    run(case["sv"], case["dt"], min(n, 200))            # warm-up (numba cache load, imports)
+    vary = case.get("vary", ())
+    run(case["sv"], case["dt"], min(n, 200), vary)      # warm-up (numba cache load, imports)
     walls, ys = [], None
     for _ in range(req["runs"]):
-        w, ys = run(case["sv"], case["dt"], n)
+        w, ys = run(case["sv"], case["dt"], n, vary)
         walls.append(w)
     res.append({"wall": statistics.median(walls), "walls": walls, "n": n,
                 "y": ys[:, 0].tolist()})
@@ -153,22 +160,27 @@ def pareto(points, t_margin=0.0, e_margin=0.0):
 CHAOTIC = {"contact bearing 2": (0.20, 0.01)}
 
 
-# the step-cost table's rows: (label, FMU (None: the bare slave), start values)
+# the step-cost table's rows: (label, FMU (None: the bare slave), start values, inputs the
+# master moves every step)
+MASTER_INPUTS = ("theta", "omega", "F_press")
 STEP_COST_CASES = {
-    "bare slave (the FMI boundary alone)": (None, {}),
-    "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}),
-    "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}),
-    "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}),
+    "bare slave (the FMI boundary alone)": (None, {}, ()),
+    "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}, ()),
+    "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}, ()),
+    "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}, ()),
+    "the same, theta, omega, F_press set to new values every step (a driveline master)":
+        ("TripodRoller", {}, MASTER_INPUTS),
 }
 
 
 def step_costs(runs=5, n=2000, dt=1e-4):
     """Cost per doStep + getReal(Fz) [us] of the bare boundary and the cheapest scenes."""
     rows = []
-    cases = [(name, bare_fmu() if f is None else ensure_fmu(f), sv)
-             for name, (f, sv) in STEP_COST_CASES.items()]
-    for name, fmu, sv in cases:
-        r = time_runs(fmu, [{"sv": sv, "dt": dt, "stop": n * dt}], runs, read=("Fz",))[0]
+    cases = [(name, bare_fmu() if f is None else ensure_fmu(f), sv, vary)
+             for name, (f, sv, vary) in STEP_COST_CASES.items()]
+    for name, fmu, sv, vary in cases:
+        r = time_runs(fmu, [{"sv": sv, "dt": dt, "stop": n * dt, "vary": list(vary)}], runs,
+                      read=("Fz",))[0]
         rows.append((name, r["wall"] / r["n"] * 1e6))
     return rows
 

@@ -106,3 +106,20 @@ def test_work_precision_pipeline_on_a_small_ladder(tmp_path, monkeypatch):
     assert detail["analytic"] == 0.0
     for f in ("work_precision.md", "work_precision.csv", "work_precision.png"):
         assert (tmp_path / f).stat().st_size > 0
+
+
+def test_step_cost_worker_moves_the_inputs_like_a_master():
+    """The step-cost row of a driveline master really sets new inputs every step: with F_press
+    moved by 1e-3 of its 1000 N, the roller's normal force follows it (in a quasi-static
+    groove contact Fx = F_press: slope 1 within 10 %, dynamics on top), where at constant
+    inputs it does not."""
+    from harness import bench
+    from harness.fmus import ensure_fmu
+    case = {"sv": {}, "dt": 1e-4, "stop": 0.06}
+    fixed, moved = bench.time_runs(ensure_fmu("TripodRoller"),
+                                   [case, dict(case, vary=["F_press"])], runs=1, read=("Fx",))
+    i = np.arange(1, 600)                      # the worker's input at step i: 1 + 1e-3 sin(i / 100)
+    push = 1000.0 * 1e-3 * np.sin(1e-2 * i)    # [N]
+    dfx = np.array(moved["y"][1:]) - np.array(fixed["y"][1:])
+    slope = np.polyfit(push, dfx, 1)[0]
+    assert abs(slope - 1.0) < 0.1 and np.corrcoef(push, dfx)[0, 1] > 0.9
