@@ -168,7 +168,7 @@ STEP_COST_CASES = {
     "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}, ()),
     "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}, ()),
     "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}, ()),
-    "the same, theta, omega, F_press set to new values every step (a driveline master)":
+    f"the same, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline master)":
         ("TripodRoller", {}, MASTER_INPUTS),
 }
 
@@ -335,23 +335,23 @@ def _mark_fronts(rows):
             r["pareto"] = j in front
 
 
-def _retime_off_front(rows, cases, runs, log=print):
+def _retime_off_front(rows, entry_of, runs, log=print):
     """Time again a default that came out dominated, alternating run by run with the settings
     that beat it, and keep those medians: the rows are timed one after the other, so a slow
     spell of this shared machine (it has lasted minutes) can put a default behind a setting that
-    is not faster.  cases: id(row) -> its ladder entry; rows without one (the generalized-alpha
+    is not faster.  entry_of: id(row) -> its ladder entry; rows without one (the generalized-alpha
     rows stepped in this process) keep their times."""
     for r in [r for r in rows if r["default"] and not r["pareto"]]:
         fam = r["model"].split(",")[0]
         margins = CHAOTIC.get(fam, (0.0, 0.0))
-        beat = [q for q in rows if q["model"].startswith(fam) and id(q) in cases
+        beat = [q for q in rows if q["model"].startswith(fam) and id(q) in entry_of
                 and dominates(_point(q), _point(r), *margins)]
-        if id(r) not in cases or not beat:
+        if id(r) not in entry_of or not beat:
             continue
         walls = {id(q): [] for q in [r] + beat}
         for _ in range(runs):
             for q in [r] + beat:
-                _, name, sv, dt, _ = cases[id(q)]
+                _, name, sv, dt, _ = entry_of[id(q)]
                 res = time_runs(ensure_fmu(name), [{"sv": sv, "dt": dt, "stop": STOP}], runs=1)
                 walls[id(q)].append(res[0]["wall"])
         for q in [r] + beat:

@@ -69,7 +69,7 @@ def test_dominated_default_is_timed_again_alternating(monkeypatch, again, on_fro
              "err_order3": 1e-3},
             {"model": "m, b", "setting": "other", "default": False, "in_process_s": 1.0,
              "err_order3": 1e-3}]
-    cases = {id(rows[0]): ("m, a", "F", {"k": 0}, 1e-4, True),
+    entry_of = {id(rows[0]): ("m, a", "F", {"k": 0}, 1e-4, True),
              id(rows[1]): ("m, b", "F", {"k": 1}, 1e-4, False)}
     calls = []
 
@@ -80,7 +80,7 @@ def test_dominated_default_is_timed_again_alternating(monkeypatch, again, on_fro
     monkeypatch.setattr(bench, "ensure_fmu", lambda name: name)
     bench._mark_fronts(rows)
     assert not rows[0]["pareto"]
-    bench._retime_off_front(rows, cases, runs=3, log=lambda m: None)
+    bench._retime_off_front(rows, entry_of, runs=3, log=lambda m: None)
     assert calls == [0, 1, 0, 1, 0, 1]                 # alternating, three runs each
     assert rows[0]["in_process_s"] == again[0] and rows[1]["in_process_s"] == again[1]
     assert rows[0]["pareto"] is on_front
