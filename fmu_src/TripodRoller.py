@@ -104,7 +104,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             self._fast_outputs[i] = out[name]
         self._fast_hs1 = self.model.rollers[0]._hs[1]
         # the step the operating point was derived for: a step_size that differs from it
-        # by the rounding of the master's times (model.same_step) took that step
+        # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
         self._fast = (f["address"], self._fast_dt, f["out_vrs"], f["in_vrs"],
                       [float(getattr(self, n)) for n in _INPUTS], f["addresses"])

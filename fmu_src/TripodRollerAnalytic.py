@@ -4,13 +4,21 @@ traverse = true (default): the reduced traverse model's periodic solution, tabul
 whirl angle once per operating point (reduced_model/traverse.py); false: Eqs. (18)-(27).
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
+
+Steps at unchanged inputs run compiled, without entering Python (the native layer's fast path):
+resources/_analytic_step.so, built from fmu_src/native/analytic_step.c with the FMU, does what
+_advance does, bit for bit (tests/test_fast.py).
 """
 import copy
+import ctypes
 import math
+import os
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
+from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import REGIME_CODES, check_value, pressing_load, validate
+from reduced_model.scene import (REGIME_CODES, check_value, pressing_load, same_step,
+                                 same_value, validate)
 from reduced_model.thrust import Thrust
 from reduced_model.traverse import Traverse
 from slavekit import Guarded, PickleState, register_table
@@ -18,6 +26,22 @@ from slavekit import Guarded, PickleState, register_table
 _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
+FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
+
+
+def _fast_library(resources):
+    """(step function's address, OP names, output names) of the compiled step, or None
+    (not built into this FMU, or TRIPOD_FAST=0 turns it off, for comparison)."""
+    if os.environ.get("TRIPOD_FAST", "1") == "0" or not resources:
+        return None
+    try:
+        lib = ctypes.CDLL(os.path.join(resources, FAST_LIB))
+        layout = ctypes.cast(lib.tripod_analytic_layout, ctypes.CFUNCTYPE(ctypes.c_char_p))()
+        address = ctypes.cast(lib.tripod_analytic_step, ctypes.c_void_p).value
+    except (OSError, AttributeError):
+        return None
+    op, out = (part.split() for part in layout.decode().split("|"))
+    return address, op, out
 
 
 class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
@@ -33,6 +57,10 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._params = register_table(self, "analytic", _OUT)
         self._scene = None
         self._x = [0.0]   # whirl angle of each roller [rad]
+        self._dt = None   # the communication step taken [s] (same_step)
+        self._fast = None  # the compiled step offered to the native layer
+        self._fast_lib = False   # not looked up yet
+        self._fast_table = False  # the table whose rows _fast_rows holds
 
     def _initialise(self):
         self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")
@@ -41,6 +69,9 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._key = None
         self._thrust = None
         self._table = None
+        self._dt = None
+        self._fast = None
+        self._steps = [0, 0]       # communication steps compiled, through Python (the log)
         self._prepare()
         self._write_outputs()   # the outputs at the start time, not their declared zeros
 
@@ -48,7 +79,9 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         """Check the inputs and, when the operating point changed, re-derive the constants and
         the traverse model's table (about 0.1 s): at initialisation and on an input change."""
         key = (self.theta, self.omega, self.F_press, self.torque)
-        if key == self._key:
+        # inputs moved only in their last bits (a master interpolating an input table) keep
+        # the operating point: not 0.1 s a step for nothing
+        if self._key is not None and all(map(same_value, key, self._key)):
             return
         for name, value in zip(_INPUTS, key):
             check_value(name, value)
@@ -65,23 +98,78 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._key = key
 
     def _get_fmu_state(self):
-        return {"vars": super()._get_fmu_state(), "x": list(self._x),
+        return {"vars": super()._get_fmu_state(), "x": list(self._x), "dt": self._dt,
                 "scene": copy.deepcopy(self._scene)}
 
     def _set_fmu_state(self, state):
         super()._set_fmu_state(state["vars"])
         self._x = list(state["x"])
+        self._dt = state["dt"]
         if state["scene"] != self._scene:      # else the table of this operating point stays
             self._key = None
         self._scene = copy.deepcopy(state["scene"])
 
+    def terminate(self):
+        if self._scene is not None:   # how the steps ran, for a user who checks
+            self.log(f"communication steps: {self._steps[0]} compiled, {self._steps[1]} "
+                     "through Python", Fmi2Status.ok, "logAll")
+
     def _advance(self, current_time, step_size):
+        self._fast = None
+        self._steps[1] += 1
         self._prepare()
-        w = self._scene["omega"] * step_size
+        # a step that differs from the last one by the rounding of the master's times is
+        # that step, as on the compiled path
+        if self._dt is None or not same_step(step_size, self._dt, current_time):
+            self._dt = step_size
+        w = self._scene["omega"] * self._dt
         for i in range(len(self._x)):
             self._x[i] += w
         self._write_outputs()
+        self._offer_fast()
         return True
+
+    def _offer_fast(self):
+        """After a step through Python: the compiled step (analytic_step.c) for the next steps
+        at these inputs and this step size, with its arrays (the native layer's _fast)."""
+        if self._fast_lib is False:
+            self._fast_lib = _fast_library(self.resources)
+        if self._fast_lib is None or len(self._x) > 3:
+            return
+        import numpy as np
+        address, op_names, out_names = self._fast_lib
+        if self._fast_table is not self._table:    # the table's rows, once per operating point
+            self._fast_table = self._table
+            self._fast_rows = np.array(self._table._rows if self._table is not None
+                                       else [[0.0] * 5] * 2)
+        sc, th = self._scene, self._thrust
+        op = {"w": sc["omega"] * self._dt, "n_rollers": len(self._x),
+              "F": pressing_load(sc["F_press"], sc["torque"], sc["s"]),
+              "table": float(self._table is not None),
+              "scale": self._table._scale if self._table is not None else 0.0,
+              "n": self._table.n if self._table is not None else 0,
+              "A": th.A, "B": th.B, "muF": th.muF, "k": th.k, "th": th.th, "kspin": th.kspin}
+        self._fast_x = np.array(self._x)
+        self._fast_op = np.array([op[n] for n in op_names], dtype=float)
+        self._fast_out = np.array([getattr(self, n) for n in out_names])
+        arrays = (self._fast_x, self._fast_rows, self._fast_op, self._fast_out)
+        addresses = [a.ctypes.data for a in arrays] + [self._fast_x.ctypes.data] * 10
+        vr = {v.name: ref for ref, v in self.vars.items()}
+        self._fast_names = out_names
+        self._fast = (address, self._dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
+                      [float(getattr(self, n)) for n in _INPUTS], addresses)
+
+    def _fast_sync(self, k):
+        """The native layer took k compiled steps: take their whirl angles and outputs."""
+        self._steps[0] += k
+        self._x = [float(v) for v in self._fast_x]
+        for name, v in zip(self._fast_names, self._fast_out):
+            setattr(self, name, float(v))
+
+    def _fast_failed(self, current_time, code):
+        """A compiled step failed (2: a non-finite output)."""
+        why = "non-finite output" if code == 2 else f"the compiled step returned {code}"
+        self.log(f"{why} at t = {current_time:g} s; step rejected", Fmi2Status.error)
 
     def _write_outputs(self):
         """Every output at the rollers' present whirl angles self._x [rad]."""
@@ -110,6 +198,9 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             self.dFx = 0.0
             self.Fz_mod = self.Fz          # Fx = F_press in Eqs. (18)-(27)
             self.slip_speed = abs(V)
-        self.Fz_joint = sum(fz)
+        total = 0.0   # in order, as analytic_step.c (sum() compensates from Python 3.12 on)
+        for v in fz:
+            total += v
+        self.Fz_joint = total
         self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
         self.Fz_3 = fz[2] if len(fz) > 2 else 0.0

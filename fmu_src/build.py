@@ -37,6 +37,9 @@ AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt 
 AOT_DIR = BUILD / "aot"
 BRIDGE = FMU_SRC / "fmi2bridge.py"     # the native layer's Python side, in every FMU
 NATIVE_LIB = BUILD / "native" / "fmi2_python.so"
+# the analytic FMU's compiled step (its fast path), into its resources/
+ANALYTIC_SRC = FMU_SRC / "native" / "analytic_step.c"
+ANALYTIC_LIB = BUILD / "native" / "_analytic_step.so"
 PLATFORM = "linux64"
 
 
@@ -44,6 +47,8 @@ def _sources(name):
     files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
     if name == "TripodRoller":
         files += list(AOT)
+    else:
+        files.append(ANALYTIC_SRC)
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
     return files
@@ -55,29 +60,45 @@ def _fmi_headers() -> Path:
     return Path(fmpy.__file__).parent / "c-code"
 
 
-def native_library(force=False) -> Path:
-    """build/native/fmi2_python.so, compiled from fmu_src/native/ when missing or stale.
-
-    Needs only a C compiler ($CC, else cc): the Python C API is bound at run time, so neither
-    the Python headers nor libpython are needed to build it."""
-    if (not force and NATIVE_LIB.exists()
-            and NATIVE_LIB.stat().st_mtime >= NATIVE_SRC.stat().st_mtime):
-        return NATIVE_LIB
+def _compile(src: Path, lib: Path, flags) -> Path:
+    """Compile the C file ``src`` into the shared library ``lib`` with $CC (else cc)."""
     if sys.platform != "linux":
-        raise RuntimeError(f"the FMUs' native layer builds on Linux only, not {sys.platform}")
-    NATIVE_LIB.parent.mkdir(parents=True, exist_ok=True)
+        raise RuntimeError(f"the FMUs' native code builds on Linux only, not {sys.platform}")
+    lib.parent.mkdir(parents=True, exist_ok=True)
     cc = os.environ.get("CC") or "cc"
     cmd = cc.split()[:1] + ["-std=c11", "-O2", "-g", "-fPIC", "-shared", "-fvisibility=hidden",
-                           "-Wall", "-Wextra", f"-I{_fmi_headers()}", str(NATIVE_SRC),
-                           "-o", str(NATIVE_LIB), "-ldl", "-lpthread", "-lm"]
+                           "-Wall", "-Wextra"] + list(flags) + [str(src), "-o", str(lib), "-lm"]
     try:
         p = subprocess.run(cmd, capture_output=True, text=True)
     except FileNotFoundError:
         raise RuntimeError(f"no C compiler '{cmd[0]}': install one (Debian: apt-get install "
                            "gcc) or set CC") from None
     if p.returncode != 0:
-        raise RuntimeError(f"compiling {NATIVE_SRC.name} failed:\n{p.stderr}")
-    return NATIVE_LIB
+        raise RuntimeError(f"compiling {src.name} failed:\n{p.stderr}")
+    return lib
+
+
+def _fresh(lib: Path, src: Path) -> bool:
+    return lib.exists() and lib.stat().st_mtime >= src.stat().st_mtime
+
+
+def native_library(force=False) -> Path:
+    """build/native/fmi2_python.so, compiled from fmu_src/native/ when missing or stale.
+
+    Needs only a C compiler ($CC, else cc): the Python C API is bound at run time, so neither
+    the Python headers nor libpython are needed to build it."""
+    if not force and _fresh(NATIVE_LIB, NATIVE_SRC):
+        return NATIVE_LIB
+    return _compile(NATIVE_SRC, NATIVE_LIB, [f"-I{_fmi_headers()}", "-ldl", "-lpthread"])
+
+
+def analytic_step_library(force=False) -> Path:
+    """build/native/_analytic_step.so (the analytic FMU's compiled step), when missing or stale.
+    No contraction into fused multiply-adds: the same bits as the Python step."""
+    if not force and _fresh(ANALYTIC_LIB, ANALYTIC_SRC):
+        return ANALYTIC_LIB
+    # visibility default: the slave looks its two functions up with ctypes
+    return _compile(ANALYTIC_SRC, ANALYTIC_LIB, ["-fvisibility=default", "-ffp-contract=off"])
 
 
 def prebuilt_kernel(force=False) -> tuple[Path, Path]:
@@ -211,6 +232,8 @@ def build(name="TripodRoller", force=False) -> Path:
     extra = ()
     if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
         extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
+    else:
+        extra = [(analytic_step_library(force), "resources/_analytic_step.so")]
     return package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
                    _units_and_ranges, extra)
 

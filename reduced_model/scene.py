@@ -7,6 +7,7 @@ which models use it.  The CLI options, the FMU variables and the docs are genera
 from __future__ import annotations
 
 import math
+import sys
 from dataclasses import dataclass, field
 
 DEG = math.pi / 180.0
@@ -172,6 +173,24 @@ def pressing_load(F_press: float, torque: float, s: float) -> float:
     """Pressing load per roller [N]: torque / (3 s) when a torque [N m] > 0 is given (it wins),
     else F_press.  s [m] is the pitch-circle radius."""
     return torque / (3.0 * s) if torque > 0 else F_press
+
+
+STEP_ROUNDING = 64 * sys.float_info.epsilon
+
+
+def same_step(dt, dt0, t):
+    """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
+    a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
+    Both FMUs then take the step dt0 (the contact model reuses dt0's operating point); the
+    native layer's fast path applies the same rule (fmu_src/native/fmi2_python.c), so the
+    compiled and the Python path take the same steps."""
+    return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
+
+
+def same_value(a, b):
+    """Whether input values a and b differ only by rounding (within 64 ulps of the larger): a
+    master's interpolation of a constant stretch of an input table moves its last bits."""
+    return abs(a - b) <= STEP_ROUNDING * max(abs(a), abs(b))
 
 
 _TRUE = {"1", "true", "yes", "on"}

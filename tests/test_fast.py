@@ -1,5 +1,6 @@
-"""The native layer's fast path (fmu_src/tripod_model/fast.py): steps at unchanged inputs run
-as one compiled call without entering Python.  What it must not change: every output, bit for
+"""The native layer's fast path (fmu_src/tripod_model/fast.py for the contact FMU,
+fmu_src/native/analytic_step.c for the analytic one): steps at unchanged inputs run as one
+compiled call without entering Python.  What it must not change: every output, bit for
 bit, against the same FMU stepping through Python (TRIPOD_FAST=0), also when the inputs change
 during the run (the fast path then hands back to Python and is offered again), and the step
 count the FMU logs at the end."""
@@ -19,9 +20,10 @@ from fmpy import simulate_fmu
 req = json.loads(sys.argv[1])
 logs = []
 inputs = None
-if req["ramp"]:   # theta steps from 10 to 12 deg at 0.05 s, back at 0.1 s: the fast path leaves and returns
+if req["ramp"]:   # "steps": theta steps from 10 to 12 deg at 0.05 s, back at 0.1 s: the fast path
+    # leaves and returns; "const": a table of 10 deg throughout
     t = np.array([0.0, 0.05 - 1e-9, 0.05, 0.1 - 1e-9, 0.1, 0.2])
-    th = np.radians([10, 10, 12, 12, 10, 10])
+    th = np.radians([10, 10, 12, 12, 10, 10] if req["ramp"] == "steps" else [10] * 6)
     inputs = np.array(list(zip(t, th)), dtype=[("time", float), ("theta", float)])
 r = simulate_fmu(req["fmu"], stop_time=0.2, output_interval=1e-4, start_values=req["sv"],
                  input=inputs, debug_logging=True,
@@ -33,9 +35,10 @@ print(json.dumps([m for m in logs if m.startswith("communication steps:")]))
 '''
 
 
-def _run(tmp_path, sv, fast, ramp=False):
+def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
     out = str(tmp_path / f"r{fast}.npy")
-    req = {"fmu": str(ensure_fmu("TripodRoller")), "sv": sv, "out": out, "ramp": ramp}
+    req = {"fmu": str(ensure_fmu(fmu)), "sv": sv, "out": out,
+           "ramp": "steps" if ramp is True else ramp}
     p = subprocess.run([sys.executable, "-c", _RUN, json.dumps(req)], capture_output=True,
                        text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
@@ -59,3 +62,29 @@ def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     # interpolation moves the inputs' last bits too: not counted here)
     if not ramp:
         assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
+
+
+@pytest.mark.parametrize("sv,ramp", [({}, False), ({"traverse": False, "n_rollers": 3}, False),
+                                     ({}, True)],
+                         ids=["traverse-table", "eqs18-27-three-rollers", "theta-steps"])
+def test_analytic_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
+    """The analytic FMU's compiled step (analytic_step.c) against its Python step: the table's
+    interpolation and Eqs. (18)-(27) alike, and across input changes."""
+    slow, _, slow_said, slow_steps = _run(tmp_path, sv, "0", ramp, "TripodRollerAnalytic")
+    fast, _, fast_said, steps = _run(tmp_path, sv, "1", ramp, "TripodRollerAnalytic")
+    assert (slow_said, fast_said) == (0, 1)
+    assert slow.shape == fast.shape and np.array_equal(slow, fast)
+    assert np.ptp(fast[:, 3]) > 0.1     # Fz (columns time, Fx, Fy, Fz, ...) moves
+    assert slow_steps == ["communication steps: 0 compiled, 2000 through Python"], slow_steps
+    if not ramp:
+        assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
+
+
+def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
+    """FMPy's interpolation of a constant stretch of an input table moves the input's last bits
+    (tests above: a quarter of the steps): the analytic FMU keeps its operating point then
+    (scene.same_value), so the run is bit for bit the run without an input table, instead of
+    re-deriving the traverse table (0.1 s) at every such step."""
+    plain, _, _, _ = _run(tmp_path, {}, "0", False, "TripodRollerAnalytic")
+    table, _, _, _ = _run(tmp_path, {}, "0", "const", "TripodRollerAnalytic")
+    assert plain.shape == table.shape and np.array_equal(plain, table)

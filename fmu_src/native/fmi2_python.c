@@ -674,7 +674,7 @@ static fmi2Status finish(Inst *c, fmi2Status status)
 
 /* Whether a step of h at time t is the step h0 up to the rounding a master's t_{k+1} - t_k
    carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, h0).  The model applies the same
-   rule (tripod_model/model.py, same_step), so both paths take the same steps. */
+   rule (reduced_model/scene.py, same_step), so both paths take the same steps. */
 static int same_step(double h, double h0, double t)
 {
     return fabs(h - h0) <= 64.0 * DBL_EPSILON * fmax(fabs(t), h0);

@@ -6,7 +6,6 @@ What the FMU slave adapts.  Problem (parameters), integrator (kernel.run_substep
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 
@@ -17,17 +16,7 @@ from reduced_model.sliding import amplitude_A, amplitude_B
 from . import hertz, layout as K, layout as NDL, native   # numba only when needed (_run)
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
-
-
-STEP_ROUNDING = 64 * sys.float_info.epsilon
-
-
-def same_step(dt, dt0, t):
-    """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
-    a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
-    Such a step reuses dt0's operating point; the native layer's fast path applies the same
-    rule (fmu_src/native/fmi2_python.c), so the two paths take the same steps."""
-    return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
+from reduced_model.scene import same_step
 
 
 class ContactModel:
