@@ -103,6 +103,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         for i, name in enumerate(f["names"]):
             self._fast_outputs[i] = out[name]
         self._fast_hs1 = self.model.rollers[0]._hs[1]
+        self._fast_model = self.model.rollers[0]   # the one roller the compiled step steps
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
@@ -114,8 +115,26 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         self.model.rollers[0].fast_synced(k, self._fast_dt, self._fast_hs1)
         self._steps[0] += k
         self._fast_hs1 = self.model.rollers[0]._hs[1]
-        for name, v in zip(self._fast_args["names"], self._fast_outputs):
-            setattr(self, name, float(v))
+        for name, v in zip(self._fast_args["names"], self._fast_outputs.tolist()):
+            setattr(self, name, v)
+
+    def _fast_inputs(self, values):
+        """The master set inputs (_INPUTS order) while the fast path ran; the native layer hands
+        them over before Python next sees the instance.  Take them as setReal would and, if
+        they are valid, set the operating point for the next compiled steps.  Returns whether
+        those may run (False: the step goes through Python, which reports a bad input)."""
+        for name, v in zip(_INPUTS, values):
+            setattr(self, name, v)
+        key = tuple(values)
+        try:   # the values that changed (the others were checked when they were set)
+            for name, value, old in zip(_INPUTS, key, self._checked or (None,) * 4):
+                if value != old:
+                    check_value(name, value)
+        except ValueError:
+            return False
+        self._checked = key
+        self._fast_model.fast_inputs(key[0], key[1], self.model.pressing(key[2], key[3]))
+        return True
 
     def _fast_failed(self, current_time, code):
         """A compiled step failed (2: a non-finite output; else an exception in it)."""

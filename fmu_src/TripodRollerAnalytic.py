@@ -166,6 +166,14 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         for name, v in zip(self._fast_names, self._fast_out):
             setattr(self, name, float(v))
 
+    def _fast_inputs(self, values):
+        """The master set inputs (_INPUTS order) while the fast path ran: take them as setReal
+        would.  New inputs need a new traverse table (0.1 s), so the step goes through Python
+        (False)."""
+        for name, v in zip(_INPUTS, values):
+            setattr(self, name, v)
+        return False
+
     def _fast_failed(self, current_time, code):
         """A compiled step failed (2: a non-finite output)."""
         why = "non-finite output" if code == 2 else f"the compiled step returned {code}"

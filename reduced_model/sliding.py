@@ -1,4 +1,6 @@
 """Sliding velocities of the roller on the groove, Eqs. (18)-(24) (small-angle forms)."""
+import math
+
 import numpy as np
 
 
@@ -8,8 +10,12 @@ def amplitude_A(s, omega, theta, pitch=True):
 
 
 def amplitude_B(r, omega, theta, roll=True):
-    """B = -r w (1 - cos theta) / cos theta [m/s], Eq. (20)/(24): sliding from rolling."""
-    return -r * omega * (1.0 - np.cos(theta)) / np.cos(theta) if roll else 0.0
+    """B = -r w (1 - cos theta) / cos theta [m/s], Eq. (20)/(24): sliding from rolling.
+    Scalars (math.cos: the contact FMU derives it at every input change of a master)."""
+    if not roll:
+        return 0.0
+    c = math.cos(theta)
+    return -r * omega * (1.0 - c) / c
 
 
 def groove_travel(x, s, theta):

@@ -25,6 +25,12 @@ if req["ramp"]:   # "steps": theta steps from 10 to 12 deg at 0.05 s, back at 0.
     t = np.array([0.0, 0.05 - 1e-9, 0.05, 0.1 - 1e-9, 0.1, 0.2])
     th = np.radians([10, 10, 12, 12, 10, 10] if req["ramp"] == "steps" else [10] * 6)
     inputs = np.array(list(zip(t, th)), dtype=[("time", float), ("theta", float)])
+    if req["ramp"] == "master":   # every input moves every step, as in a driveline run
+        t = np.array([0.0, 0.2])
+        inputs = np.array([(0.0, np.radians(10), 20 * np.pi, 1000.0),
+                           (0.2, np.radians(12), 22 * np.pi, 1100.0)],
+                          dtype=[("time", float), ("theta", float), ("omega", float),
+                                 ("F_press", float)])
 r = simulate_fmu(req["fmu"], stop_time=0.2, output_interval=1e-4, start_values=req["sv"],
                  input=inputs, debug_logging=True,
                  logger=lambda c, n, s, cat, msg: logs.append(msg.decode()))
@@ -47,8 +53,10 @@ def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
 
 
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"bearing": 1}, False),
-                                     ({"integrator": 1}, False), ({}, True)],
-                         ids=["default", "lumped", "integrator1", "theta-steps"])
+                                     ({"integrator": 1}, False), ({}, True), ({}, "master"),
+                                     ({"integrator": 1, "bearing": 1}, "master")],
+                         ids=["default", "lumped", "integrator1", "theta-steps", "master",
+                              "master-integrator1-lumped"])
 def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     slow, slow_log, slow_said, _ = _run(tmp_path, sv, "0", ramp)
     fast, fast_log, fast_said, steps = _run(tmp_path, sv, "1", ramp)
@@ -57,11 +65,10 @@ def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     assert np.ptp(fast[:, 3]) > 1.0          # Fz moves (not two runs of zeros)
     # the end-of-run log counts the compiled steps too: same steps, same time
     assert slow_log and slow_log == fast_log, (slow_log, fast_log)
-    # FMPy's step sizes t_{k+1} - t_k differ in their last bits: those are the same step, so
-    # at constant inputs only the first step goes through Python (with an input table FMPy's
-    # interpolation moves the inputs' last bits too: not counted here)
-    if not ramp:
-        assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
+    # FMPy's step sizes t_{k+1} - t_k differ in their last bits: those are the same step; new
+    # input values go to the compiled step too (the slave's _fast_inputs), so only the first
+    # step goes through Python, also when every input moves every step
+    assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
 
 
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"traverse": False, "n_rollers": 3}, False),
@@ -88,3 +95,42 @@ def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
     plain, _, _, _ = _run(tmp_path, {}, "0", False, "TripodRollerAnalytic")
     table, _, _, _ = _run(tmp_path, {}, "0", "const", "TripodRollerAnalytic")
     assert plain.shape == table.shape and np.array_equal(plain, table)
+
+
+_BAD = r'''
+import json, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
+vr = {v.name: v.valueReference for v in md.modelVariables}
+s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="bad")
+s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
+s.enterInitializationMode(); s.exitInitializationMode()
+dt = 1e-4
+for i in range(50):   # compiled after the first step
+    s.setReal([vr["theta"], vr["omega"]], [0.17 + 1e-5 * i, 62.8 + 1e-3 * i])
+    s.doStep(i * dt, dt)
+before = s.getReal([vr["Fz"], vr["Fx"]])
+s.setReal([vr["theta"]], [float(sys.argv[2])])
+try:
+    s.doStep(50 * dt, dt)
+    status = "OK"
+except Exception as e:
+    status = type(e).__name__
+after = s.getReal([vr["Fz"], vr["Fx"]])
+print(json.dumps({"status": status, "before": before, "after": after}))
+'''
+
+
+@pytest.mark.parametrize("value", ["1.0", "nan"])
+def test_bad_input_set_while_the_compiled_step_runs_is_reported(value):
+    """An input set out of its range while steps run compiled: the step is refused with a log
+    naming the input and its range, the outputs stay those of the last good step."""
+    p = subprocess.run([sys.executable, "-c", _BAD, str(ensure_fmu("TripodRoller")), value],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    assert r["status"] != "OK" and r["after"] == r["before"], r
+    assert "invalid input" in p.stdout and "theta" in p.stdout and "allowed range" in p.stdout, \
+        p.stdout[-2000:]

@@ -425,6 +425,9 @@ typedef struct {
     int *fast_out;                /* per value reference: its place in the outputs, or -1 */
     int *fast_in;                 /* per value reference: 1 if an input of the fast step */
     double *fast_in_value;        /* per value reference: that input's value */
+    long fast_in_vr[8];           /* the inputs' value references, in the slave's order */
+    int n_fast_in;
+    int fast_in_dirty;            /* inputs set to new values the slave has not taken yet */
 } Inst;
 
 typedef struct {
@@ -594,6 +597,8 @@ static void release_slave(Inst *c)
     c->fast = NULL;
     c->fast_fresh = 0;
     c->fast_pending = 0;
+    c->fast_in_dirty = 0;
+    c->n_fast_in = 0;
     free(c->fast_out);
     free(c->fast_in);
     free(c->fast_in_value);
@@ -680,28 +685,49 @@ static int same_step(double h, double h0, double t)
     return fabs(h - h0) <= 64.0 * DBL_EPSILON * fmax(fabs(t), h0);
 }
 
-/* Let the slave count the steps the fast path took before Python sees the instance again
-   (its time, step counters and output variables).  With the GIL. */
-static void fast_sync(Inst *c)
-{
-    if (c->fast_pending <= 0 || !c->slave) return;
-    PyObject *m = PyObject_GetAttrString(c->slave, "_fast_sync");
-    PyObject *r = m ? PyObject_CallFunction(m, "(l)", c->fast_pending) : NULL;
-    c->fast_pending = 0;
-    if (!r) {
-        char *why = take_exception(c);
-        logf_(c, fmi2Error, "counting the compiled steps: %s", why);
-        free(why);
-    }
-    xdecref(r);
-    xdecref(m);
-}
-
 /* No fast step until the slave offers one again (inputs set, state restored, reset). */
 static void fast_off(Inst *c)
 {
     c->fast = NULL;
     c->fast_fresh = 0;
+}
+
+/* Before Python sees the instance again: let the slave count the steps the fast path took
+   (its time, step counters and output variables), then hand it the inputs set since
+   (_fast_inputs: it takes them as a setReal would, and says whether the compiled step goes on
+   at them).  The steps come first: they ran at the old inputs.  With the GIL. */
+static void fast_sync(Inst *c)
+{
+    if (!c->slave) return;
+    if (c->fast_pending > 0) {
+        PyObject *m = PyObject_GetAttrString(c->slave, "_fast_sync");
+        PyObject *r = m ? PyObject_CallFunction(m, "(l)", c->fast_pending) : NULL;
+        c->fast_pending = 0;
+        if (!r) {
+            char *why = take_exception(c);
+            logf_(c, fmi2Error, "counting the compiled steps: %s", why);
+            free(why);
+        }
+        xdecref(r);
+        xdecref(m);
+    }
+    if (c->fast_in_dirty) {
+        c->fast_in_dirty = 0;
+        PyObject *v = PyList_New(c->n_fast_in);
+        for (int i = 0; v && i < c->n_fast_in; ++i)
+            PyList_SetItem(v, i, PyFloat_FromDouble(c->fast_in_value[c->fast_in_vr[i]]));
+        PyObject *m = v ? PyObject_GetAttrString(c->slave, "_fast_inputs") : NULL;
+        PyObject *r = m ? PyObject_CallFunction(m, "(O)", v) : NULL;
+        if (!r) {
+            char *why = take_exception(c);
+            logf_(c, fmi2Error, "setting the inputs: %s", why);
+            free(why);
+        }
+        if (!r || PyObject_IsTrue(r) <= 0) fast_off(c);   /* the next step goes through Python */
+        xdecref(r);
+        xdecref(m);
+        xdecref(v);
+    }
 }
 
 /* After a step through Python: take the fast step the slave offers, if any.  The slave's
@@ -736,11 +762,14 @@ static void fast_take(Inst *c)
             if (vr >= 0 && vr < c->n_vars) c->fast_out[vr] = (int)i;
         }
         for (long v = 0; v < c->n_vars; ++v) c->fast_in[v] = 0;
+        c->n_fast_in = 0;
         for (ssize_t i = 0; ok && i < PyList_Size(it[3]); ++i) {
             long vr = PyLong_AsLong(PyList_GetItem(it[3], i));
-            if (vr >= 0 && vr < c->n_vars) {
+            ok = vr >= 0 && vr < c->n_vars && i < 8;
+            if (ok) {
                 c->fast_in[vr] = 1;
                 c->fast_in_value[vr] = PyFloat_AsDouble(PyList_GetItem(it[4], i));
+                c->fast_in_vr[c->n_fast_in++] = vr;
             }
         }
         for (int i = 0; ok && i < FAST_ARGS; ++i)
@@ -1086,12 +1115,21 @@ static fmi2Status set_values(Inst *c, int kind, const fmi2ValueReference vr[], s
         return finish(c, fmi2Error);
     }
     if (kind == REAL && c->fast && c->phase == STEP_COMPLETE) {
-        /* a master that sets every input each step: unchanged values need no Python */
+        /* a master that sets inputs each step (a driveline co-simulation): no Python here;
+           new values go to the slave before Python next sees the instance (fast_sync: at the
+           next step, which then runs compiled at them if the slave takes them) */
         size_t i = 0;
-        while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_in[vr[i]] &&
-               c->fast_in_value[vr[i]] == ((const fmi2Real *)values)[i])
-            ++i;
-        if (i == nvr) return fmi2OK;
+        while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_in[vr[i]]) ++i;
+        if (i == nvr) {
+            for (i = 0; i < nvr; ++i) {
+                double x = ((const fmi2Real *)values)[i];
+                if (c->fast_in_value[vr[i]] != x) {
+                    c->fast_in_value[vr[i]] = x;
+                    c->fast_in_dirty = 1;
+                }
+            }
+            return fmi2OK;
+        }
     }
     fast_off(c);
     fmi2Status st = fmi2OK;
@@ -1346,6 +1384,11 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
+    if (c->fast && c->fast_in_dirty &&
+        same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
+        GIL_BEGIN                     /* new inputs: the slave takes them (or turns us off) */
+        GIL_END
+    }
     if (c->fast && same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
         double **p = c->fast_p;
         int32_t ok = c->fast(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10],
@@ -1356,7 +1399,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
             c->last_ok_time = currentCommunicationPoint + communicationStepSize;
             if (c->fast_said) return fmi2OK;
             c->fast_said = 1;
-            logf_(c, fmi2OK, "fmi2DoStep: from t = %g s, steps at unchanged inputs run "
+            logf_(c, fmi2OK, "fmi2DoStep: from t = %g s, steps of this size run "
                   "compiled, without entering Python", currentCommunicationPoint);
             return finish(c, fmi2OK);
         }

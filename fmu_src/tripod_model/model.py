@@ -93,6 +93,7 @@ class ContactModel:
         self._started = False
         self._key = None   # inputs of the last step, and what was derived from them
         self._op = None
+        self._amp_key = None   # (theta, omega) of self._amp (_amplitudes)
 
     def _needle_work(self, C_line):
         """Parameter vector and work arrays of the needle-resolved bearing (needles.py)."""
@@ -144,13 +145,24 @@ class ContactModel:
         return min(p["d_needle"], 2 * Rp * math.sin(math.pi / n) - p["needle_circ_clearance"] / n)
 
     # --- inputs that set the operating point ---
+    def _amplitudes(self, theta, omega, pitch=True, roll=True):
+        """(A, B) [m/s] of Eqs. (19)-(20) at these inputs (0 for a motion switched off), kept
+        for the last inputs: v_st and both substep bounds need them, at every input change of
+        a master (a driveline co-simulation sets new inputs every step)."""
+        if self._amp_key != (theta, omega):
+            p = self.p
+            self._amp = (amplitude_A(p["s"], omega, theta, True),
+                         amplitude_B(p["r_roller"], omega, theta, True))
+            self._amp_key = (theta, omega)
+        A, B = self._amp
+        return (A if pitch else 0.0), (B if roll else 0.0)
+
     def v_st(self, theta, omega):
         """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2)/4 (model.md)."""
         p = self.p
         if p["v_st"] > 0:
             return p["v_st"]
-        A = amplitude_A(p["s"], omega, theta, True)
-        B = amplitude_B(p["r_roller"], omega, theta, True)
+        A, B = self._amplitudes(theta, omega)
         # floor: a joint at rest or straight still needs a finite regularisation
         return max(v_st_auto(A, B), 1e-6)
 
@@ -218,10 +230,8 @@ class ContactModel:
         h = 1e-4
         if omega > 0:
             h = min(h, 2 * math.pi / omega / 2000.0)
-            A = amplitude_A(p["s"], omega, theta, p["pitch"])
-            B = amplitude_B(p["r_roller"], omega, theta, p["roll"])
-            R = math.hypot(A, B)
-            if R > 0 and stiff:
+            R = math.hypot(*self._amplitudes(theta, omega, p["pitch"], p["roll"])) if stiff else 0
+            if R > 0:
                 h = min(h, v_st / (2 * omega * R) / 80.0)
         if stiff and p["traverse"] and F_press > 0 and p["friction_groove"] and p["mu_groove"] > 0:
             mu = p["mu_groove"]
@@ -251,8 +261,7 @@ class ContactModel:
         h = 1e-4
         if omega > 0:
             h = min(h, 2 * math.pi / omega / 2000.0)
-            R = math.hypot(amplitude_A(p["s"], omega, theta, p["pitch"]),
-                           amplitude_B(p["r_roller"], omega, theta, p["roll"]))
+            R = math.hypot(*self._amplitudes(theta, omega, p["pitch"], p["roll"]))
             if R > 0:
                 h = min(h, v_st / (2 * omega * R) / 20.0)
         if F_press > 0:
@@ -328,10 +337,9 @@ class ContactModel:
     def _operating_point(self, dt, theta, omega, F_press):
         """(v_st [m/s], substeps n, substep [s], pressing offset [m]) of a step of dt [s] at
         these inputs, re-derived only when they change; sets P's v_st and largest substep."""
+        if self._key is not None and same_step(dt, self._key[0], self.time):
+            dt = self._key[0]   # the same step, up to the rounding of the master's times
         key = (dt, theta, omega, F_press)
-        if (self._key is not None and key[1:] == self._key[1:]
-                and same_step(dt, self._key[0], self.time)):
-            key = self._key    # the same step, up to the rounding of the master's times
         if key != self._key:   # operating point changed: re-derive v_st, substep, offset
             vst = self.v_st(theta, omega)
             h = self.substep(theta, omega, F_press, vst)
@@ -343,6 +351,12 @@ class ContactModel:
             self._key = key
         self.P[K.P_VST] = self._op[0]
         return self._op
+
+    def fast_inputs(self, theta, omega, F_press):
+        """New inputs for fast.step's next steps (of step_dt): the operating point step() would
+        set at them (the native layer then runs the substeps)."""
+        _, n, h, x0 = self._operating_point(self.step_dt, theta, omega, F_press)
+        self._OP[:] = (theta, omega, F_press, x0, h, n)
 
     @property
     def step_dt(self):
