@@ -27,6 +27,7 @@ _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
 FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
+TABLES_WARN = 10   # traverse tables derived in one run before the log says what they cost
 
 
 def _fast_library(resources):
@@ -72,6 +73,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._dt = None
         self._fast = None
         self._steps = [0, 0]       # communication steps compiled, through Python (the log)
+        self._tables = 0           # traverse tables derived (the log)
         self._prepare()
         self._write_outputs()   # the outputs at the start time, not their declared zeros
 
@@ -93,6 +95,13 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
                 pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0:
             self._table = Traverse(sc)
             self.regime = REGIME_CODES.index(self._table.regime())
+            self._tables += 1
+            if self._tables == TABLES_WARN:
+                self.log(f"the inputs changed {TABLES_WARN - 1} times: each change derives a "
+                         "new traverse table (about 0.1 s); for a master that moves the inputs "
+                         "every step, traverse = false (Eqs. 18-27, microseconds a change) or "
+                         "the contact FMU (about 20 us a change) is faster",
+                         Fmi2Status.warning)
         else:
             self.regime = 0
         self._key = key
@@ -112,7 +121,8 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
     def terminate(self):
         if self._scene is not None:   # how the steps ran, for a user who checks
             self.log(f"communication steps: {self._steps[0]} compiled, {self._steps[1]} "
-                     "through Python", Fmi2Status.ok, "logAll")
+                     f"through Python; traverse tables derived: {self._tables}",
+                     Fmi2Status.ok, "logAll")
 
     def _advance(self, current_time, step_size):
         self._fast = None

@@ -82,9 +82,12 @@ def test_analytic_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     assert (slow_said, fast_said) == (0, 1)
     assert slow.shape == fast.shape and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 3]) > 0.1     # Fz (columns time, Fx, Fy, Fz, ...) moves
-    assert slow_steps == ["communication steps: 0 compiled, 2000 through Python"], slow_steps
+    tables = 0 if sv.get("traverse") is False else 3 if ramp else 1
+    tail = f"; traverse tables derived: {tables}"
+    assert slow_steps == ["communication steps: 0 compiled, 2000 through Python" + tail], \
+        slow_steps
     if not ramp:
-        assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
+        assert steps == ["communication steps: 1999 compiled, 1 through Python" + tail], steps
 
 
 def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
@@ -134,3 +137,31 @@ def test_bad_input_set_while_the_compiled_step_runs_is_reported(value):
     assert r["status"] != "OK" and r["after"] == r["before"], r
     assert "invalid input" in p.stdout and "theta" in p.stdout and "allowed range" in p.stdout, \
         p.stdout[-2000:]
+
+
+_MOVING = r'''
+import sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
+vr = {v.name: v.valueReference for v in md.modelVariables}
+s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="moving")
+s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
+s.enterInitializationMode(); s.exitInitializationMode()
+for i in range(12):   # a master moving the whirl speed every step
+    s.setReal([vr["omega"]], [62.8 * (1.0 + 1e-3 * (i + 1))])
+    s.doStep(i * 1e-4, 1e-4)
+s.terminate(); s.freeInstance()
+'''
+
+
+def test_analytic_says_what_moving_inputs_cost():
+    """Each input change costs the analytic FMU a new traverse table (0.1 s): after 9 changes
+    its log says so once, with the faster choices, and counts the tables at the end."""
+    p = subprocess.run([sys.executable, "-c", _MOVING, str(ensure_fmu("TripodRollerAnalytic"))],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    assert p.stdout.count("each change derives a new traverse table") == 1, p.stdout[-3000:]
+    assert "traverse = false" in p.stdout
+    assert "traverse tables derived: 13" in p.stdout, p.stdout[-2000:]
