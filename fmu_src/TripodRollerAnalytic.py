@@ -31,8 +31,9 @@ TABLES_WARN = 10   # traverse tables derived in one run before the log says what
 
 
 def _fast_library(resources):
-    """(step function's address, OP names, output names) of the compiled step, or None
-    (not built into this FMU, or TRIPOD_FAST=0 turns it off, for comparison)."""
+    """(library, step function's address, OP names, output names) of the compiled step, or
+    None (not built into this FMU, or TRIPOD_FAST=0 turns it off, for comparison).  The slave
+    keeps the library object: the address is valid while it is loaded."""
     if os.environ.get("TRIPOD_FAST", "1") == "0" or not resources:
         return None
     try:
@@ -42,7 +43,7 @@ def _fast_library(resources):
     except (OSError, AttributeError):
         return None
     op, out = (part.split() for part in layout.decode().split("|"))
-    return address, op, out
+    return lib, address, op, out
 
 
 class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
@@ -147,7 +148,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         if self._fast_lib is None or len(self._x) > 3:
             return
         import numpy as np
-        address, op_names, out_names = self._fast_lib
+        _, address, op_names, out_names = self._fast_lib
         if self._fast_table is not self._table:    # the table's rows, once per operating point
             self._fast_table = self._table
             self._fast_rows = np.array(self._table._rows if self._table is not None
