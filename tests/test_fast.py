@@ -100,16 +100,20 @@ def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
     assert plain.shape == table.shape and np.array_equal(plain, table)
 
 
-_BAD = r'''
+# an instance of the FMU at sys.argv[1], initialised, its log on stdout
+_SLAVE = r'''
 import json, sys
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
 vr = {v.name: v.valueReference for v in md.modelVariables}
 s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
-              instanceName="bad")
+              instanceName="test")
 s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
 s.enterInitializationMode(); s.exitInitializationMode()
+'''
+
+_BAD = _SLAVE + r'''
 dt = 1e-4
 for i in range(50):   # compiled after the first step
     s.setReal([vr["theta"], vr["omega"]], [0.17 + 1e-5 * i, 62.8 + 1e-3 * i])
@@ -139,16 +143,7 @@ def test_bad_input_set_while_the_compiled_step_runs_is_reported(value):
         p.stdout[-2000:]
 
 
-_MOVING = r'''
-import sys
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
-md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
-vr = {v.name: v.valueReference for v in md.modelVariables}
-s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
-              instanceName="moving")
-s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
-s.enterInitializationMode(); s.exitInitializationMode()
+_MOVING = _SLAVE + r'''
 for i in range(12):   # a master moving the whirl speed every step
     s.setReal([vr["omega"]], [62.8 * (1.0 + 1e-3 * (i + 1))])
     s.doStep(i * 1e-4, 1e-4)
