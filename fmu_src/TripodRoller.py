@@ -12,7 +12,7 @@ from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from fmi2bridge import requirements
-from reduced_model.scene import check_value
+from reduced_model.scene import BY_NAME, check_value
 from slavekit import Guarded, PickleState, register_table
 from tripod_model import native
 from tripod_model.model import JointModel
@@ -86,11 +86,24 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         else:
             return None
         import numpy as np
+        from tripod_model import layout as L
         from tripod_model.layout import N_OUT, OUTPUT_NAMES
         vr = {v.name: ref for ref, v in self.vars.items()}
         self._fast_outputs = np.zeros(N_OUT)
         arrays = arrays[:3] + (self._fast_outputs,) + arrays[3:]
+        # where each input goes (the model's OP: fast.step derives its operating point) and
+        # its allowed range, for the native layer to take a master's new values without Python
+        OP = self.model.rollers[0]._OP
+        slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ}
+        in_slots = []
+        for name in _INPUTS:
+            p = BY_NAME[name]
+            in_slots.append((OP.ctypes.data + OP.itemsize * slots[name],
+                             -math.inf if p.lo is None else float(p.lo),
+                             math.inf if p.hi is None else float(p.hi),
+                             int(p.lo_open), int(p.hi_open)))
         return {"address": address, "addresses": [a.ctypes.data for a in arrays],
+                "in_slots": in_slots,
                 "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
                 "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
 
@@ -103,12 +116,11 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         for i, name in enumerate(f["names"]):
             self._fast_outputs[i] = out[name]
         self._fast_hs1 = self.model.rollers[0]._hs[1]
-        self._fast_model = self.model.rollers[0]   # the one roller the compiled step steps
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
         self._fast = (f["address"], self._fast_dt, f["out_vrs"], f["in_vrs"],
-                      [float(getattr(self, n)) for n in _INPUTS], f["addresses"])
+                      [float(getattr(self, n)) for n in _INPUTS], f["addresses"], f["in_slots"])
 
     def _fast_sync(self, k):
         """The native layer took k compiled steps: count them, take their outputs."""
@@ -119,21 +131,13 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             setattr(self, name, v)
 
     def _fast_inputs(self, values):
-        """The master set inputs (_INPUTS order) while the fast path ran; the native layer hands
-        them over before Python next sees the instance.  Take them as setReal would and, if
-        they are valid, set the operating point for the next compiled steps.  Returns whether
-        those may run (False: the step goes through Python, which reports a bad input)."""
+        """The master set inputs (_INPUTS order) while the fast path ran: the native layer
+        checked them against their ranges (_fast's last item) and wrote them where the compiled
+        step takes them (the model's OP); it hands them over before Python next sees the
+        instance, so the input variables are what a setReal would have made them."""
         for name, v in zip(_INPUTS, values):
             setattr(self, name, v)
-        key = tuple(values)
-        try:   # the values that changed (the others were checked when they were set)
-            for name, value, old in zip(_INPUTS, key, self._checked or (None,) * 4):
-                if value != old:
-                    check_value(name, value)
-        except ValueError:
-            return False
-        self._checked = key
-        self._fast_model.fast_inputs(key[0], key[1], self.model.pressing(key[2], key[3]))
+        self._checked = tuple(values)
         return True
 
     def _fast_failed(self, current_time, code):

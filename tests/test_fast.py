@@ -25,6 +25,8 @@ if req["ramp"]:   # "steps": theta steps from 10 to 12 deg at 0.05 s, back at 0.
     t = np.array([0.0, 0.05 - 1e-9, 0.05, 0.1 - 1e-9, 0.1, 0.2])
     th = np.radians([10, 10, 12, 12, 10, 10] if req["ramp"] == "steps" else [10] * 6)
     inputs = np.array(list(zip(t, th)), dtype=[("time", float), ("theta", float)])
+    if req["ramp"] == "master-torque":   # the transmitted torque moves every step
+        inputs = np.array([(0.0, 60.0), (0.2, 66.0)], dtype=[("time", float), ("torque", float)])
     if req["ramp"] == "master":   # every input moves every step, as in a driveline run
         t = np.array([0.0, 0.2])
         inputs = np.array([(0.0, np.radians(10), 20 * np.pi, 1000.0),
@@ -54,9 +56,10 @@ def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
 
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"bearing": 1}, False),
                                      ({"integrator": 1}, False), ({}, True), ({}, "master"),
-                                     ({"integrator": 1, "bearing": 1}, "master")],
+                                     ({"integrator": 1, "bearing": 1}, "master"),
+                                     ({}, "master-torque")],
                          ids=["default", "lumped", "integrator1", "theta-steps", "master",
-                              "master-integrator1-lumped"])
+                              "master-integrator1-lumped", "master-torque"])
 def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     slow, slow_log, slow_said, _ = _run(tmp_path, sv, "0", ramp)
     fast, fast_log, fast_said, steps = _run(tmp_path, sv, "1", ramp)

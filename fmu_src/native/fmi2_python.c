@@ -79,6 +79,7 @@ typedef struct PyTS PyThreadState;
     X(int, PyList_Insert, (PyObject *, ssize_t, PyObject *))                                  \
     X(int, PySequence_Contains, (PyObject *, PyObject *))                                     \
     X(PyObject *, PySequence_GetItem, (PyObject *, ssize_t))                                  \
+    X(ssize_t, PySequence_Size, (PyObject *))                                                 \
     X(PyObject *, PyBytes_FromStringAndSize, (const char *, ssize_t))                         \
     X(int, PyBytes_AsStringAndSize, (PyObject *, char **, ssize_t *))                         \
     X(PyObject *, PyErr_Occurred, (void))                                                     \
@@ -423,11 +424,15 @@ typedef struct {
     int fast_said;                /* the log has said once that the fast path runs */
     long fast_pending;            /* fast steps the slave has not counted yet */
     int *fast_out;                /* per value reference: its place in the outputs, or -1 */
-    int *fast_in;                 /* per value reference: 1 if an input of the fast step */
+    int *fast_in;                 /* per value reference: 1 + its place among the inputs, or 0 */
     double *fast_in_value;        /* per value reference: that input's value */
     long fast_in_vr[8];           /* the inputs' value references, in the slave's order */
+    double *fast_in_slot[8];      /* where the compiled step takes each (NULL: the slave) */
+    double fast_in_lo[8], fast_in_hi[8];   /* its allowed range */
+    int fast_in_lo_open[8], fast_in_hi_open[8];
     int n_fast_in;
-    int fast_in_dirty;            /* inputs set to new values the slave has not taken yet */
+    int fast_in_dirty;            /* inputs set to new values the slave has not seen yet */
+    int fast_in_for_slave;        /* ... of which some only the slave can take (no slot) */
 } Inst;
 
 typedef struct {
@@ -598,6 +603,7 @@ static void release_slave(Inst *c)
     c->fast_fresh = 0;
     c->fast_pending = 0;
     c->fast_in_dirty = 0;
+    c->fast_in_for_slave = 0;
     c->n_fast_in = 0;
     free(c->fast_out);
     free(c->fast_in);
@@ -685,6 +691,18 @@ static int same_step(double h, double h0, double t)
     return fabs(h - h0) <= 64.0 * DBL_EPSILON * fmax(fabs(t), h0);
 }
 
+/* Whether x is a value the k-th input of the fast step may take (its range, as the slave's
+   check_value: finite, within [lo, hi] or with an open end excluded).  Without a slot to
+   write it to, the slave checks it. */
+static int fast_in_range(const Inst *c, int k, double x)
+{
+    if (!c->fast_in_slot[k]) return 1;
+    if (!isfinite(x)) return 0;
+    if (c->fast_in_lo_open[k] ? x <= c->fast_in_lo[k] : x < c->fast_in_lo[k]) return 0;
+    if (c->fast_in_hi_open[k] ? x >= c->fast_in_hi[k] : x > c->fast_in_hi[k]) return 0;
+    return 1;
+}
+
 /* No fast step until the slave offers one again (inputs set, state restored, reset). */
 static void fast_off(Inst *c)
 {
@@ -713,6 +731,7 @@ static void fast_sync(Inst *c)
     }
     if (c->fast_in_dirty) {
         c->fast_in_dirty = 0;
+        c->fast_in_for_slave = 0;
         PyObject *v = PyList_New(c->n_fast_in);
         for (int i = 0; v && i < c->n_fast_in; ++i)
             PyList_SetItem(v, i, PyFloat_FromDouble(c->fast_in_value[c->fast_in_vr[i]]));
@@ -732,7 +751,8 @@ static void fast_sync(Inst *c)
 
 /* After a step through Python: take the fast step the slave offers, if any.  The slave's
    _fast is None or (address, step size, output value references, input value references,
-   their values, the FAST_ARGS array addresses).  With the GIL. */
+   their values, the FAST_ARGS array addresses[, per input (address where the compiled step
+   takes it, lowest, highest value, lowest excluded, highest excluded)]).  With the GIL. */
 static void fast_take(Inst *c)
 {
     fast_off(c);
@@ -748,8 +768,9 @@ static void fast_take(Inst *c)
     if (!c->fast_out) c->fast_out = malloc((size_t)c->n_vars * sizeof *c->fast_out);
     if (!c->fast_in) c->fast_in = calloc((size_t)c->n_vars, sizeof *c->fast_in);
     if (!c->fast_in_value) c->fast_in_value = calloc((size_t)c->n_vars, sizeof(double));
-    PyObject *it[6] = {NULL};
-    for (int i = 0; i < 6; ++i) it[i] = PySequence_GetItem(f, i);
+    PyObject *it[7] = {NULL};
+    ssize_t n_items = PySequence_Size(f);
+    for (int i = 0; i < 7 && i < n_items; ++i) it[i] = PySequence_GetItem(f, i);
     int ok = c->fast_out && c->fast_in && c->fast_in_value && it[0] && it[1] && it[2] &&
              it[3] && it[4] && it[5];
     FastStep fn = NULL;
@@ -767,16 +788,32 @@ static void fast_take(Inst *c)
             long vr = PyLong_AsLong(PyList_GetItem(it[3], i));
             ok = vr >= 0 && vr < c->n_vars && i < 8;
             if (ok) {
-                c->fast_in[vr] = 1;
+                c->fast_in[vr] = (int)i + 1;
                 c->fast_in_value[vr] = PyFloat_AsDouble(PyList_GetItem(it[4], i));
                 c->fast_in_vr[c->n_fast_in++] = vr;
+                c->fast_in_slot[i] = NULL;
+                PyObject *t = it[6] ? PySequence_GetItem(it[6], i) : NULL;
+                if (t) {
+                    PyObject *e[5];
+                    for (int j = 0; j < 5; ++j) e[j] = PySequence_GetItem(t, j);
+                    ok = e[0] && e[1] && e[2] && e[3] && e[4];
+                    if (ok) {
+                        c->fast_in_slot[i] = (double *)(intptr_t)PyLong_AsLong(e[0]);
+                        c->fast_in_lo[i] = PyFloat_AsDouble(e[1]);
+                        c->fast_in_hi[i] = PyFloat_AsDouble(e[2]);
+                        c->fast_in_lo_open[i] = (int)PyLong_AsLong(e[3]);
+                        c->fast_in_hi_open[i] = (int)PyLong_AsLong(e[4]);
+                    }
+                    for (int j = 0; j < 5; ++j) xdecref(e[j]);
+                    Py_DecRef(t);
+                }
             }
         }
         for (int i = 0; ok && i < FAST_ARGS; ++i)
             c->fast_p[i] = (double *)(intptr_t)PyLong_AsLong(PyList_GetItem(it[5], i));
         ok = !PyErr_Occurred() && fn;
     }
-    for (int i = 0; i < 6; ++i) xdecref(it[i]);
+    for (int i = 0; i < 7; ++i) xdecref(it[i]);
     Py_DecRef(f);
     if (!ok) {
         PyErr_Clear();
@@ -1115,17 +1152,25 @@ static fmi2Status set_values(Inst *c, int kind, const fmi2ValueReference vr[], s
         return finish(c, fmi2Error);
     }
     if (kind == REAL && c->fast && c->phase == STEP_COMPLETE) {
-        /* a master that sets inputs each step (a driveline co-simulation): no Python here;
-           new values go to the slave before Python next sees the instance (fast_sync: at the
-           next step, which then runs compiled at them if the slave takes them) */
+        /* a master that sets inputs each step (a driveline co-simulation): no Python here.
+           A new value in range goes where the compiled step reads it (its slot; the step
+           derives its operating point), and to the slave's variables when Python next sees
+           the instance (fast_sync); an input without a slot goes to the slave before the next
+           step, which runs compiled if the slave takes it. */
         size_t i = 0;
-        while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_in[vr[i]]) ++i;
-        if (i == nvr) {
+        int valid = 1;
+        for (; i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_in[vr[i]]; ++i)
+            valid = valid && fast_in_range(c, c->fast_in[vr[i]] - 1,
+                                           ((const fmi2Real *)values)[i]);
+        if (i == nvr && valid) {       /* else Python takes them and a step refuses them */
             for (i = 0; i < nvr; ++i) {
                 double x = ((const fmi2Real *)values)[i];
+                int k = c->fast_in[vr[i]] - 1;
                 if (c->fast_in_value[vr[i]] != x) {
                     c->fast_in_value[vr[i]] = x;
                     c->fast_in_dirty = 1;
+                    if (c->fast_in_slot[k]) *c->fast_in_slot[k] = x;
+                    else c->fast_in_for_slave = 1;
                 }
             }
             return fmi2OK;
@@ -1384,7 +1429,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
-    if (c->fast && c->fast_in_dirty &&
+    if (c->fast && c->fast_in_for_slave &&
         same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
         GIL_BEGIN                     /* new inputs: the slave takes them (or turns us off) */
         GIL_END

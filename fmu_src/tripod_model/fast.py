@@ -14,8 +14,8 @@ from numba import carray, cfunc, types
 from . import kernel as K
 from .jit import njit
 
-from .layout import (OP_F, OP_H, OP_LEN, OP_N, OP_THETA, OP_W, OP_X0,  # noqa: F401
-                     N_OUT, OUTPUT_NAMES)
+from .layout import (OP_F, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_THETA, OP_W,  # noqa: F401
+                     OP_X0, N_OUT, OUTPUT_NAMES)
 
 _d = types.CPointer(types.float64)
 SIGNATURE = types.int32(*([_d] * 14))
@@ -40,14 +40,16 @@ def outputs_into(o, F_press, dst):
 
 @cfunc(SIGNATURE, nopython=True, cache=True)
 def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
-    """One communication step at the operating point OP; 1: outputs written to OUT, 2: a
-    non-finite output (nothing written; the state has moved, as in the Python step)."""
+    """One communication step at the inputs in OP (their operating point derived again when
+    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output (nothing
+    written; the state has moved, as in the Python step)."""
     Y = carray(pY, (K.Y_LEN,))
     P = carray(pP, (K.P_LEN,))
     OP = carray(pOP, (OP_LEN,))
     out = carray(pout, (K.O_LEN,))
+    K.derive_op(P, OP)
     K.run_substeps(Y, P, OP[OP_THETA], OP[OP_W], OP[OP_F], OP[OP_X0], OP[OP_H],
-                   int(OP[OP_N]), out, carray(pL, (17,)), carray(pres, (19,)),
+                   0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, carray(pL, (17,)), carray(pres, (19,)),
                    carray(pY1, (K.Y_LEN,)), carray(pY2, (K.Y_LEN,)),
                    carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)), carray(pb, (K.NV,)),
                    None, carray(phs, (5 + K.NV,)), carray(pGW, (K.NV + 8, K.NV)))

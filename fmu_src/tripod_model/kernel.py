@@ -19,6 +19,21 @@ from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
     O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN,
     W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
 
+from . import oppoint
+
+
+def _compile_oppoint():
+    """numba versions of oppoint's functions in place of the plain ones, so that derive calls
+    compiled callees; the model's Python then calls them too (numba is loaded anyway)."""
+    for name in oppoint.FUNCTIONS:
+        f = getattr(oppoint, name)
+        if not hasattr(f, "py_func"):
+            setattr(oppoint, name, njit(f))
+
+
+_compile_oppoint()
+derive_op = oppoint.derive   # the operating point at OP's inputs (oppoint.derive)
+
 HX = 2e-4   # whirl-angle step for finite-difference derivatives of the driving motions [rad]
 
 
@@ -801,6 +816,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
                 Y[i] = 2.0 * Y[i] - Y1[i]
         else:
             substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
+        hs[1] += 1.0   # substeps taken, as the adaptive ones count theirs
     # outputs at the end of the step (forces on the groove = minus those on the roller)
     line_kinematics(Y[Y_X], w, theta, P, L)
     om = Y[Y_OM]

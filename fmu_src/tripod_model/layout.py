@@ -5,7 +5,9 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN) = range(32)
+ P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_LEN) = range(34)
+# P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
+# what the operating point derived from them (oppoint.py)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
 # radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
@@ -29,8 +31,11 @@ N_F = 11   # floats per needle in the state vector
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
 # --- the communication step as a C function (fast.py) ---
-# the operating point it runs at, written by ContactModel.step
-(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_LEN) = range(7)
+# the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque and the
+# step dt; what they set (pressing load per roller, pressing offset, substep and count); the
+# inputs it was derived at (OP_KEY: five slots); OP_NOSTEP > 0: outputs only, no substep
+(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_KEY) = range(11)
+OP_LEN = OP_KEY + 5
 OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
                 "roller_spin", "Fz_joint", "Fz_2", "Fz_3")
 N_OUT = len(OUTPUT_NAMES)

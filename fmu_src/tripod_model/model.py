@@ -10,10 +10,8 @@ import math
 import numpy as np
 
 from reduced_model import scene as scene_mod
-from reduced_model.friction import v_st_auto
-from reduced_model.sliding import amplitude_A, amplitude_B
 
-from . import hertz, layout as K, layout as NDL, native   # numba only when needed (_run)
+from . import hertz, layout as K, layout as NDL, native, oppoint   # numba only when needed
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.scene import same_step
@@ -67,6 +65,8 @@ class ContactModel:
                                      + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
         P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == 2 else 1e-3)
+        P[K.P_VST0] = p["v_st"]
+        P[K.P_HSUB] = p["max_substep"]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
         # None unless the needles are resolved: the kernel is then compiled without them
@@ -87,13 +87,12 @@ class ContactModel:
         self._GW = np.zeros((K.NV + 8, K.NV))   # generalized-alpha work array
         self.time = 0.0
         self.substeps = 0
-        self._OP = np.zeros(6)     # the operating point of the last step (fast.OP_*)
+        self._OP = np.zeros(K.OP_LEN)   # inputs and operating point of a step (oppoint.py)
+        self._OP[K.OP_KEY] = np.nan      # none derived yet
         self._addresses = None     # of the arrays the prebuilt kernel steps (native.py)
         self._fout = np.zeros(K.N_OUT)   # its output slot for the FMU (unused here)
         self._started = False
-        self._key = None   # inputs of the last step, and what was derived from them
-        self._op = None
-        self._amp_key = None   # (theta, omega) of self._amp (_amplitudes)
+        self._x0, self._x0_for = 0.0, None   # resolved bearing: pressing offset, at load
 
     def _needle_work(self, C_line):
         """Parameter vector and work arrays of the needle-resolved bearing (needles.py)."""
@@ -144,34 +143,25 @@ class ContactModel:
         Rp = p["r_trunnion"] + 0.5 * p["d_needle"] + 0.5 * p["needle_clearance"]
         return min(p["d_needle"], 2 * Rp * math.sin(math.pi / n) - p["needle_circ_clearance"] / n)
 
-    # --- inputs that set the operating point ---
-    def _amplitudes(self, theta, omega, pitch=True, roll=True):
-        """(A, B) [m/s] of Eqs. (19)-(20) at these inputs (0 for a motion switched off), kept
-        for the last inputs: v_st and both substep bounds need them, at every input change of
-        a master (a driveline co-simulation sets new inputs every step)."""
-        if self._amp_key != (theta, omega):
-            p = self.p
-            self._amp = (amplitude_A(p["s"], omega, theta, True),
-                         amplitude_B(p["r_roller"], omega, theta, True))
-            self._amp_key = (theta, omega)
-        A, B = self._amp
-        return (A if pitch else 0.0), (B if roll else 0.0)
-
+    # --- inputs that set the operating point (oppoint.py: one implementation, compiled into
+    # the step) ---
     def v_st(self, theta, omega):
         """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2)/4 (model.md)."""
-        p = self.p
-        if p["v_st"] > 0:
-            return p["v_st"]
-        A, B = self._amplitudes(theta, omega)
-        # floor: a joint at rest or straight still needs a finite regularisation
-        return max(v_st_auto(A, B), 1e-6)
+        return oppoint.v_st(self.P, theta, omega)
+
+    def substep(self, theta, omega, F_press, v_st, stiff=True):
+        """Substep [s] at these inputs (oppoint.substep)."""
+        return oppoint.substep(self.P, theta, omega, F_press, v_st, stiff)
+
+    def ga_step_size(self, theta, omega, F_press, v_st):
+        """Step of the generalized-alpha integrator [s] (oppoint.ga_step_size)."""
+        return oppoint.ga_step_size(self.P, theta, omega, F_press, v_st)
 
     def pressing_offset(self, F_press):
         """Compulsory displacement: x position of the trunnion axis [m] that gives F_press
         with the roller at the groove bottom (Hertz approach, plus the needle row if lumped)."""
-        p = self.p
-        x0 = p["r_groove"] - p["r_roller"] + (max(F_press, 0.0) / self.Kh) ** (2.0 / 3.0)
-        if p["bearing"] >= 1:
+        x0 = oppoint.groove_offset(self.P, F_press)
+        if self.p["bearing"] >= 1:
             x0 -= self.radial_offset(F_press)
         return x0
 
@@ -183,7 +173,7 @@ class ContactModel:
         if p["bearing"] == 0:
             return 0.0
         if p["bearing"] == 1:
-            return -(p["needle_clearance"] + (max(F, 0.0) / self.K_row) ** 0.9)
+            return oppoint.lumped_offset(self.P, F)
         # resolved: needle j at psi_j is squeezed by -E cos(psi_j) - clearance across its two
         # races in series; solve sum_j C_line (approach_j / 2)^(10/9) cos(psi_j) = F for E
         psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
@@ -208,67 +198,6 @@ class ContactModel:
             return 0.0
         g = -self.Y[K.Y_E] - self.p["needle_clearance"]
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
-
-    def substep(self, theta, omega, F_press, v_st, stiff=True):
-        """Substep [s]: max_substep if set; the generalized-alpha step (ga_step_size) with
-        integrator 4 and the ideal or lumped bearing; else from accuracy and stability estimates:
-
-        - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
-          substeps across it keep order 3 converged to about 0.02 % (2nd-order integrator);
-        - traverse: the roller's slide along the trunnion is locked by the friction slope
-          3 mu F / v_st against its mass (groove, plus the needles' with the resolved
-          bearing); the extrapolated step must stay near
-          its asymptotic range: h * rate <= 1.5 keeps halving h below a 0.1 % change in
-          order 3 (measured 0.07 % at 1.6, 0.06 % at 1.33);
-        - at least 2000 substeps a whirl cycle.
-        """
-        p = self.p
-        if p["max_substep"] > 0:
-            return p["max_substep"]
-        if stiff and p["integrator"] == 4 and p["bearing"] <= 1:
-            return self.ga_step_size(theta, omega, F_press, v_st)
-        h = 1e-4
-        if omega > 0:
-            h = min(h, 2 * math.pi / omega / 2000.0)
-            R = math.hypot(*self._amplitudes(theta, omega, p["pitch"], p["roll"])) if stiff else 0
-            if R > 0:
-                h = min(h, v_st / (2 * omega * R) / 80.0)
-        if stiff and p["traverse"] and F_press > 0 and p["friction_groove"] and p["mu_groove"] > 0:
-            mu = p["mu_groove"]
-            if p["bearing"] == 2 and p["friction_needle"]:
-                # resolved needles hold the roller's slide with their own friction too: the
-                # needle loads sum to QSUM x F_press (Eq. 17 over the row, about 1.3 F); with
-                # only the groove's rate the bearing-2 order 3 was 3 % off, with both 0.6 %
-                mu += p["mu_needle"] * self.P[K.P_QSUM]
-            rate = 3.0 * mu * F_press / (v_st * p["m_roller"])
-            h = min(h, 1.5 / rate)
-        return max(h, 1e-7)
-
-    def ga_step_size(self, theta, omega, F_press, v_st):
-        """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing).
-
-        Implicit with Newton, it needs no substep for the stick mode; it must resolve
-        - the roller rocking across the groove (sliding along the trunnion, restored by the
-          groove's curvature, undamped while the slip saturates the tanh): omega_g^2 =
-          F / (m rho), rho the roller centre's distance from the groove axis; omega_g h <= 0.5
-          (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %);
-        - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
-        - at least 2000 steps a whirl cycle, and at most 1e-4 s.
-        The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
-        step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
-        """
-        p = self.p
-        h = 1e-4
-        if omega > 0:
-            h = min(h, 2 * math.pi / omega / 2000.0)
-            R = math.hypot(*self._amplitudes(theta, omega, p["pitch"], p["roll"]))
-            if R > 0:
-                h = min(h, v_st / (2 * omega * R) / 20.0)
-        if F_press > 0:
-            rho = p["r_groove"] - p["r_roller"] + (F_press / self.Kh) ** (2.0 / 3.0)
-            w_g = math.sqrt(F_press / (p["m_roller"] * rho))
-            h = min(h, 0.5 / w_g)
-        return max(h, 1e-7)
 
     def start(self, theta, omega, F_press=0.0):
         """Initial state: roller at the groove bottom, rolling without slip (fewer transients),
@@ -319,70 +248,58 @@ class ContactModel:
         q = K.Y_LEN + NDL.N_F * np.arange(self.n_needle_bodies)
         return np.stack([self.Y[q], self.Y[q + 1], self.Y[q + 2]], axis=1)
 
-    def step(self, dt, theta, omega, F_press):
+    def step(self, dt, theta, omega, F_press, torque=0.0):
         """Advance by one communication step dt [s] at the given inputs; returns the outputs.
 
-        theta [rad], omega [rad/s], F_press [N] are held over the step (continuous inputs).
+        theta [rad], omega [rad/s], F_press [N], torque [N m] (> 0: the pressing load is
+        torque / (3 s)) are held over the step (continuous inputs).
         """
         if not self._started:
-            self.start(theta, omega, F_press)
-        vst, n, h, x0 = self._operating_point(dt, theta, omega, F_press)
-        self._OP[:] = (theta, omega, F_press, x0, h, n)
+            self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
+        self.set_inputs(dt, theta, omega, F_press, torque)
         acc = self._hs[1]
-        self._run(float(theta), float(omega), float(F_press), x0, h, n)
-        self.substeps += int(self._hs[1] - acc) if self.p["integrator"] >= 3 else n
+        self._run()
+        self.substeps += int(self._hs[1] - acc)
         self.time += dt
-        return self.outputs(F_press)
+        return self.outputs(self._OP[K.OP_F])
 
-    def _operating_point(self, dt, theta, omega, F_press):
-        """(v_st [m/s], substeps n, substep [s], pressing offset [m]) of a step of dt [s] at
-        these inputs, re-derived only when they change; sets P's v_st and largest substep."""
-        if self._key is not None and same_step(dt, self._key[0], self.time):
-            dt = self._key[0]   # the same step, up to the rounding of the master's times
-        key = (dt, theta, omega, F_press)
-        if key != self._key:   # operating point changed: re-derive v_st, substep, offset
-            vst = self.v_st(theta, omega)
-            h = self.substep(theta, omega, F_press, vst)
-            n = max(1, int(math.ceil(dt / h - 1e-9)))
-            self._op = (vst, n, dt / n, self.pressing_offset(F_press))
-            # adaptive substeps: no larger than the accuracy bounds that do not come from the
-            # stiff stick mode (which the error estimate handles)
-            self.P[K.P_HMAX] = self.substep(theta, omega, F_press, vst, stiff=False)
-            self._key = key
-        self.P[K.P_VST] = self._op[0]
-        return self._op
-
-    def fast_inputs(self, theta, omega, F_press):
-        """New inputs for fast.step's next steps (of step_dt): the operating point step() would
-        set at them (the native layer then runs the substeps)."""
-        _, n, h, x0 = self._operating_point(self.step_dt, theta, omega, F_press)
-        self._OP[:] = (theta, omega, F_press, x0, h, n)
+    def set_inputs(self, dt, theta, omega, F_press, torque=0.0):
+        """The inputs and step dt [s] of the next step into OP; the compiled step derives their
+        operating point (oppoint.derive) when they changed.  A dt within the rounding of the
+        master's times of the last one is that step (same_step), as on the native layer's
+        fast path."""
+        OP = self._OP
+        if OP[K.OP_DT] > 0 and same_step(dt, OP[K.OP_DT], self.time):
+            dt = OP[K.OP_DT]
+        OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_FP], OP[K.OP_TQ], OP[K.OP_DT] = (
+            theta, omega, F_press, torque, dt)
 
     @property
     def step_dt(self):
-        """The communication step [s] the present operating point was derived for."""
-        return self._key[0]
+        """The communication step [s] the operating point is set for."""
+        return float(self._OP[K.OP_DT])
 
-    def initial_outputs(self, theta, omega, F_press):
+    def initial_outputs(self, theta, omega, F_press, torque=0.0):
         """The outputs at the start state these inputs give (what the FMU reports at its
         start time), without a step and without moving the model: the first step still
         starts from the inputs it is given."""
-        saved, key, op = self.get_state(), self._key, self._op
+        saved = self.get_state()
         P, OP = self.P.copy(), self._OP.copy()
-        self.start(theta, omega, F_press)
+        self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
         # any step size: only the substep and the pressing offset are used, no substep is taken
-        _, _, h, x0 = self._operating_point(1e-4, theta, omega, F_press)
-        self._OP[:] = (theta, omega, F_press, x0, h, 0)      # zero substeps: outputs only
-        self._run(float(theta), float(omega), float(F_press), x0, h, 0)
-        out = self.outputs(F_press)
+        self.set_inputs(1e-4, theta, omega, F_press, torque)
+        self._OP[K.OP_NOSTEP] = 1.0
+        self._run()
+        out = self.outputs(self._OP[K.OP_F])
         self.set_state(saved)
-        self.P[:], self._OP[:], self._key, self._op = P, OP, key, op
+        self.P[:], self._OP[:] = P, OP
         return out
 
-    def _run(self, theta, omega, F_press, x0, h, n):
-        """n substeps of h [s] at the operating point (also in self._OP): through the prebuilt
-        kernel when the FMU ships one for these sources (native.py: no numba needed), else
-        through the kernel numba compiles; the same compiled code, the same results."""
+    def _run(self):
+        """One step at OP's inputs: through the prebuilt kernel when the FMU ships one for
+        these sources (native.py: no numba needed), else through the kernel numba compiles;
+        the same compiled code, the same results.  Both derive the operating point first
+        (oppoint.derive); the resolved bearing's pressing offset is then the model's."""
         fn = native.step_function() if self.NW is None else None
         if fn is not None:
             if self._addresses is None:
@@ -393,9 +310,16 @@ class ContactModel:
                                          "(a division by zero)")
             return
         from . import kernel
-        kernel.run_substeps(self.Y, self.P, theta, omega, F_press, x0, h, n, self.out,
-                            self._L, self._res, self._Y1, self._Y2, self._G, self._A, self._b,
-                            self.NW, self._hs, self._GW)
+        OP = self._OP
+        kernel.derive_op(self.P, OP)
+        if self.NW is not None and self._x0_for != OP[K.OP_F]:
+            self._x0 = self.pressing_offset(OP[K.OP_F])     # the row's static offset (numpy)
+            self._x0_for = OP[K.OP_F]
+        x0 = self._x0 if self.NW is not None else OP[K.OP_X0]
+        n = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
+        kernel.run_substeps(self.Y, self.P, OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_F], x0,
+                            OP[K.OP_H], n, self.out, self._L, self._res, self._Y1, self._Y2,
+                            self._G, self._A, self._b, self.NW, self._hs, self._GW)
 
     def kernel_name(self) -> str:
         """Which compiled kernel steps this roller (for the FMU's log)."""
@@ -415,8 +339,7 @@ class ContactModel:
     def fast_synced(self, k, dt, hs1_before):
         """Count k steps of dt [s] that fast.step took (hs[1] was hs1_before)."""
         self.time += k * dt
-        self.substeps += (int(self._hs[1] - hs1_before) if self.p["integrator"] >= 3
-                          else int(self._OP[5]) * k)
+        self.substeps += int(self._hs[1] - hs1_before)
 
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
@@ -432,6 +355,7 @@ class ContactModel:
             self.NW[6][:] = st["ND"]
         self._hs[:] = st["hs"]
         self.P[K.P_VST] = st["vst"]
+        self._OP[K.OP_KEY] = np.nan   # derive the operating point again at the next step
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 
     def outputs(self, F_press):
@@ -503,13 +427,12 @@ class JointModel:
 
     def step(self, dt, theta, omega, F_press, torque=0.0):
         """Advance every roller by dt [s]; returns roller 1's outputs plus Fz_joint, Fz_2, Fz_3."""
-        F = self.pressing(F_press, torque)
-        return _joint_outputs([r.step(dt, theta, omega, F) for r in self.rollers])
+        return _joint_outputs([r.step(dt, theta, omega, F_press, torque) for r in self.rollers])
 
     def initial_outputs(self, theta, omega, F_press, torque=0.0):
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
-        F = self.pressing(F_press, torque)
-        return _joint_outputs([r.initial_outputs(theta, omega, F) for r in self.rollers])
+        return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque)
+                               for r in self.rollers])
 
     def get_state(self) -> list:
         return [r.get_state() for r in self.rollers]

@@ -1,0 +1,149 @@
+"""The operating point of a communication step: what the inputs (theta, omega, pressing load)
+and the step size set before any substep - the transition velocity v_st, the substep and its
+count, the largest adaptive substep, the pressing offset of the trunnion axis.
+
+Plain Python over the parameter vector P and the operating-point vector OP (layout.py), so the
+model derives it without numba (its log, the needle-resolved bearing), and numba compiles the
+same functions into the communication step (kernel.py: ``compile_into``), which then derives it
+itself when a master sets new inputs (the native layer's fast path, fast.py): one
+implementation for both.
+"""
+import math
+
+from reduced_model.friction import v_st_auto
+from reduced_model.sliding import amplitude_A, amplitude_B
+
+from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_W, OP_X0,
+                     P_BEAR, P_CLR, P_FRIC, P_FRICN, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU,
+                     P_MUN, P_PITCH, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VST, P_VST0,
+                     P_HMAX)
+
+
+def amplitudes(P, theta, omega):
+    """(A, B) [m/s], Eqs. (19)-(20) with pitch and roll on."""
+    return amplitude_A(P[P_S], omega, theta, True), amplitude_B(P[P_R], omega, theta, True)
+
+
+def v_st(P, theta, omega):
+    """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2)/4 (model.md),
+    floored: a joint at rest or straight still needs one."""
+    if P[P_VST0] > 0.0:
+        return P[P_VST0]
+    A, B = amplitudes(P, theta, omega)
+    return max(v_st_auto(A, B), 1e-6)
+
+
+def _rate_amplitude(P, theta, omega):
+    """sqrt(A^2 + B^2) [m/s] of the motions switched on."""
+    A, B = amplitudes(P, theta, omega)
+    return math.hypot(A if P[P_PITCH] > 0.5 else 0.0, B if P[P_ROLL] > 0.5 else 0.0)
+
+
+def ga_step_size(P, theta, omega, F, vst):
+    """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing).
+
+    Implicit with Newton, it needs no substep for the stick mode; it must resolve
+    - the roller rocking across the groove (sliding along the trunnion, restored by the
+      groove's curvature, undamped while the slip saturates the tanh): omega_g^2 =
+      F / (m rho), rho the roller centre's distance from the groove axis; omega_g h <= 0.5
+      (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %);
+    - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
+    - at least 2000 steps a whirl cycle, and at most 1e-4 s.
+    The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
+    step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
+    """
+    h = 1e-4
+    if omega > 0:
+        h = min(h, 2 * math.pi / omega / 2000.0)
+        R = _rate_amplitude(P, theta, omega)
+        if R > 0:
+            h = min(h, vst / (2 * omega * R) / 20.0)
+    if F > 0:
+        rho = P[P_RG] - P[P_R] + (F / P[P_K]) ** (2.0 / 3.0)
+        w_g = math.sqrt(F / (P[P_M] * rho))
+        h = min(h, 0.5 / w_g)
+    return max(h, 1e-7)
+
+
+def substep(P, theta, omega, F, vst, stiff):
+    """Substep [s]: max_substep if set; the generalized-alpha step (ga_step_size) with
+    integrator 4 and the ideal or lumped bearing; else from accuracy and stability estimates:
+
+    - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
+      substeps across it keep order 3 converged to about 0.02 % (2nd-order integrator);
+    - traverse: the roller's slide along the trunnion is locked by the friction slope
+      3 mu F / v_st against its mass (groove, plus the needles' with the resolved bearing);
+      the extrapolated step must stay near its asymptotic range: h * rate <= 1.5 keeps halving
+      h below a 0.1 % change in order 3 (measured 0.07 % at 1.6, 0.06 % at 1.33);
+    - at least 2000 substeps a whirl cycle.
+    stiff = False: without the bounds that come from the stiff stick mode (the largest
+    adaptive substep: the error estimate handles that mode).
+    """
+    if P[P_HSUB] > 0:
+        return P[P_HSUB]
+    if stiff and P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
+        return ga_step_size(P, theta, omega, F, vst)
+    h = 1e-4
+    if omega > 0:
+        h = min(h, 2 * math.pi / omega / 2000.0)
+        R = _rate_amplitude(P, theta, omega) if stiff else 0.0
+        if R > 0:
+            h = min(h, vst / (2 * omega * R) / 80.0)
+    if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
+        mu = P[P_MU]
+        if P[P_BEAR] == 2.0 and P[P_FRICN] > 0.5:
+            # resolved needles hold the roller's slide with their own friction too: the
+            # needle loads sum to QSUM x F_press (Eq. 17 over the row, about 1.3 F); with
+            # only the groove's rate the bearing-2 order 3 was 3 % off, with both 0.6 %
+            mu += P[P_MUN] * P[P_QSUM]
+        rate = 3.0 * mu * F / (vst * P[P_M])
+        h = min(h, 1.5 / rate)
+    return max(h, 1e-7)
+
+
+def groove_offset(P, F):
+    """x position of the trunnion axis [m] that presses the roller at the groove bottom with F
+    [N] (Hertz approach): the pressing offset of the ideal bearing."""
+    return P[P_RG] - P[P_R] + (max(F, 0.0) / P[P_K]) ** (2.0 / 3.0)
+
+
+def lumped_offset(P, F):
+    """Static x offset of the roller from the trunnion axis [m] under a radial load F [N],
+    lumped bearing: the clearance plus the row's approach (F/K_row)^0.9, negative."""
+    return -(P[P_CLR] + (max(F, 0.0) / P[P_KN]) ** 0.9)
+
+
+def derive(P, OP):
+    """The operating point at OP's inputs and step OP[OP_DT] [s], when they differ from those it
+    was last derived at (OP[OP_KEY:]): OP's pressing load, substep, substep count and pressing
+    offset (ideal and lumped bearing; the resolved one's offset is the model's), P's v_st and
+    largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
+    [N m] > 0 is given, else F_press (reduced_model/scene.py, pressing_load)."""
+    theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
+    if (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
+            and tq == OP[OP_KEY + 3] and dt == OP[OP_KEY + 4]):
+        return
+    F = tq / (3.0 * P[P_S]) if tq > 0 else Fp
+    vst = v_st(P, theta, omega)
+    h = substep(P, theta, omega, F, vst, True)
+    n = max(1, int(math.ceil(dt / h - 1e-9)))
+    OP[OP_F] = F
+    OP[OP_N] = n
+    OP[OP_H] = dt / n
+    x0 = groove_offset(P, F)
+    if P[P_BEAR] == 1.0:
+        x0 -= lumped_offset(P, F)
+    OP[OP_X0] = x0
+    P[P_VST] = vst
+    P[P_HMAX] = substep(P, theta, omega, F, vst, False)
+    OP[OP_KEY] = theta
+    OP[OP_KEY + 1] = omega
+    OP[OP_KEY + 2] = Fp
+    OP[OP_KEY + 3] = tq
+    OP[OP_KEY + 4] = dt
+
+
+# what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
+# implementation of each)
+FUNCTIONS = ("amplitude_A", "amplitude_B", "v_st_auto", "amplitudes", "v_st", "_rate_amplitude",
+             "ga_step_size", "substep", "groove_offset", "lumped_offset", "derive")
