@@ -25,7 +25,7 @@ sys.path.insert(0, str(ROOT / "fmu_src"))
 from harness.bench import time_runs  # noqa: E402
 from harness.fmus import ensure_fmu  # noqa: E402
 from reduced_model.orders import last_cycle_orders  # noqa: E402
-from tripod_model import kernel as K, needles as NDL  # noqa: E402
+from tripod_model import kernel as K, layout as LY, needles as NDL  # noqa: E402
 from tripod_model.model import ContactModel, simulate  # noqa: E402
 
 CYCLES = 2
@@ -72,7 +72,7 @@ def substep_profile(m, reps=3000):
     its implicit system, the ring solve with the needles' update, and one whole substep."""
     th, om = m.p["theta"], m.p["omega"]
     NW, L = m.NW, m._L
-    h = m._hs[0] if m.p["integrator"] >= 3 else m._op[2]   # 4 runs as 3 on this bearing
+    h = m._hs[0] if m.p["integrator"] >= 3 else m._OP[LY.OP_H]   # 4 runs as 3 on this bearing
     e1 = np.array([1 - L[0] ** 2, -L[0] * L[1], -L[0] * L[2]])
     e1 /= np.linalg.norm(e1)
     e2 = np.cross(L[:3], e1)
@@ -86,7 +86,7 @@ def substep_profile(m, reps=3000):
     tc = timed(_loop_contacts, Y, m.P, NW, th, Y[K.Y_X], h, L, e1, e2)
     AN0, FN0 = NW[3].copy(), NW[2].copy()
     tr = timed(_loop_ring, Y.copy(), NW, h, AN0, FN0) - timed(_loop_copy, NW, AN0, FN0)
-    ts = timed(_loop_substep, Y, Y.copy(), m.P, th, om, m.p["F_press"], m._op[3], h, L,
+    ts = timed(_loop_substep, Y, Y.copy(), m.P, th, om, m.p["F_press"], m._x0, h, L,
                m._res, m._G, m._A, m._b, NW)
     touching = [int(np.sum(NW[6][:, k] > 0)) for k in (NDL.D_BORE, NDL.D_TRUN, NDL.D_NEIGH)]
     return tc, tr, ts, touching
