@@ -38,25 +38,31 @@ def order_component(y, k, cycles=1):
     return float(a[0]), float(p[0])
 
 
-def last_cycle_orders(t, y, whirl_angle, orders=(1, 3), n=None):
+def last_cycle_orders(t, y, whirl_angle, orders=(1, 3), n=None, x_end=None):
     """Orders of ``y`` over the last whole whirl cycle of a run.
 
     t [s], y, whirl_angle [rad] are arrays of one run (whirl angle may vary in rate).  The last
-    whole cycle is resampled uniformly in whirl angle (``n`` points, default the number of
-    samples it holds) and analysed; phases refer to whirl angle 0.
+    whole cycle, the one ending at whirl angle ``x_end`` (default the run's last sample; an
+    earlier cycle's end need not be a sample), is resampled uniformly in whirl angle (``n``
+    points, default the number of samples it holds) and analysed; phases refer to whirl angle 0.
     Returns {k: (amplitude, phase_deg)}.
     """
     t = np.asarray(t, float)
     y = np.asarray(y, float)
     x = np.asarray(whirl_angle, float)
-    x_end = x[-1]
+    x_end = x[-1] if x_end is None else float(x_end)
     x0 = x_end - 2.0 * np.pi
-    if x0 < x[0] - 1e-12:
+    # short of a whole cycle by the tolerance of whole-cycle counting (steady.whole_cycles)
+    # at most: the window starts at the run's start
+    if x0 < x[0] - 2.0 * np.pi * 1e-9 or x_end > x[-1] + 1e-12:
         raise ValueError("the run holds less than one whole whirl cycle")
-    m = (x >= x0 - 1e-12)
+    span = 2.0 * np.pi
+    if x0 < x[0]:
+        x0, span = x[0], x_end - x[0]
+    m = (x >= x0 - 1e-12) & (x <= x_end + 1e-12)
     if n is None:
         n = max(int(m.sum()) - 1, 64)
-    xs = x0 + 2.0 * np.pi * np.arange(n) / n
+    xs = x0 + span * np.arange(n) / n
     ys = np.interp(xs, x, y)
     amp, ph = order_spectrum(ys, 1, orders)
     # samples start at x0, not 0: refer phase to whirl angle 0

@@ -44,8 +44,7 @@ def cycle_orders(t, y, whirl_angle, back=0, orders=ORDERS):
     """Orders of ``y`` over the whole cycle that ends ``back`` cycles before the run's end.
     {k: (amplitude, phase_deg)}."""
     x = np.asarray(whirl_angle, float)
-    m = x <= x[-1] - 2 * math.pi * back + 1e-9
-    return last_cycle_orders(np.asarray(t)[m], np.asarray(y)[m], x[m], orders)
+    return last_cycle_orders(t, y, x, orders, x_end=x[-1] - 2 * math.pi * back)
 
 
 def cycle_change(t, y, whirl_angle, orders=ORDERS, floor=FLOOR) -> dict:

@@ -157,3 +157,25 @@ def test_small_angle_kinematics_error_orders():
 def test_bad_input_names_parameter(over, needle):
     with pytest.raises(ValueError, match=needle):
         sc.validate(over)
+
+
+def test_cycle_orders_between_samples():
+    # omega 500 rad/s sampled at 1e-4 s: 125.66 samples a whirl cycle, so the earlier cycles'
+    # ends fall between samples (compare and the settle watch used to stop there with "less
+    # than one whole whirl cycle").  A known periodic signal over just three cycles:
+    from reduced_model import steady
+    w, dt = 500.0, 1e-4
+    t = np.arange(0.0, 3 * 2 * np.pi / w + dt, dt)
+    x = w * t
+    y = 5.0 * np.sin(x + 0.7) + 6.0 * np.sin(3 * x - 2.5)
+    # linear resampling errs by at most dx^2 / 8 max|y''| = (0.05 rad)^2 / 8 x 59 N = 0.018 N
+    tol = (w * dt) ** 2 / 8 * (5.0 + 9 * 6.0)
+    for back in range(3):
+        o = steady.cycle_orders(t, y, x, back)
+        assert abs(o[1][0] - 5.0) < tol and abs(o[3][0] - 6.0) < tol
+        # order k is a sin(k x + p): p = 0.7 rad and -2.5 rad; a window off by one sample
+        # would turn order 3 by 3 x 0.05 rad
+        assert abs(np.radians(o[1][1]) - 0.7) < tol / 5.0
+        assert abs(np.radians(o[3][1]) + 2.5) < tol / 6.0
+    ch = steady.cycle_change(t, y, x)
+    assert all(c["complex_rel"] < 2 * tol / 5.0 for c in ch.values())
