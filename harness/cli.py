@@ -113,6 +113,9 @@ def format_analytic(r: dict) -> str:
         lines += [
             f"reduced traverse model ({use}; docs/model.md): regime {t['regime']}, friction "
             f"reaches {100 * t['friction_reach']:.1f} % of mu_groove F",
+            *([] if t["settled"] else [
+                f"  NOT periodic: s(2 pi) - s(0) = {t['mismatch']:.2e} m/s after {t['cycles']} "
+                "cycles of the cycle map (the table is the best cycle run)"]),
             f"  {'Fz_mod order 1':28s}{_fmt_o(t['order1'])}",
             f"  {'Fz_mod order 3':28s}{_fmt_o(t['order3'])}",
             f"  {'three rollers order 3':28s}{_fmt_o(t['three_rollers']['order3'])}",

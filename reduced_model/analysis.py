@@ -25,7 +25,8 @@ def traverse_report(sc) -> dict | None:
             "Fz": {"order1": _o(oz[1]), "order3": _o(oz[3])},
             "three_rollers": {"order1": _o(j[1]), "order3": _o(j[3])},
             "regime": tr.regime(), "friction_reach": tr.g_max,
-            "Fx_max": float(tr.Fx.max()), "cycles": tr.cycles}
+            "Fx_max": float(tr.Fx.max()), "cycles": tr.cycles, "settled": bool(tr.settled),
+            "mismatch": float(tr.mismatch)}
 
 
 def analytic_report(overrides=None, n=N_PER_CYCLE):
