@@ -15,9 +15,10 @@ def _o(a_p):
 
 def traverse_report(sc) -> dict | None:
     """The reduced traverse model's orders of Fz_mod and Fz (one roller, three rollers), its
-    regime and reach; None where it does not apply (omega = 0, no load or no friction)."""
+    regime and reach; None where it does not apply (omega = 0, no load, no friction, or
+    mu_groove >= 1)."""
     if sc["omega"] <= 0 or sc["F_press"] <= 0 and sc.get("torque", 0.0) <= 0 or \
-            sc["mu_groove"] <= 0 or transition_velocity(sc) <= 0:
+            not 0 < sc["mu_groove"] < 1 or transition_velocity(sc) <= 0:
         return None
     tr = Traverse(sc)
     o, oz, j = tr.orders("Fz_mod"), tr.orders("Fz"), tr.three_rollers("Fz_mod")

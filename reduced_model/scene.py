@@ -61,7 +61,8 @@ PARAMS: tuple[Param, ...] = (
           "instead of F_press", causality="input"),
     Param("n_rollers", 1, "1", 1, 3, "rollers simulated: 1, or 3 at whirl phases 0/120/240 deg",
           kind="int"),
-    Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove"),
+    Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove "
+          "(the analytic traverse model needs it below 1)"),
     Param("v_st", 0.0, "m/s", 0.0, 10.0,
           "transition velocity of the tanh friction law; 0 = automatic, sqrt(A^2+B^2)/4"),
     Param("pitch", True, "1", None, None, "pitching motion acts, Eq. (1)", kind="bool"),
@@ -265,6 +266,10 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
     if scene.get("n_rollers", 1) not in (1, 3):
         raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
+    if model == "analytic" and scene["traverse"] and scene["mu_groove"] >= 1.0:
+        raise ValueError(f"mu_groove = {scene['mu_groove']:g} with traverse = true: the traverse "
+                         "model needs mu_groove < 1 (the friction it balances tilts the contact "
+                         "normal by asin(mu_groove)); allowed range [0, 1) (or traverse = false)")
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(f"r_bore = {scene['r_bore']:g} m must be below r_roller = "
                          f"{scene['r_roller']:g} m (range (0, r_roller) m)")

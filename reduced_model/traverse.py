@@ -68,6 +68,10 @@ class Traverse:
         if w <= 0:
             raise ValueError("omega = 0: the traverse model needs a whirling joint; allowed "
                              "range (0, 10000] rad/s (or traverse = false)")
+        if sc["mu_groove"] >= 1.0:
+            raise ValueError(f"mu_groove = {sc['mu_groove']:g}: the traverse model needs "
+                             "mu_groove < 1 (the contact normal tilts by asin(mu_groove)); "
+                             "allowed range [0, 1) (or traverse = false)")
         self.F = F = pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"])
         self.mu = mu = sc["mu_groove"]
         self.vst = transition_velocity(sc)

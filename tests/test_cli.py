@@ -39,6 +39,8 @@ def test_analytic_text_runs():
     (["--set", "omega=-1"], "omega"),
     (["--set", "theta=nan"], "theta"),
     (["--set", "theta"], "NAME=VALUE"),
+    # the traverse model's normal would tilt to 90 deg (was a ZeroDivisionError traceback)
+    (["--set", "mu_groove=1", "--set", "theta=0.78", "--set", "omega=10000"], "mu_groove < 1"),
 ])
 def test_bad_input_one_line(args, needle):
     p = run("analytic", *args)
