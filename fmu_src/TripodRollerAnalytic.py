@@ -1,7 +1,10 @@
 """pythonfmu slave of the reduced (analytic) thrust model: numpy only.
 
 traverse = true (default): the reduced traverse model's periodic solution, tabulated over the
-whirl angle once per operating point (reduced_model/traverse.py); false: Eqs. (18)-(27).
+whirl angle at the start (reduced_model/traverse.py); once a master moves the inputs, the
+roller's slide is stepped in time at the inputs of each step (Traverse.march: T4 is an ODE in
+time, the table its periodic solution), a fraction of a millisecond a step where a new table
+took 0.05 s or more.  false: Eqs. (18)-(27).
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
 
@@ -27,7 +30,6 @@ _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
 FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
-TABLES_WARN = 10   # traverse tables derived in one run before the log says what they cost
 
 
 def _fast_library(resources):
@@ -63,6 +65,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._fast = None  # the compiled step offered to the native layer
         self._fast_lib = False   # not looked up yet
         self._fast_table = False  # the table whose rows _fast_rows holds
+        self._march = None   # per roller [s, p, outputs] once the inputs moved (Traverse.march)
 
     def _initialise(self):
         self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")
@@ -75,62 +78,77 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._fast = None
         self._steps = [0, 0]       # communication steps compiled, through Python (the log)
         self._tables = 0           # traverse tables derived (the log)
+        self._march = None
+        self._op = None            # the operating point march steps at
         self._prepare()
         self._write_outputs()   # the outputs at the start time, not their declared zeros
 
     def _prepare(self):
-        """Check the inputs and, when the operating point changed, re-derive the constants and
-        the traverse model's table (about 0.05 s at the paper's scene): at initialisation and
-        on an input change."""
+        """Check the inputs and, when the operating point changed, re-derive the constants:
+        at initialisation the traverse model's settled table (about 0.05 s at the paper's
+        scene), on an input change the operating point its slide is stepped at."""
         key = (self.theta, self.omega, self.F_press, self.torque)
         # inputs moved only in their last bits (a master interpolating an input table) keep
-        # the operating point: not 0.05 s a step for nothing
+        # the operating point, the table and the compiled steps
         if self._key is not None and all(map(same_value, key, self._key)):
             return
         for name, value in zip(_INPUTS, key):
             check_value(name, value)
             self._scene[name] = float(value)
         self._thrust = Thrust(self._scene)
-        self._table = None
         sc = self._scene
-        if sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
-                pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0:
-            self._table = Traverse(sc)
-            self.regime = REGIME_CODES.index(self._table.regime())
-            self._tables += 1
-            if not self._table.settled:
-                self.log(f"the traverse table at theta = {sc['theta']:.6g} rad, omega = "
-                         f"{sc['omega']:.6g} rad/s is not periodic: s(2 pi) - s(0) = "
-                         f"{self._table.mismatch:.2e} m/s after {self._table.cycles} cycles "
-                         "of the cycle map; its outputs are the best cycle run",
-                         Fmi2Status.warning)
-            if self._tables == TABLES_WARN:
-                self.log(f"the inputs changed {TABLES_WARN - 1} times: each change derives a "
-                         "new traverse table (about 0.05 s at the paper's scene); for a master "
-                         "that moves the inputs "
-                         "every step, traverse = false (Eqs. 18-27, microseconds a change) or "
-                         "the contact FMU (its steps stay compiled) is faster",
-                         Fmi2Status.warning)
-        else:
+        applies = sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
+            pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0
+        if not sc["traverse"]:
+            self._table, self.regime = None, 0
+        elif self._key is None and self._march is None:
+            # the start (or a restored state from before the inputs moved): the settled table
+            self._table = None
             self.regime = 0
+            if applies:
+                self._table = Traverse(sc)
+                self.regime = REGIME_CODES.index(self._table.regime())
+                self._tables += 1
+                if not self._table.settled:
+                    self.log(f"the traverse table at theta = {sc['theta']:.6g} rad, omega = "
+                             f"{sc['omega']:.6g} rad/s is not periodic: s(2 pi) - s(0) = "
+                             f"{self._table.mismatch:.2e} m/s after {self._table.cycles} "
+                             "cycles of the cycle map; its outputs are the best cycle run",
+                             Fmi2Status.warning)
+        else:
+            # the inputs moved: the slide is stepped in time from where the table had it
+            if self._march is None:
+                self._march = [list(self._table.state_at(x)) + [None]
+                               if self._table is not None else [None, 0.0, None]
+                               for x in self._x]
+                self.log("the inputs moved: from here on the traverse model steps the "
+                         "roller's slide in time at each step's inputs (no new settled table; "
+                         "regime stays that of the start)", Fmi2Status.ok, "logAll")
+            self._table = None
+            self._op = Traverse(sc, periodic=False)
         self._key = key
 
     def _get_fmu_state(self):
         return {"vars": super()._get_fmu_state(), "x": list(self._x), "dt": self._dt,
-                "scene": copy.deepcopy(self._scene)}
+                "scene": copy.deepcopy(self._scene), "march": copy.deepcopy(self._march)}
 
     def _set_fmu_state(self, state):
         super()._set_fmu_state(state["vars"])
         self._x = list(state["x"])
         self._dt = state["dt"]
-        if state["scene"] != self._scene:      # else the table of this operating point stays
-            self._key = None
+        march = copy.deepcopy(state["march"])
+        if state["scene"] != self._scene or (march is None) != (self._march is None):
+            self._key = None        # else the table or march's operating point stays
+            self._table = None
+        self._march = march
         self._scene = copy.deepcopy(state["scene"])
 
     def terminate(self):
         if self._scene is not None:   # how the steps ran, for a user who checks
             self.log(f"communication steps: {self._steps[0]} compiled, {self._steps[1]} "
-                     f"through Python; traverse tables derived: {self._tables}",
+                     f"through Python; traverse tables derived: {self._tables}"
+                     + ("; the slide stepped in time since the inputs moved"
+                        if self._march is not None else ""),
                      Fmi2Status.ok, "logAll")
 
     def _advance(self, current_time, step_size):
@@ -141,9 +159,13 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         # that step, as on the compiled path
         if self._dt is None or not same_step(step_size, self._dt, current_time):
             self._dt = step_size
-        w = self._scene["omega"] * self._dt
-        for i in range(len(self._x)):
-            self._x[i] += w
+        if self._march is not None and self._op is not None:
+            for i, m in enumerate(self._march):
+                m[0], m[1], self._x[i], m[2] = self._op.march(m[0], m[1], self._x[i], self._dt)
+        else:
+            w = self._scene["omega"] * self._dt
+            for i in range(len(self._x)):
+                self._x[i] += w
         self._write_outputs()
         self._offer_fast()
         return True
@@ -153,7 +175,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         at these inputs and this step size, with its arrays (the native layer's _fast)."""
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
-        if self._fast_lib is None or len(self._x) > 3:
+        if self._fast_lib is None or len(self._x) > 3 or self._march is not None:
             return
         import numpy as np
         _, address, op_names, out_names = self._fast_lib
@@ -187,8 +209,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
 
     def _fast_inputs(self, values):
         """The master set inputs (_INPUTS order) while the fast path ran: take them as setReal
-        would.  New inputs need a new traverse table (about 0.05 s), so the step goes through
-        Python (False)."""
+        would.  New inputs step the traverse model's slide in time, in Python (False)."""
         for name, v in zip(_INPUTS, values):
             setattr(self, name, v)
         return False
@@ -202,7 +223,15 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         """Every output at the rollers' present whirl angles self._x [rad]."""
         F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
         fz = []
-        if self._table is not None:
+        if self._march is not None and self._march[0][2] is not None:
+            for i, m in enumerate(self._march):
+                if i == 0:
+                    Fz, Fz_mod, Fx, Fy, slip = m[2]
+                fz.append(m[2][0])
+            self.Fz, self.Fz_mod, self.Fx, self.Fy = Fz, Fz_mod, Fx, Fy
+            self.dFx = Fx - F
+            self.slip_speed = slip
+        elif self._table is not None:
             at = self._table.at
             for i, x in enumerate(self._x):
                 r = at(x)

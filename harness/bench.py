@@ -166,6 +166,8 @@ MASTER_INPUTS = ("theta", "omega", "F_press")
 STEP_COST_CASES = {
     "bare slave (the FMI boundary alone)": (None, {}, ()),
     "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}, ()),
+    f"analytic FMU, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline "
+    "master: the slide stepped in time)": ("TripodRollerAnalytic", {}, MASTER_INPUTS),
     "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}, ()),
     "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}, ()),
     f"the same, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline master)":

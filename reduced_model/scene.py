@@ -156,7 +156,7 @@ OUTPUTS = (
 # Integer outputs: name, description, the FMU that has it.
 REGIME_CODES = ("full slip", "traverse", "micro-slip")
 INT_OUTPUTS = (
-    ("regime", "which theory holds at the operating point (reduced traverse model): "
+    ("regime", "which theory holds at the start's operating point (reduced traverse model): "
                "0 full slip (Eqs. 18-27 within 5 %), 1 traverse, 2 micro-slip", "analytic"),
 )
 

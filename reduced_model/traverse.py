@@ -61,11 +61,11 @@ class Traverse:
     without getting there, and the table is the best cycle run).
     """
 
-    def __init__(self, scene: dict, n: int = N_PER_CYCLE):
+    def __init__(self, scene: dict, n: int = N_PER_CYCLE, periodic: bool = True):
         self.scene = sc = scene
         self.n = n
         w = sc["omega"]
-        if w <= 0:
+        if w <= 0 and periodic:
             raise ValueError("omega = 0: the traverse model needs a whirling joint; allowed "
                              "range (0, 10000] rad/s (or traverse = false)")
         if sc["mu_groove"] >= 1.0:
@@ -80,9 +80,13 @@ class Traverse:
         self.K, self.a1, _ = hertz_point(r, Rg, sc["E"], sc["nu"])
         self.clear = Rg - r
         self.rho_c = self.clear + (F / self.K) ** (2.0 / 3.0) if F > 0 else self.clear
+        self._sm = bool(sc["spin_moment"])
+        self.held = F > 0 and mu > 0 and self.vst > 0   # else nothing holds the roller
+        if not periodic:              # the operating point only, for march
+            return
         self.x = 2.0 * math.pi * np.arange(n + 1) / n
         self._drive(sc)
-        if F <= 0 or mu <= 0 or self.vst <= 0:      # no friction, or no slip to drive it
+        if not self.held:                             # no friction, or no slip to drive it
             self.p = np.zeros(n + 1)
             self.slip = self.V.copy()                 # nothing holds the roller: it slips by V
             self.cycles, self.mismatch = 0, 0.0
@@ -92,29 +96,34 @@ class Traverse:
         self._tabulate()
 
     # --- the driving motion on the table (exact Eqs. 1, 5; z = s tan(phi), Eq. 18) ---------
-    def _drive(self, sc):
-        x, w, th = self.x, sc["omega"], sc["theta"]
+    def _drive_on(self, x):
+        """The driving motion at whirl angles x [rad] (numpy array): phi, xi [rad], V [m/s]
+        (T4's driven slip), dphi [rad/s], spin [rad/s] (rolling along the groove), b_inertia
+        [N] (T2's inertia part of f_b)."""
+        sc = self.scene
+        w, th = sc["omega"], sc["theta"]
         T = math.tan(th) if sc["pitch"] else 0.0
         k = (1.0 - math.cos(th)) / (2.0 * math.cos(th)) if sc["roll"] else 0.0   # e / s
         tz = T * np.sin(x)
-        self.phi = np.arctan(tz)
+        phi = np.arctan(tz)
         dphi = T * w * np.cos(x) / (1.0 + tz * tz)
-        self.xi = np.arcsin(k * np.sin(2.0 * x))
+        xi = np.arcsin(k * np.sin(2.0 * x))
         dxi = 2.0 * w * k * np.cos(2.0 * x) / np.sqrt(1.0 - (k * np.sin(2.0 * x)) ** 2)
         zd = sc["s"] * T * w * np.cos(x)
         zdd = -sc["s"] * T * w * w * np.sin(x)
         r = sc["r_roller"]
-        v1 = zd * np.sin(self.phi)                          # Eq. (19), exact
+        v1 = zd * np.sin(phi)                               # Eq. (19), exact
         v2 = -r * dxi                                       # Eq. (20), exact
-        self.V = v1 + v2 * (1.0 + self.rho_c / r)           # T4
-        self.dphi = dphi
-        self.spin = zd / r                                  # rolling along the groove
+        V = v1 + v2 * (1.0 + self.rho_c / r)                # T4
         I = spin_inertia(sc["m_roller"], r, sc["r_bore"]) if sc["spin_inertia"] else 0.0
-        self.b_inertia = -I * zdd / (r * r)                 # T2: the inertia part of f_b [N]
+        return phi, xi, V, dphi, zd / r, -I * zdd / (r * r)
+
+    def _drive(self, sc):
+        (self.phi, self.xi, self.V, self.dphi, self.spin,
+         self.b_inertia) = self._drive_on(self.x)
         # plain lists: the time-stepping loop reads them one float at a time
         self._V, self._bi = self.V.tolist(), self.b_inertia.tolist()
         self._dphi, self._spin = self.dphi.tolist(), self.spin.tolist()
-        self._sm = bool(sc["spin_moment"])
 
     # --- T2, T3, T5 at one table point ------------------------------------------------------
     def _fn(self, p):
@@ -122,11 +131,15 @@ class Traverse:
         return self.K * d ** 1.5 if d > 0 else 0.0
 
     def _beta(self, i, p, fn):
-        """f_b / f_n, T2."""
-        b = self._bi[i]
+        """f_b / f_n, T2, at table point i."""
+        return self._beta_at(p, fn, self._bi[i], self._dphi[i], self._spin[i])
+
+    def _beta_at(self, p, fn, bi, dphi, spin):
+        """f_b / f_n, T2, where the drive gives b_inertia bi [N], dphi and spin [rad/s]."""
+        b = bi
         if self._sm:
             a = self.a1 * fn ** (1.0 / 3.0)                 # Eq. (15)
-            wn = self._dphi[i] + self._spin[i] * p
+            wn = dphi + spin * p
             b -= 0.375 * self.mu * math.tanh(3.0 * wn * a / self.vst) * fn * a * p / self.r
         return b / fn
 
@@ -163,52 +176,62 @@ class Traverse:
         return mu * math.tanh(k * s / math.cos(a)) * math.cos(a)
 
     def _p(self, i, s):
-        """p at table point i for the slide slip s [m/s] (T2, T3, T5: beta depends weakly on
-        p through f_n and the spin moment: fixed point)."""
+        """p at table point i for the slide slip s [m/s]."""
+        return self._p_at(s, self._bi[i], self._dphi[i], self._spin[i])
+
+    def _p_at(self, s, bi, dphi, spin):
+        """p for the slide slip s [m/s] where the drive gives bi, dphi, spin (T2, T3, T5: beta
+        depends weakly on p through f_n and the spin moment: fixed point)."""
         sign = -1.0 if s > 0 else 1.0
         p = sign * self.mu * math.tanh(3.0 * abs(s) / self.vst)
         for _ in range(6):
-            q = sign * self._share(s, abs(self._beta(i, p, self._fn(p))))
+            q = sign * self._share(s, abs(self._beta_at(p, self._fn(p), bi, dphi, spin)))
             if abs(q - p) < 1e-11 * self.mu:
                 return q
             p = q
         return p
 
     # --- the periodic solution of T4 in the slide slip s ----------------------------------------
+    def _step(self, rhs0, s, h, P1):
+        """s1 [m/s] of one trapezoidal step of T4 from slip s over h [s]: the root of
+        f(z) = rho_c P1(z) - h/2 z - rhs0, P1 the p of the step's end point.  Newton: f falls
+        with slope <= -h/2 and |p| <= mu, so its root lies in [lo, hi]; a Newton step that
+        leaves the bracket (it overshoots on the tanh's knee and can cycle there) is a
+        bisection instead."""
+        rho, mu = self.rho_c, self.mu
+        e = 1e-6 * self.vst              # finite-difference step of the Newton slope
+        lo, hi = -2.0 * (rho * mu + rhs0) / h, 2.0 * (rho * mu - rhs0) / h
+        z = min(max(s, lo), hi)
+        for _ in range(200):
+            p1 = P1(z)
+            res = rho * p1 - 0.5 * h * z - rhs0
+            if res > 0.0:
+                lo = z
+            elif res < 0.0:
+                hi = z
+            else:
+                break
+            d = (rho * (P1(z + e) - p1)) / e - 0.5 * h
+            dz = -res / d
+            if not lo < z + dz < hi:
+                dz = 0.5 * (lo + hi) - z
+            z += dz
+            if abs(dz) < 1e-9 * self.vst:
+                break
+        return z
+
     def _cycle(self, s0):
         """One whirl cycle of T4, rho_c dp/dt = s - V', by the trapezoidal rule in s (never
         singular: d(rho_c p - h s / 2)/ds <= -h / 2): the slide slip s [m/s] and p [1] at
         every table point (kept on every pass: the secant's last pass is the table)."""
         n, h = self.n, 2.0 * math.pi / self.scene["omega"] / self.n
-        rho, V, P, mu = self.rho_c, self._V, self._p, self.mu
-        e = 1e-6 * self.vst              # finite-difference step of the Newton slope
+        rho, V, P = self.rho_c, self._V, self._p
         s = s0
         p0 = P(0, s)
         ss, ps = [s], [p0]
         for i in range(n):
             rhs0 = rho * p0 + 0.5 * h * (s - V[i] - V[i + 1])
-            # Newton on f(z) = rho p1(z) - h/2 z - rhs0: f falls with slope <= -h/2 and
-            # |p| <= mu, so its root lies in [lo, hi]; a Newton step that leaves the bracket
-            # (it overshoots on the tanh's knee and can cycle there) is a bisection instead
-            lo, hi = -2.0 * (rho * mu + rhs0) / h, 2.0 * (rho * mu - rhs0) / h
-            z = min(max(s, lo), hi)
-            for _ in range(200):
-                p1 = P(i + 1, z)
-                res = rho * p1 - 0.5 * h * z - rhs0
-                if res > 0.0:
-                    lo = z
-                elif res < 0.0:
-                    hi = z
-                else:
-                    break
-                d = (rho * (P(i + 1, z + e) - p1)) / e - 0.5 * h
-                dz = -res / d
-                if not lo < z + dz < hi:
-                    dz = 0.5 * (lo + hi) - z
-                z += dz
-                if abs(dz) < 1e-9 * self.vst:
-                    break
-            s = z
+            s = self._step(rhs0, s, h, lambda z: P(i + 1, z))
             p0 = P(i + 1, s)
             ss.append(s)
             ps.append(p0)
@@ -252,12 +275,8 @@ class Traverse:
         beta = np.array([self._beta(i, p[i], fn[i]) if fn[i] > 0 else 0.0 for i in range(n1)])
         slip = self.slip
         self.fn, self.beta, self.slip = fn, beta, slip
-        self.Fz = -fn * (p * np.sin(self.phi) + beta * np.cos(self.phi))          # T6
-        self.Fx = fn * (np.sqrt(1.0 - p * p) + p * p - p * self.xi)
-        self.Fy = fn * p * np.cos(self.phi)
-        F = self.F
-        self.Fz_mod = np.where(self.Fx > 1e-9 * max(F, 1.0), self.Fz * F / np.where(
-            self.Fx > 0, self.Fx, 1.0), 0.0)
+        self.Fz, self.Fx, self.Fy, self.Fz_mod = groove_forces(fn, p, beta, self.phi, self.xi,
+                                                               self.F)
         self.g_max = float(np.max(np.hypot(p, beta)) / self.mu) if self.mu > 0 else 0.0
         self._rows = [tuple(r) for r in np.column_stack(
             [self.Fz, self.Fz_mod, self.Fx, self.Fy, np.abs(slip)]).tolist()]
@@ -275,6 +294,41 @@ class Traverse:
         b0, b1, b2, b3, b4 = self._rows[i + 1]
         return (a0 + f * (b0 - a0), a1 + f * (b1 - a1), a2 + f * (b2 - a2), a3 + f * (b3 - a3),
                 a4 + f * (b4 - a4))
+
+    def state_at(self, x):
+        """(slide slip s [m/s], p [1]) of the periodic solution at whirl angle x [rad]: where
+        march starts when the inputs begin to move."""
+        u = x % (2.0 * math.pi)
+        return float(np.interp(u, self.x, self.slip)), float(np.interp(u, self.x, self.p))
+
+    def march(self, s, p, x, dt):
+        """The slide stepped in time at this operating point, for inputs that move (T4 is an
+        ODE in time; the table is its periodic solution): from slide slip s [m/s] and p [1]
+        (s None: at rest on the groove bottom, p = 0) at whirl angle x [rad] over dt [s], by
+        the table's trapezoidal rule in substeps of at most the table's spacing.  Works on
+        Traverse(scene, periodic=False).  Returns (s, p, x at the end, the outputs there as
+        ``at`` gives them)."""
+        w = self.scene["omega"]
+        n = max(1, math.ceil(w * dt * self.n / (2.0 * math.pi) - 1e-9))
+        h = dt / n
+        xs = x + w * h * np.arange(n + 1)
+        phi, xi, V, dphi, spin, bi = (a.tolist() for a in self._drive_on(xs))
+        if s is None:
+            s, p = V[0], 0.0
+        if not self.held:
+            s, p = V[-1], 0.0
+        else:
+            rho = self.rho_c
+            for i in range(n):
+                rhs0 = rho * p + 0.5 * h * (s - V[i] - V[i + 1])
+                s = self._step(rhs0, s, h, lambda z: self._p_at(z, bi[i + 1], dphi[i + 1],
+                                                                 spin[i + 1]))
+                p = self._p_at(s, bi[i + 1], dphi[i + 1], spin[i + 1])
+        fn = self._fn(p) if self.F > 0 else 0.0
+        beta = self._beta_at(p, fn, bi[n], dphi[n], spin[n]) if fn > 0 else 0.0
+        Fz, Fx, Fy, Fz_mod = (float(v) for v in groove_forces(fn, p, beta, phi[n], xi[n],
+                                                                self.F))
+        return s, p, float(xs[-1]), (Fz, Fz_mod, Fx, Fy, abs(s))
 
     def orders(self, name="Fz_mod", orders=(1, 3)):
         """{k: (amplitude N, phase deg)} of one of the tabulated signals over the cycle."""
@@ -294,6 +348,16 @@ class Traverse:
         fz27 = Thrust(self.scene).at(self.x[:-1], np)[0]        # Eqs. (18)-(27), numpy only
         a, ph = order_spectrum(fz27, 1, (3,))
         return regime_of(self.g_max, self.orders()[3], (float(a[0]), float(ph[0])))
+
+
+def groove_forces(fn, p, beta, phi, xi, F):
+    """T6: (Fz, Fx, Fy, Fz_mod) [N] on the groove from the normal force fn [N], p, beta [1],
+    the pitch phi and roll tilt xi [rad] (numpy arrays or floats), F the pressing load [N]."""
+    Fz = -fn * (p * np.sin(phi) + beta * np.cos(phi))
+    Fx = fn * (np.sqrt(1.0 - p * p) + p * p - p * xi)
+    Fy = fn * p * np.cos(phi)
+    Fz_mod = np.where(Fx > 1e-9 * max(F, 1.0), Fz * F / np.where(Fx > 0, Fx, 1.0), 0.0)
+    return Fz, Fx, Fy, Fz_mod
 
 
 def regime_of(g_max, o3, o3_eq27) -> str:

@@ -53,6 +53,29 @@ if check == "state":
     c = run(s, 300, 0.05)
     res = {"rollback_identical": a == b, "serialized_identical": a == c, "n": len(a),
            "differs_from_start": a[0] != run(make("fresh"), 1)[0]}
+elif check == "state-moving":
+    # a master moving the pressing load every step; states taken before and after the inputs
+    # first moved (the analytic FMU then steps its slide in time) and rolled back to
+    def moving(s, i0, n, dt=1e-4):
+        rows = []
+        for i in range(i0, i0 + n):
+            s.setReal([vr["F_press"]], [1000.0 + (2.0 * i if i >= 100 else 0.0)])
+            s.doStep(i * dt, dt)
+            rows.append(s.getReal([vr[k] for k in OUT]))
+        return rows
+    s = make()
+    moving(s, 0, 50)
+    st0 = s.getFMUstate()             # inputs not moved yet
+    a0 = moving(s, 50, 150)
+    st1 = s.getFMUstate()             # moving
+    a1 = moving(s, 200, 300)
+    s.setFMUstate(st1)
+    b1 = moving(s, 200, 300)
+    s.setFMUstate(st0)
+    b0 = moving(s, 50, 150)
+    c1 = moving(s, 200, 300)
+    res = {"rollback_identical": a1 == b1, "before_identical": a0 == b0 and a1 == c1,
+           "moves": a1[0] != a1[-1]}
 elif check == "instances":
     a1 = run(make("solo_a", theta=0.10), 400)
     b1 = run(make("solo_b", theta=0.20), 400)

@@ -89,6 +89,13 @@ def test_state_rollback_is_bitwise_exact(name):
     assert r["rollback_identical"] and r["serialized_identical"] and r["differs_from_start"]
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_state_rollback_bitwise_while_inputs_move(name):
+    # the analytic FMU's slide stepped in time once the inputs move is state too
+    r = _worker(name, "state-moving")
+    assert r["rollback_identical"] and r["before_identical"] and r["moves"]
+
+
 def test_state_rollback_bitwise_with_resolved_needles():
     # the needle-resolved bearing carries 11 floats a needle of state and its diagnostics
     r = _worker("TripodRoller", "state", {"bearing": 2, "n_needles": 12})

@@ -116,3 +116,27 @@ def test_a_table_that_is_not_periodic_says_so(monkeypatch):
     assert r["traverse"]["settled"] is False
     assert "NOT periodic" in format_analytic(r)
     assert "NOT periodic" not in format_analytic(analysis.analytic_report({}))
+
+
+def test_march_at_the_tables_spacing_stays_on_the_table():
+    # the table is the periodic solution of the same trapezoidal step: marched from its first
+    # point over one cycle at its own spacing, the slide retraces it (each step's Newton stops
+    # at 1e-9 v_st; 360 of them)
+    s = sc.validate({}, "analytic")
+    tab, op = Traverse(s), Traverse(s, periodic=False)
+    h = 2 * math.pi / s["omega"] / tab.n
+    sl, p = tab.state_at(0.0)
+    x = 0.0
+    for i in range(1, tab.n + 1):
+        sl, p, x, out = op.march(sl, p, x, h)
+        assert abs(sl - tab.slip[i]) < 1e-7 * tab.vst and abs(p - tab.p[i]) < 1e-7 * tab.mu
+        assert out == pytest.approx(tab.at(x), rel=1e-6, abs=1e-9)
+
+
+def test_march_without_load_slips_by_the_drive():
+    # nothing presses the roller: no friction holds it, it slips by the driven V' (T4, p = 0)
+    s = sc.validate({"F_press": 0.0}, "analytic")
+    op = Traverse(s, periodic=False)
+    sl, p, x, out = op.march(None, 0.0, 0.3, 1e-4)
+    V = op._drive_on(np.array([x]))[2][0]
+    assert p == 0.0 and sl == V and out == (0.0, 0.0, 0.0, 0.0, abs(V))
