@@ -140,7 +140,10 @@ class Traverse:
         if self._sm:
             a = self.a1 * fn ** (1.0 / 3.0)                 # Eq. (15)
             wn = dphi + spin * p
-            b -= 0.375 * self.mu * math.tanh(3.0 * wn * a / self.vst) * fn * a * p / self.r
+            # v_st = 0 (a straight joint's automatic v_st): Coulomb, tanh -> sign
+            t = math.tanh(3.0 * wn * a / self.vst) if self.vst > 0 else \
+                math.copysign(1.0, wn) if wn != 0 else 0.0
+            b -= 0.375 * self.mu * t * fn * a * p / self.r
         return b / fn
 
     def _share(self, s, B):

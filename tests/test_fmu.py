@@ -182,3 +182,16 @@ def test_fmu_logs_what_the_integrator_did(fmu):
     r = run_fmu(fmu, {"integrator": 3}, stop_time=0.01, output_interval=1e-4)
     line = next(m for m in r["log"] if m.startswith("roller 1:"))
     assert "substep(s) rejected by the error estimate" in line, line
+
+
+@pytest.mark.parametrize("name", ["TripodRollerAnalytic", "TripodRoller"])
+def test_straight_joint_gives_no_thrust(name):
+    # theta = 0 (allowed: a vehicle driving straight): no pitch, no roll, so nothing slides the
+    # roller along the groove; the groove carries the pressing load and no axial force.  The
+    # automatic v_st is 0 there: the analytic FMU's spin-moment tanh(x / v_st) gave NaN.
+    r = run_fmu(ensure_fmu(name), {"theta": 0.0}, stop_time=0.05, output_interval=1e-4)
+    assert r["time"][-1] == pytest.approx(0.05)
+    for k in ("Fx", "Fy", "Fz", "Fz_mod"):
+        assert np.isfinite(r[k]).all(), k
+    assert np.abs(r["Fz"]).max() < 1e-6 and np.abs(r["Fz_mod"]).max() < 1e-6
+    assert r["Fx"][-1] == pytest.approx(1000.0, rel=1e-3)   # F_press, the default
