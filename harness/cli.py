@@ -78,6 +78,17 @@ def overrides_from(args, model: str = "analytic") -> dict:
     return out
 
 
+DT_HELP = ("communication step [s] (default 1e-4, or a 1000th of the whirl cycle when that "
+           "is shorter)")
+
+
+def _dt(args):
+    """--dt [s], checked (None: the default of harness.runs.default_dt)."""
+    if args.dt is not None and not (math.isfinite(args.dt) and args.dt > 0):
+        raise ValueError(f"dt = {args.dt!r}: allowed range (0, inf) s")
+    return args.dt
+
+
 def _fmt_o(o):
     return f"{o['amplitude']:9.4f} N  {o['phase_deg']:8.2f} deg"
 
@@ -155,7 +166,7 @@ def cmd_compare(args) -> int:
     from harness.compare import compare, format_table
     over = _load_scene_file(args.scene) if args.scene else {}
     over.update(overrides_from(args, model="contact"))
-    r = compare(over, max_cycles=args.max_cycles, dt=args.dt)
+    r = compare(over, max_cycles=args.max_cycles, dt=_dt(args))
     if args.out:
         from harness.plots import compare_plots
         compare_plots(r, args.out)
@@ -184,7 +195,7 @@ def cmd_sweep(args) -> int:
         raise ValueError("--grid NAME=START:STOP:N is required (repeat it for more parameters)")
     grid = dict(sw.parse_grid(g) for g in args.grid)
     base = overrides_from(args)
-    rows = sw.sweep(grid, base, model=args.model, max_cycles=args.max_cycles, dt=args.dt,
+    rows = sw.sweep(grid, base, model=args.model, max_cycles=args.max_cycles, dt=_dt(args),
                     scheduler=args.scheduler, workers=args.workers, progress=True)
     out = Path(args.out)
     csv_path = sw.write_csv(rows, out / "sweep.csv")
@@ -278,7 +289,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--max-cycles", type=int, default=None,
                    help="cap on whirl cycles, count; the run stops earlier once orders 1 and 3 change by "
                         "less than 0.1 %% from one cycle to the next (default 40)")
-    p.add_argument("--dt", type=float, default=1e-4, help="communication step [s] (default 1e-4)")
+    p.add_argument("--dt", type=float, default=None, help=DT_HELP)
     p.add_argument("--out", metavar="DIR", help="write PNG plots into DIR")
     p.add_argument("--json", action="store_true", help="print one JSON object")
     p.set_defaults(func=cmd_compare)
@@ -294,7 +305,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--max-cycles", type=int, default=None,
                    help="cap on whirl cycles per point, count; each run stops once periodic "
                         "(default 40)")
-    p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
+    p.add_argument("--dt", type=float, default=None, help=DT_HELP)
     p.add_argument("--out", metavar="DIR", default="out/sweep", help="output folder (CSV, plots)")
     p.set_defaults(func=cmd_sweep)
     p = add("bench", "work-precision benchmark, cost per step, run breakdown")

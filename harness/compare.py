@@ -13,7 +13,7 @@ from reduced_model.analysis import analytic_report
 from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
-from .runs import run_fmu, run_settled, settle_line
+from .runs import default_dt, run_fmu, run_settled, settle_line
 
 # Tolerances and their physical reason (docs/validation.md, "compare's tolerances").
 TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
@@ -48,8 +48,8 @@ def _dphase(a, b):
     return float((a - b + 180.0) % 360.0 - 180.0)
 
 
-def compare(overrides: dict | None = None, max_cycles: int | None = None, dt: float = 1e-4,
-            rel_tol: float | None = None) -> dict:
+def compare(overrides: dict | None = None, max_cycles: int | None = None,
+            dt: float | None = None, rel_tol: float | None = None) -> dict:
     """Run both FMUs on a scene and judge the contact model against the analytic one.
 
     The contact FMU runs whole whirl cycles until Fz_mod (and each roller's Fz) is periodic
@@ -61,6 +61,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None, dt: fl
     if omega <= 0:
         raise ValueError("omega = 0: compare needs whole whirl cycles; allowed range (0, 10000] rad/s")
     period = 2 * math.pi / omega
+    dt = default_dt(omega) if dt is None else dt
     ra = run_fmu(ensure_fmu("TripodRollerAnalytic"), analytic_sc, 2 * period, dt)
     signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
     rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, omega, signals, dt, max_cycles,

@@ -16,6 +16,18 @@ class FmuRunError(RuntimeError):
     """The FMU run failed: the message carries the FMU's logged reason."""
 
 
+DT = 1e-4                 # default communication step [s]
+SAMPLES_PER_CYCLE = 1000  # ... or shorter, so that a whirl cycle holds at least this many
+
+
+def default_dt(omega: float) -> float:
+    """Communication step [s] for a run at whirl speed omega [rad/s]: DT, or a
+    SAMPLES_PER_CYCLE-th of the whirl cycle when that is shorter (a fast whirl sampled at
+    1e-4 s, 105 samples a cycle at 600 rad/s, moved the order-3 estimate of an exactly
+    periodic signal by 0.5 % from one cycle to the next: interpolation, not settling)."""
+    return min(DT, 2.0 * math.pi / omega / SAMPLES_PER_CYCLE) if omega > 0 else DT
+
+
 def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float = 0.2,
             output_interval: float = 1e-4, outputs: list[str] | None = None,
             timeout: float = 900.0, inputs: dict | None = None,

@@ -13,7 +13,7 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
-from .runs import FmuRunError, run_settled
+from .runs import FmuRunError, default_dt, run_settled
 
 FMUS = {"contact": "TripodRoller", "analytic": "TripodRollerAnalytic"}
 COLUMNS = ("order1_amplitude", "order1_phase_deg", "order3_amplitude", "order3_phase_deg",
@@ -46,7 +46,7 @@ def points(grid: dict) -> list[dict]:
     return [dict(zip(names, combo)) for combo in itertools.product(*(grid[n] for n in names))]
 
 
-def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: float,
+def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: float | None,
               signal: str = "Fz_mod") -> dict:
     """One grid point: simulate whole cycles until ``signal`` is periodic (or max_cycles), then
     orders 1 and 3 over the last whole cycle, the cycles used and the last cycle-to-cycle
@@ -60,7 +60,8 @@ def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: flo
     try:
         if omega <= 0:
             raise ValueError("omega must be > 0 for an order analysis")
-        r = run_settled(fmu, sv, omega, [signal], dt, max_cycles)
+        r = run_settled(fmu, sv, omega, [signal], default_dt(omega) if dt is None else dt,
+                        max_cycles)
         o = last_cycle_orders(r["time"], r[signal], omega * r["time"], (1, 3))
         st = r["settle"]
         row.update(order1_amplitude=o[1][0], order1_phase_deg=o[1][1],
@@ -74,7 +75,7 @@ def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: flo
 
 def sweep(grid: dict, base: dict | None = None, model: str = "contact",
           max_cycles: int | None = None,
-          dt: float = 1e-4, scheduler: str | None = None, workers: int = 2,
+          dt: float | None = None, scheduler: str | None = None, workers: int = 2,
           progress: bool = True) -> list[dict]:
     """Run the grid in parallel.
 

@@ -87,3 +87,11 @@ def test_every_option_in_help_has_its_default_and_every_parameter_its_unit():
             for q in scene_mod.params_for(model):
                 unit = "" if q.unit == "1" else f" [{q.unit}]"
                 assert f" {q.name}{unit} = " in text, (name, q.name)
+
+
+def test_bad_communication_step_one_line():
+    # refused by the CLI, naming the option and its range (it reached the FMU as an fmi2DoStep
+    # error before)
+    p = run("compare", "--dt", "0")
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2 and len(lines) == 1 and "dt = 0" in lines[0] and "(0, inf) s" in lines[0]
