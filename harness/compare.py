@@ -53,7 +53,9 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     """Run both FMUs on a scene and judge the contact model against the analytic one.
 
     The contact FMU runs whole whirl cycles until Fz_mod (and each roller's Fz) is periodic
-    within rel_tol (default reduced_model.steady.REL_TOL), at most max_cycles.  Returns the
+    within rel_tol (default reduced_model.steady.REL_TOL), at most max_cycles, at the
+    communication step dt [s] (default harness.runs.default_dt: 1e-4 s or a 1000th of the
+    whirl cycle when shorter).  Returns the
     JSON-ready result (docs/using-the-fmus.md); arrays of the runs under "_runs" (not JSON) for plotting.
     """
     contact_sc, analytic_sc = split_scene(overrides or {})

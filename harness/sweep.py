@@ -79,6 +79,7 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact",
           progress: bool = True) -> list[dict]:
     """Run the grid in parallel.
 
+    dt: communication step [s] (None: harness.runs.default_dt of each point's whirl speed).
     scheduler: None = local processes (dask multiprocessing, ``workers`` of them);
     "sync" = serial in this process; otherwise the address of a running dask.distributed
     scheduler (e.g. "tcp://10.0.0.5:8786").  Rows come back in grid order.
