@@ -112,6 +112,11 @@ def test_reset_restarts():
     assert _worker("TripodRoller", "reset")["reset_identical"]
 
 
+@pytest.mark.parametrize("name", NAMES)
+def test_reset_after_moving_inputs_restarts(name):
+    assert _worker(name, "reset-moving")["reset_identical"]
+
+
 def test_debug_log_says_what_was_chosen():
     r = run_fmu(ensure_fmu("TripodRoller"), {}, stop_time=0.001, output_interval=1e-4)
     assert any("substep" in m and "v_st" in m for m in r["log"]), r["log"]
