@@ -246,6 +246,15 @@ def check_value(name: str, value) -> None:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 
 
+def check_traverse_mu(mu: float) -> None:
+    """The reduced traverse model needs mu_groove < 1: the friction it balances tilts the
+    contact normal by asin(mu_groove), 90 deg at 1.  Raise ValueError naming the range."""
+    if mu >= 1.0:
+        raise ValueError(f"mu_groove = {mu:g}: the traverse model needs mu_groove < 1 (the "
+                         "friction it balances tilts the contact normal by asin(mu_groove)); "
+                         "allowed range [0, 1) (or traverse = false)")
+
+
 def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
     """A complete scene for ``model``: defaults updated by ``overrides``, every value checked.
 
@@ -266,10 +275,8 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
     if scene.get("n_rollers", 1) not in (1, 3):
         raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
-    if model == "analytic" and scene["traverse"] and scene["mu_groove"] >= 1.0:
-        raise ValueError(f"mu_groove = {scene['mu_groove']:g} with traverse = true: the traverse "
-                         "model needs mu_groove < 1 (the friction it balances tilts the contact "
-                         "normal by asin(mu_groove)); allowed range [0, 1) (or traverse = false)")
+    if model == "analytic" and scene["traverse"]:
+        check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(f"r_bore = {scene['r_bore']:g} m must be below r_roller = "
                          f"{scene['r_roller']:g} m (range (0, r_roller) m)")

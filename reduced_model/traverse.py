@@ -35,7 +35,7 @@ import numpy as np
 
 from .hertz import hertz_point
 from .orders import order_spectrum
-from .scene import pressing_load
+from .scene import check_traverse_mu, pressing_load
 from .thrust import Thrust, spin_inertia, transition_velocity
 
 N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
@@ -68,10 +68,7 @@ class Traverse:
         if w <= 0 and periodic:
             raise ValueError("omega = 0: the traverse model needs a whirling joint; allowed "
                              "range (0, 10000] rad/s (or traverse = false)")
-        if sc["mu_groove"] >= 1.0:
-            raise ValueError(f"mu_groove = {sc['mu_groove']:g}: the traverse model needs "
-                             "mu_groove < 1 (the contact normal tilts by asin(mu_groove)); "
-                             "allowed range [0, 1) (or traverse = false)")
+        check_traverse_mu(sc["mu_groove"])
         self.F = F = pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"])
         self.mu = mu = sc["mu_groove"]
         self.vst = transition_velocity(sc)
