@@ -3,14 +3,15 @@
 traverse = true (default): the reduced traverse model's periodic solution, tabulated over the
 whirl angle at the start (reduced_model/traverse.py); once a master moves the inputs, the
 roller's slide is stepped in time at the inputs of each step (Traverse.march: T4 is an ODE in
-time, the table its periodic solution), a fraction of a millisecond a step where a new table
-took 0.05 s or more.  false: Eqs. (18)-(27).
+time, the table its periodic solution), where a new table took 0.05 s or more a step.  false:
+Eqs. (18)-(27).
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.  The whirl angle integrates omega.
 
-Steps at unchanged inputs run compiled, without entering Python (the native layer's fast path):
+Steps run compiled, without entering Python (the native layer's fast path):
 resources/_analytic_step.so, built from fmu_src/native/analytic_step.c with the FMU, does what
-_advance does, bit for bit (tests/test_fast.py).
+_advance does, bit for bit (tests/test_fast.py): at unchanged inputs the table's interpolation
+(or Eqs. 18-27), once the inputs moved the march at each step's inputs.
 """
 import copy
 import ctypes
@@ -20,7 +21,7 @@ import os
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import (REGIME_CODES, check_value, pressing_load, same_step,
+from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, pressing_load, same_step,
                                  same_value, validate)
 from reduced_model.thrust import Thrust
 from reduced_model.traverse import Traverse
@@ -33,19 +34,21 @@ FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_
 
 
 def _fast_library(resources):
-    """(library, step function's address, OP names, output names) of the compiled step, or
-    None (not built into this FMU, or TRIPOD_FAST=0 turns it off, for comparison).  The slave
-    keeps the library object: the address is valid while it is loaded."""
+    """(library, step function's address, OP names, output names, march function's address,
+    its OP names, its per-roller state names) of the compiled steps, or None (not built into
+    this FMU, or TRIPOD_FAST=0 turns it off, for comparison).  The slave keeps the library
+    object: the addresses are valid while it is loaded."""
     if os.environ.get("TRIPOD_FAST", "1") == "0" or not resources:
         return None
     try:
         lib = ctypes.CDLL(os.path.join(resources, FAST_LIB))
         layout = ctypes.cast(lib.tripod_analytic_layout, ctypes.CFUNCTYPE(ctypes.c_char_p))()
         address = ctypes.cast(lib.tripod_analytic_step, ctypes.c_void_p).value
+        march = ctypes.cast(lib.tripod_analytic_march, ctypes.c_void_p).value
     except (OSError, AttributeError):
         return None
-    op, out = (part.split() for part in layout.decode().split("|"))
-    return lib, address, op, out
+    op, out, mop, state = (part.split() for part in layout.decode().split("|"))
+    return lib, address, op, out, march, mop, state
 
 
 class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
@@ -92,10 +95,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         # the operating point, the table and the compiled steps
         if self._key is not None and all(map(same_value, key, self._key)):
             return
-        for name, value in zip(_INPUTS, key):
-            check_value(name, value)
-            self._scene[name] = float(value)
-        self._thrust = Thrust(self._scene)
+        self._take_inputs(key)
         sc = self._scene
         applies = sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
             pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0
@@ -127,6 +127,13 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             self._table = None
             self._op = Traverse(sc, periodic=False)
         self._key = key
+
+    def _take_inputs(self, key):
+        """Check the inputs key (_INPUTS order) and make them the scene's."""
+        for name, value in zip(_INPUTS, key):
+            check_value(name, value)
+            self._scene[name] = float(value)
+        self._thrust = Thrust(self._scene)
 
     def _get_fmu_state(self):
         return {"vars": super()._get_fmu_state(), "x": list(self._x), "dt": self._dt,
@@ -175,10 +182,13 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         at these inputs and this step size, with its arrays (the native layer's _fast)."""
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
-        if self._fast_lib is None or len(self._x) > 3 or self._march is not None:
+        if self._fast_lib is None or len(self._x) > 3:
+            return
+        if self._march is not None:
+            self._offer_march()
             return
         import numpy as np
-        _, address, op_names, out_names = self._fast_lib
+        _, address, op_names, out_names = self._fast_lib[:4]
         if self._fast_table is not self._table:    # the table's rows, once per operating point
             self._fast_table = self._table
             self._fast_rows = np.array(self._table._rows if self._table is not None
@@ -200,19 +210,70 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._fast = (address, self._dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
                       [float(getattr(self, n)) for n in _INPUTS], addresses)
 
+    def _offer_march(self):
+        """Once the inputs moved: the compiled march (analytic_step.c: Traverse.march with the
+        operating point derived from the inputs, which the native layer checks against their
+        ranges and writes into the march's OP), so a master's new inputs every step stay off
+        Python too."""
+        if self._op is None or any(m[0] is None or m[2] is None for m in self._march):
+            return              # (the march starts at rest: its first step in Python)
+        import numpy as np
+        _, _, _, out_names, address, mop_names, state_names = self._fast_lib
+        sc, op = self._scene, self._op
+        # the inputs as the master left them, and those the operating point is derived for
+        mop = {n: float(getattr(self, n)) for n in _INPUTS}
+        mop.update({"key_" + n: float(v) for n, v in zip(_INPUTS, self._key)})
+        mop.update(dt=self._dt, n_rollers=len(self._x), n=op.n, mu=op.mu, v_st=sc["v_st"],
+                   K=op.K, a1=op.a1, clear=op.clear, r=op.r, s=sc["s"], I=op.inertia,
+                   pitch=float(sc["pitch"]), roll=float(sc["roll"]), spin_moment=float(op._sm))
+        self._fast_x = np.array(self._x)
+        self._fast_state = np.array([[m[0], m[1]] + list(m[2]) for m in self._march],
+                                    dtype=float).ravel()
+        assert len(state_names) == 2 + len(self._march[0][2])
+        self._fast_op = np.array([mop[n] for n in mop_names], dtype=float)
+        self._fast_out = np.array([getattr(self, n) for n in out_names])
+        arrays = (self._fast_x, self._fast_state, self._fast_op, self._fast_out)
+        addresses = [a.ctypes.data for a in arrays] + [self._fast_x.ctypes.data] * 10
+        vr = {v.name: ref for ref, v in self.vars.items()}
+        self._fast_names = out_names
+        # where the native layer writes each input (the march's OP) and its allowed range
+        slots = []
+        for i, name in enumerate(_INPUTS):
+            p = BY_NAME[name]
+            slots.append((self._fast_op.ctypes.data + 8 * mop_names.index(name),
+                          -math.inf if p.lo is None else float(p.lo),
+                          math.inf if p.hi is None else float(p.hi),
+                          int(p.lo_open), int(p.hi_open)))
+        self._fast = (address, self._dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
+                      [float(getattr(self, n)) for n in _INPUTS], addresses, slots)
+
     def _fast_sync(self, k):
-        """The native layer took k compiled steps: take their whirl angles and outputs."""
+        """The native layer took k compiled steps: take their whirl angles and outputs (and
+        the march's state and the inputs its operating point was derived for)."""
         self._steps[0] += k
         self._x = [float(v) for v in self._fast_x]
         for name, v in zip(self._fast_names, self._fast_out):
             setattr(self, name, float(v))
+        if self._march is not None:
+            state = self._fast_state.reshape(len(self._march), -1).tolist()
+            for m, row in zip(self._march, state):
+                m[0], m[1], m[2] = row[0], row[1], tuple(row[2:])
+            names = self._fast_lib[5]
+            key = tuple(float(self._fast_op[names.index("key_" + n)]) for n in _INPUTS)
+            if key != tuple(map(float, self._key)):
+                self._take_inputs(key)
+                self._op = Traverse(self._scene, periodic=False)
+                self._key = key
 
     def _fast_inputs(self, values):
         """The master set inputs (_INPUTS order) while the fast path ran: take them as setReal
-        would.  New inputs step the traverse model's slide in time, in Python (False)."""
+        would.  Once the slide is stepped in time the compiled march takes them (the native
+        layer wrote them into its OP: True); at the start's table, inputs moved only by
+        rounding keep the table (as _prepare does: True), others start the march in Python."""
         for name, v in zip(_INPUTS, values):
             setattr(self, name, v)
-        return False
+        return self._march is not None or (self._key is not None and
+                                           all(map(same_value, values, self._key)))
 
     def _fast_failed(self, current_time, code):
         """A compiled step failed (2: a non-finite output)."""

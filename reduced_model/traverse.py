@@ -30,6 +30,7 @@ Kinematics are the exact Eqs. (1), (5) (the contact model's).
 from __future__ import annotations
 
 import math
+from types import SimpleNamespace
 
 import numpy as np
 
@@ -47,6 +48,10 @@ SETTLED_TOL = 1e-5         # periodic enough: the tanh friction moves by <= 3 SE
                            # mu f_n over the mismatch, far below compare's 0.1 % settling
 STALL = 3                  # cycles without a better one: the secant is in the map's noise
 MAX_CYCLES = 60            # cycles of the cycle map the secant may run
+# numpy's names over libm's scalar functions: the march's one-float-at-a-time path (numpy's
+# own vector sin may differ in the last bit, so a compiled twin could not match it)
+SCALAR = SimpleNamespace(sin=math.sin, cos=math.cos, sqrt=math.sqrt, arctan=math.atan,
+                         arcsin=math.asin)
 
 
 class Traverse:
@@ -78,6 +83,9 @@ class Traverse:
         self.clear = Rg - r
         self.rho_c = self.clear + (F / self.K) ** (2.0 / 3.0) if F > 0 else self.clear
         self._sm = bool(sc["spin_moment"])
+        # the roller's spin inertia in T2 [kg m^2] (0: the spin-inertia thrust switched off)
+        self.inertia = spin_inertia(sc["m_roller"], r, sc["r_bore"]) if sc["spin_inertia"] \
+            else 0.0
         self.held = F > 0 and mu > 0 and self.vst > 0   # else nothing holds the roller
         if not periodic:              # the operating point only, for march
             return
@@ -93,27 +101,28 @@ class Traverse:
         self._tabulate()
 
     # --- the driving motion on the table (exact Eqs. 1, 5; z = s tan(phi), Eq. 18) ---------
-    def _drive_on(self, x):
-        """The driving motion at whirl angles x [rad] (numpy array): phi, xi [rad], V [m/s]
-        (T4's driven slip), dphi [rad/s], spin [rad/s] (rolling along the groove), b_inertia
-        [N] (T2's inertia part of f_b)."""
+    def _drive_on(self, x, m=np):
+        """The driving motion at whirl angles x [rad] (numpy array, or a float with m = SCALAR):
+        phi, xi [rad], V [m/s] (T4's driven slip), dphi [rad/s], spin [rad/s] (rolling along
+        the groove), b_inertia [N] (T2's inertia part of f_b).  fmu_src/native/analytic_step.c
+        (march) does the same operations in the same order."""
         sc = self.scene
         w, th = sc["omega"], sc["theta"]
         T = math.tan(th) if sc["pitch"] else 0.0
         k = (1.0 - math.cos(th)) / (2.0 * math.cos(th)) if sc["roll"] else 0.0   # e / s
-        tz = T * np.sin(x)
-        phi = np.arctan(tz)
-        dphi = T * w * np.cos(x) / (1.0 + tz * tz)
-        xi = np.arcsin(k * np.sin(2.0 * x))
-        dxi = 2.0 * w * k * np.cos(2.0 * x) / np.sqrt(1.0 - (k * np.sin(2.0 * x)) ** 2)
-        zd = sc["s"] * T * w * np.cos(x)
-        zdd = -sc["s"] * T * w * w * np.sin(x)
+        tz = T * m.sin(x)
+        phi = m.arctan(tz)
+        dphi = T * w * m.cos(x) / (1.0 + tz * tz)
+        q = k * m.sin(2.0 * x)
+        xi = m.arcsin(q)
+        dxi = 2.0 * w * k * m.cos(2.0 * x) / m.sqrt(1.0 - q * q)
+        zd = sc["s"] * T * w * m.cos(x)
+        zdd = -sc["s"] * T * w * w * m.sin(x)
         r = sc["r_roller"]
-        v1 = zd * np.sin(phi)                               # Eq. (19), exact
+        v1 = zd * m.sin(phi)                                # Eq. (19), exact
         v2 = -r * dxi                                       # Eq. (20), exact
         V = v1 + v2 * (1.0 + self.rho_c / r)                # T4
-        I = spin_inertia(sc["m_roller"], r, sc["r_bore"]) if sc["spin_inertia"] else 0.0
-        return phi, xi, V, dphi, zd / r, -I * zdd / (r * r)
+        return phi, xi, V, dphi, zd / r, -self.inertia * zdd / (r * r)
 
     def _drive(self, sc):
         (self.phi, self.xi, self.V, self.dphi, self.spin,
@@ -307,28 +316,28 @@ class Traverse:
         (s None: at rest on the groove bottom, p = 0) at whirl angle x [rad] over dt [s], by
         the table's trapezoidal rule in substeps of at most the table's spacing.  Works on
         Traverse(scene, periodic=False).  Returns (s, p, x at the end, the outputs there as
-        ``at`` gives them)."""
+        ``at`` gives them).  Scalar libm math throughout: the analytic FMU's compiled march
+        (fmu_src/native/analytic_step.c) is this, bit for bit (tests/test_fast.py)."""
         w = self.scene["omega"]
         n = max(1, math.ceil(w * dt * self.n / (2.0 * math.pi) - 1e-9))
         h = dt / n
-        xs = x + w * h * np.arange(n + 1)
-        phi, xi, V, dphi, spin, bi = (a.tolist() for a in self._drive_on(xs))
+        wh = w * h
+        _, _, V0, _, _, _ = self._drive_on(x, SCALAR)
         if s is None:
-            s, p = V[0], 0.0
+            s, p = V0, 0.0
+        for i in range(n):
+            phi, xi, V1, dphi, spin, bi = self._drive_on(x + wh * (i + 1), SCALAR)
+            if self.held:
+                rhs0 = self.rho_c * p + 0.5 * h * (s - V0 - V1)
+                s = self._step(rhs0, s, h, lambda z: self._p_at(z, bi, dphi, spin))
+                p = self._p_at(s, bi, dphi, spin)
+            V0 = V1
         if not self.held:
-            s, p = V[-1], 0.0
-        else:
-            rho = self.rho_c
-            for i in range(n):
-                rhs0 = rho * p + 0.5 * h * (s - V[i] - V[i + 1])
-                s = self._step(rhs0, s, h, lambda z: self._p_at(z, bi[i + 1], dphi[i + 1],
-                                                                 spin[i + 1]))
-                p = self._p_at(s, bi[i + 1], dphi[i + 1], spin[i + 1])
+            s, p = V0, 0.0
         fn = self._fn(p) if self.F > 0 else 0.0
-        beta = self._beta_at(p, fn, bi[n], dphi[n], spin[n]) if fn > 0 else 0.0
-        Fz, Fx, Fy, Fz_mod = (float(v) for v in groove_forces(fn, p, beta, phi[n], xi[n],
-                                                                self.F))
-        return s, p, float(xs[-1]), (Fz, Fz_mod, Fx, Fy, abs(s))
+        beta = self._beta_at(p, fn, bi, dphi, spin) if fn > 0 else 0.0
+        Fz, Fx, Fy, Fz_mod = groove_forces(fn, p, beta, phi, xi, self.F, SCALAR)
+        return s, p, x + wh * n, (Fz, Fz_mod, Fx, Fy, abs(s))
 
     def orders(self, name="Fz_mod", orders=(1, 3)):
         """{k: (amplitude N, phase deg)} of one of the tabulated signals over the cycle."""
@@ -350,13 +359,17 @@ class Traverse:
         return regime_of(self.g_max, self.orders()[3], (float(a[0]), float(ph[0])))
 
 
-def groove_forces(fn, p, beta, phi, xi, F):
+def groove_forces(fn, p, beta, phi, xi, F, m=np):
     """T6: (Fz, Fx, Fy, Fz_mod) [N] on the groove from the normal force fn [N], p, beta [1],
-    the pitch phi and roll tilt xi [rad] (numpy arrays or floats), F the pressing load [N]."""
-    Fz = -fn * (p * np.sin(phi) + beta * np.cos(phi))
-    Fx = fn * (np.sqrt(1.0 - p * p) + p * p - p * xi)
-    Fy = fn * p * np.cos(phi)
-    Fz_mod = np.where(Fx > 1e-9 * max(F, 1.0), Fz * F / np.where(Fx > 0, Fx, 1.0), 0.0)
+    the pitch phi and roll tilt xi [rad] (numpy arrays, or floats with m = SCALAR), F the
+    pressing load [N]."""
+    Fz = -fn * (p * m.sin(phi) + beta * m.cos(phi))
+    Fx = fn * (m.sqrt(1.0 - p * p) + p * p - p * xi)
+    Fy = fn * p * m.cos(phi)
+    if m is SCALAR:
+        Fz_mod = Fz * F / Fx if Fx > 1e-9 * max(F, 1.0) else 0.0
+    else:
+        Fz_mod = np.where(Fx > 1e-9 * max(F, 1.0), Fz * F / np.where(Fx > 0, Fx, 1.0), 0.0)
     return Fz, Fx, Fy, Fz_mod
 
 

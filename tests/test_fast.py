@@ -27,6 +27,10 @@ if req["ramp"]:   # "steps": theta steps from 10 to 12 deg at 0.05 s, back at 0.
     inputs = np.array(list(zip(t, th)), dtype=[("time", float), ("theta", float)])
     if req["ramp"] == "master-torque":   # the transmitted torque moves every step
         inputs = np.array([(0.0, 60.0), (0.2, 66.0)], dtype=[("time", float), ("torque", float)])
+    if req["ramp"] == "master-edges":   # to a straight joint at rest, the load from zero
+        inputs = np.array([(0.0, np.radians(10), 20 * np.pi, 0.0), (0.2, 0.0, 0.0, 1000.0)],
+                          dtype=[("time", float), ("theta", float), ("omega", float),
+                                 ("F_press", float)])
     if req["ramp"] == "master":   # every input moves every step, as in a driveline run
         t = np.array([0.0, 0.2])
         inputs = np.array([(0.0, np.radians(10), 20 * np.pi, 1000.0),
@@ -75,24 +79,33 @@ def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
 
 
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"traverse": False, "n_rollers": 3}, False),
-                                     ({}, True)],
-                         ids=["traverse-table", "eqs18-27-three-rollers", "theta-steps"])
+                                     ({}, True), ({}, "master"), ({"n_rollers": 3}, "master"),
+                                     ({}, "master-torque"), ({}, "master-edges")],
+                         ids=["traverse-table", "eqs18-27-three-rollers", "theta-steps",
+                              "master", "master-three-rollers", "master-torque",
+                              "master-to-straight-and-rest"])
 def test_analytic_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
-    """The analytic FMU's compiled step (analytic_step.c) against its Python step: the table's
-    interpolation and Eqs. (18)-(27) alike, and across input changes."""
+    """The analytic FMU's compiled steps (analytic_step.c) against its Python step: the table's
+    interpolation and Eqs. (18)-(27) alike, across input changes, and the compiled march
+    (Traverse.march) under a master that moves the inputs every step, down to theta = 0,
+    omega = 0 and from no load."""
     slow, _, slow_said, slow_steps = _run(tmp_path, sv, "0", ramp, "TripodRollerAnalytic")
     fast, _, fast_said, steps = _run(tmp_path, sv, "1", ramp, "TripodRollerAnalytic")
     assert (slow_said, fast_said) == (0, 1)
     assert slow.shape == fast.shape and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 3]) > 0.1     # Fz (columns time, Fx, Fy, Fz, ...) moves
     # one table at the start; once theta moves the slide is stepped in time (no new tables)
-    tables = 0 if sv.get("traverse") is False else 1
+    # (no table when the run starts unloaded)
+    tables = 0 if sv.get("traverse") is False or ramp == "master-edges" else 1
     tail = f"; traverse tables derived: {tables}" + (
-        "; the slide stepped in time since the inputs moved" if ramp and tables else "")
+        "; the slide stepped in time since the inputs moved"
+        if ramp and sv.get("traverse") is not False else "")
     assert slow_steps == ["communication steps: 0 compiled, 2000 through Python" + tail], \
         slow_steps
     if not ramp:
         assert steps == ["communication steps: 1999 compiled, 1 through Python" + tail], steps
+    else:   # Python takes the first step and the one that starts the march, no other
+        assert steps == ["communication steps: 1998 compiled, 2 through Python" + tail], steps
 
 
 def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
@@ -135,11 +148,13 @@ print(json.dumps({"status": status, "before": before, "after": after}))
 '''
 
 
+@pytest.mark.parametrize("fmu", ["TripodRoller", "TripodRollerAnalytic"])
 @pytest.mark.parametrize("value", ["1.0", "nan"])
-def test_bad_input_set_while_the_compiled_step_runs_is_reported(value):
-    """An input set out of its range while steps run compiled: the step is refused with a log
-    naming the input and its range, the outputs stay those of the last good step."""
-    p = subprocess.run([sys.executable, "-c", _BAD, str(ensure_fmu("TripodRoller")), value],
+def test_bad_input_set_while_the_compiled_step_runs_is_reported(value, fmu):
+    """An input set out of its range while steps run compiled (the analytic FMU: its march,
+    the inputs moving every step): the step is refused with a log naming the input and its
+    range, the outputs stay those of the last good step."""
+    p = subprocess.run([sys.executable, "-c", _BAD, str(ensure_fmu(fmu)), value],
                        capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr[-3000:]
     r = json.loads(p.stdout.strip().splitlines()[-1])

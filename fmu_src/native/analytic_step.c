@@ -6,19 +6,39 @@
    operations in the same order as that Python, so both paths give the same bits
    (tests/test_fast.py); compiled with -ffp-contract=off for that.
 
+   Once a master moves the inputs, tripod_analytic_march steps the roller's slide in time at
+   each step's inputs, as reduced_model/traverse.py's Traverse.march does (T2-T6 of its header:
+   the same operations in the same order, libm's scalar functions as Python's math module), and
+   derives the operating point from the inputs the native layer wrote (TripodRollerAnalytic.
+   _prepare, Traverse.__init__).
+
    The slave fills OP by the names tripod_analytic_layout() gives, so this file is the one
    place the layout is written. */
+#include <float.h>
 #include <math.h>
 #include <stdint.h>
+
+#define PI 3.141592653589793   /* math.pi */
 
 enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, OP_LEN };
 enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, OUT_LEN };
 
-/* "OP names | output names", each list in its array's order */
+/* the march's operating point (tripod_analytic_march): the inputs where the native layer
+   writes a master's new values, the inputs the operating point was derived for (key), the step,
+   and the scene's constants */
+enum { M_THETA, M_OMEGA, M_F_PRESS, M_TORQUE, M_KEY_THETA, M_KEY_OMEGA, M_KEY_F_PRESS,
+       M_KEY_TORQUE, M_DT, M_N_ROLLERS, M_N, M_MU, M_V_ST, M_K, M_A1, M_CLEAR, M_R, M_S, M_I,
+       M_PITCH, M_ROLL, M_SPIN_MOMENT, MOP_LEN };
+enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state per roller */
+
+/* "OP names | output names | march OP names | march state names", each in its array's order */
 const char *tripod_analytic_layout(void)
 {
     return "w n_rollers F table scale n A B muF k th kspin"
-           "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3";
+           "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3"
+           "|theta omega F_press torque key_theta key_omega key_F_press key_torque dt n_rollers"
+           " n mu v_st K a1 clear r s I pitch roll spin_moment"
+           "|s p Fz Fz_mod Fx Fy slip";
 }
 
 /* Python's x % 2 pi (the sign of the divisor) */
@@ -90,5 +110,248 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
     for (int q = 0; q < OUT_LEN; ++q)
         if (!isfinite(o[q])) return 2;
     for (int q = 0; q < OUT_LEN; ++q) OUT[q] = o[q];
+    return 1;
+}
+
+
+/* ---- the march (Traverse.march) ------------------------------------------------------- */
+
+typedef struct {
+    double w, F, mu, vst, K, a1, clear, rho, r, s, I, T, k;
+    int held, sm;
+} Op;
+
+/* scene.same_value: a and b differ only by rounding (64 ulps of the larger) */
+static int same_value(double a, double b)
+{
+    return fabs(a - b) <= 64.0 * DBL_EPSILON * fmax(fabs(a), fabs(b));
+}
+
+/* Python's min(a, b) and max(a, b) for floats: the first unless the second is smaller (larger) */
+static double pmin(double a, double b) { return b < a ? b : a; }
+static double pmax(double a, double b) { return b > a ? b : a; }
+
+/* the operating point at the key's inputs (Traverse.__init__ with periodic=False) */
+static void operating_point(const double *M, Op *o)
+{
+    double th = M[M_KEY_THETA], w = M[M_KEY_OMEGA], fp = M[M_KEY_F_PRESS], tq = M[M_KEY_TORQUE];
+    o->w = w;
+    o->s = M[M_S];
+    o->r = M[M_R];
+    o->F = tq > 0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
+    o->mu = M[M_MU];
+    if (M[M_V_ST] > 0) {                                           /* thrust.transition_velocity */
+        o->vst = M[M_V_ST];
+    } else {
+        double A = M[M_PITCH] != 0.0 ? 0.5 * o->s * w * pow(th, 2.0) : 0.0;   /* sliding.py */
+        double B = 0.0;
+        if (M[M_ROLL] != 0.0) {
+            double c = cos(th);
+            B = -o->r * w * (1.0 - c) / c;
+        }
+        o->vst = hypot(A, B) / 4.0;                                /* friction.v_st_auto */
+    }
+    o->K = M[M_K];
+    o->a1 = M[M_A1];
+    o->clear = M[M_CLEAR];
+    o->rho = o->F > 0 ? o->clear + pow(o->F / o->K, 2.0 / 3.0) : o->clear;
+    o->I = M[M_I];
+    o->sm = M[M_SPIN_MOMENT] != 0.0;
+    o->held = o->F > 0 && o->mu > 0 && o->vst > 0;
+    o->T = M[M_PITCH] != 0.0 ? tan(th) : 0.0;
+    o->k = M[M_ROLL] != 0.0 ? (1.0 - cos(th)) / (2.0 * cos(th)) : 0.0;
+}
+
+typedef struct { double phi, xi, V, dphi, spin, bi; } Drive;
+
+/* Traverse._drive_on at whirl angle x [rad] */
+static void drive_on(const Op *o, double x, Drive *d)
+{
+    double T = o->T, k = o->k, w = o->w, r = o->r;
+    double tz = T * sin(x);
+    d->phi = atan(tz);
+    d->dphi = T * w * cos(x) / (1.0 + tz * tz);
+    double q = k * sin(2.0 * x);
+    d->xi = asin(q);
+    double dxi = 2.0 * w * k * cos(2.0 * x) / sqrt(1.0 - q * q);
+    double zd = o->s * T * w * cos(x);
+    double zdd = -o->s * T * w * w * sin(x);
+    double v1 = zd * sin(d->phi);
+    double v2 = -r * dxi;
+    d->V = v1 + v2 * (1.0 + o->rho / r);
+    d->spin = zd / r;
+    d->bi = -o->I * zdd / (r * r);
+}
+
+/* T5: Traverse._fn */
+static double normal_force(const Op *o, double p)
+{
+    double d = o->rho / sqrt(1.0 - p * p) - o->clear;
+    return d > 0 ? o->K * pow(d, 1.5) : 0.0;
+}
+
+/* T2: Traverse._beta_at */
+static double beta_at(const Op *o, double p, double fn, const Drive *d)
+{
+    double b = d->bi;
+    if (o->sm) {
+        double a = o->a1 * pow(fn, 1.0 / 3.0);
+        double wn = d->dphi + d->spin * p;
+        double t = o->vst > 0 ? tanh(3.0 * wn * a / o->vst)
+                              : (wn != 0 ? copysign(1.0, wn) : 0.0);
+        b -= 0.375 * o->mu * t * fn * a * p / o->r;
+    }
+    return b / fn;
+}
+
+/* T3 inverted: Traverse._share */
+static double share(const Op *o, double s, double B)
+{
+    double mu = o->mu, k = 3.0 / o->vst;
+    B = pmin(B, mu * (1.0 - 1e-9));
+    s = fabs(s);
+    if (B <= 0.0) return mu * tanh(k * s);
+    if (s == 0.0) return 0.0;
+    double lo = 0.0, hi = 0.5 * PI;
+    double a = pmin(asin(pmin(B / (mu * tanh(k * s) + 1e-300), 1.0)), 1.5);
+    for (int it = 0; it < 60; ++it) {
+        double c = cos(a), sn = sin(a);
+        double th = tanh(k * s / c);
+        double f = mu * th * sn - B;
+        if (f > 0) hi = a;
+        else lo = a;
+        double df = mu * (th * c + sn * (1.0 - th * th) * k * s * sn / (c * c));
+        double an = df > 0 ? a - f / df : 0.5 * (lo + hi);
+        if (!(lo < an && an < hi)) an = 0.5 * (lo + hi);
+        if (fabs(an - a) < 1e-10) {
+            a = an;
+            break;
+        }
+        a = an;
+    }
+    return mu * tanh(k * s / cos(a)) * cos(a);
+}
+
+/* T2, T3, T5: Traverse._p_at */
+static double p_at(const Op *o, double s, const Drive *d)
+{
+    double sign = s > 0 ? -1.0 : 1.0;
+    double p = sign * o->mu * tanh(3.0 * fabs(s) / o->vst);
+    for (int it = 0; it < 6; ++it) {
+        double q = sign * share(o, s, fabs(beta_at(o, p, normal_force(o, p), d)));
+        if (fabs(q - p) < 1e-11 * o->mu) return q;
+        p = q;
+    }
+    return p;
+}
+
+/* T4, one trapezoidal step: Traverse._step (Newton kept in the root's bracket) */
+static double trapezoid_step(const Op *o, double rhs0, double s, double h, const Drive *d)
+{
+    double rho = o->rho, mu = o->mu;
+    double e = 1e-6 * o->vst;
+    double lo = -2.0 * (rho * mu + rhs0) / h, hi = 2.0 * (rho * mu - rhs0) / h;
+    double z = pmin(pmax(s, lo), hi);
+    for (int it = 0; it < 200; ++it) {
+        double p1 = p_at(o, z, d);
+        double res = rho * p1 - 0.5 * h * z - rhs0;
+        if (res > 0.0) lo = z;
+        else if (res < 0.0) hi = z;
+        else break;
+        double dd = (rho * (p_at(o, z + e, d) - p1)) / e - 0.5 * h;
+        double dz = -res / dd;
+        if (!(lo < z + dz && z + dz < hi)) dz = 0.5 * (lo + hi) - z;
+        z += dz;
+        if (fabs(dz) < 1e-9 * o->vst) break;
+    }
+    return z;
+}
+
+/* X: whirl angles [rad] (advanced in place), S: per roller the march state (S_LEN: slide slip
+   s [m/s], p [1], then its outputs Fz, Fz_mod, Fx, Fy [N], slip speed [m/s]), M: the march's
+   operating point (above; the key is updated in place when the inputs moved beyond rounding),
+   OUT: the outputs.  1: written; 2: a non-finite output (nothing written: X, S, M untouched);
+   3: a bad roller count. */
+int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, double *u4,
+                              double *u5, double *u6, double *u7, double *u8, double *u9,
+                              double *u10, double *u11, double *u12, double *u13)
+{
+    (void)u4; (void)u5; (void)u6; (void)u7; (void)u8; (void)u9; (void)u10; (void)u11;
+    (void)u12; (void)u13;
+    int nr = (int)M[M_N_ROLLERS];
+    if (nr < 1 || nr > 3) return 3;
+    double key[4];
+    int moved = 0;
+    for (int q = 0; q < 4; ++q) moved |= !same_value(M[M_THETA + q], M[M_KEY_THETA + q]);
+    for (int q = 0; q < 4; ++q) key[q] = moved ? M[M_THETA + q] : M[M_KEY_THETA + q];
+    double saved[4];
+    for (int q = 0; q < 4; ++q) {
+        saved[q] = M[M_KEY_THETA + q];
+        M[M_KEY_THETA + q] = key[q];
+    }
+    Op o;
+    operating_point(M, &o);
+    double dt = M[M_DT], table_n = M[M_N];
+    double nd = ceil(o.w * dt * table_n / (2.0 * PI) - 1e-9);
+    long n = nd > 1.0 ? (long)nd : 1;
+    double h = dt / (double)n, wh = o.w * h;
+    double x1[3], st[3][S_LEN], o_[OUT_LEN], fz[3] = {0.0, 0.0, 0.0};
+    for (int i = 0; i < nr; ++i) {
+        double x = X[i], s = S[S_LEN * i + S_S], p = S[S_LEN * i + S_P];
+        Drive d0, d1;
+        drive_on(&o, x, &d0);
+        for (long j = 0; j < n; ++j) {
+            drive_on(&o, x + wh * (double)(j + 1), &d1);
+            if (o.held) {
+                double rhs0 = o.rho * p + 0.5 * h * (s - d0.V - d1.V);
+                s = trapezoid_step(&o, rhs0, s, h, &d1);
+                p = p_at(&o, s, &d1);
+            }
+            d0 = d1;
+        }
+        if (!o.held) {
+            s = d0.V;
+            p = 0.0;
+        }
+        double fn = o.F > 0 ? normal_force(&o, p) : 0.0;
+        double beta = fn > 0 ? beta_at(&o, p, fn, &d0) : 0.0;
+        /* T6: traverse.groove_forces */
+        double Fz = -fn * (p * sin(d0.phi) + beta * cos(d0.phi));
+        double Fx = fn * (sqrt(1.0 - p * p) + p * p - p * d0.xi);
+        double Fy = fn * p * cos(d0.phi);
+        double Fz_mod = Fx > 1e-9 * pmax(o.F, 1.0) ? Fz * o.F / Fx : 0.0;
+        x1[i] = x + wh * (double)n;
+        st[i][S_S] = s;
+        st[i][S_P] = p;
+        st[i][S_FZ] = Fz;
+        st[i][S_FZ_MOD] = Fz_mod;
+        st[i][S_FX] = Fx;
+        st[i][S_FY] = Fy;
+        st[i][S_SLIP] = fabs(s);
+        fz[i] = Fz;
+    }
+    /* TripodRollerAnalytic._write_outputs */
+    o_[FZ] = st[0][S_FZ];
+    o_[FZ_MOD] = st[0][S_FZ_MOD];
+    o_[FX] = st[0][S_FX];
+    o_[FY] = st[0][S_FY];
+    o_[SLIP] = st[0][S_SLIP];
+    o_[DFX] = o_[FX] - o.F;
+    o_[FZ_JOINT] = fz[0] + fz[1] + fz[2];
+    o_[FZ_2] = fz[1];
+    o_[FZ_3] = fz[2];
+    int ok = 1;
+    for (int q = 0; q < OUT_LEN; ++q) ok = ok && isfinite(o_[q]);
+    for (int i = 0; i < nr; ++i)
+        for (int q = 0; q < S_LEN; ++q) ok = ok && isfinite(st[i][q]);
+    if (!ok) {
+        for (int q = 0; q < 4; ++q) M[M_KEY_THETA + q] = saved[q];
+        return 2;
+    }
+    for (int i = 0; i < nr; ++i) {
+        X[i] = x1[i];
+        for (int q = 0; q < S_LEN; ++q) S[S_LEN * i + q] = st[i][q];
+    }
+    for (int q = 0; q < OUT_LEN; ++q) OUT[q] = o_[q];
     return 1;
 }
