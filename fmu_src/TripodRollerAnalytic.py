@@ -24,7 +24,7 @@ from pythonfmu.enums import Fmi2Status
 from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, pressing_load, same_step,
                                  same_value, validate)
 from reduced_model.thrust import Thrust
-from reduced_model.traverse import Traverse
+from reduced_model.traverse import Traverse, outside_checked
 from slavekit import Guarded, PickleState, register_table
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
@@ -109,6 +109,11 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
                 self._table = Traverse(sc)
                 self.regime = REGIME_CODES.index(self._table.regime())
                 self._tables += 1
+                outside = outside_checked(sc)
+                if outside:
+                    self.log("the scene is outside the range the traverse model was checked "
+                             "against the contact model in (docs/validation.md): "
+                             + "; ".join(outside), Fmi2Status.warning)
                 if not self._table.settled:
                     self.log(f"the traverse table at theta = {sc['theta']:.6g} rad, omega = "
                              f"{sc['omega']:.6g} rad/s is not periodic: s(2 pi) - s(0) = "
@@ -200,15 +205,22 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
               "scale": self._table._scale if self._table is not None else 0.0,
               "n": self._table.n if self._table is not None else 0,
               "A": th.A, "B": th.B, "muF": th.muF, "k": th.k, "th": th.th, "kspin": th.kspin}
-        self._fast_x = np.array(self._x)
         self._fast_op = np.array([op[n] for n in op_names], dtype=float)
+        self._offer(address, self._fast_rows, out_names, ())
+
+    def _offer(self, address, second, out_names, slots):
+        """The native layer's _fast: the step at address over (whirl angles, second, OP,
+        outputs); slots: where it writes each input (none: new inputs go to _fast_inputs)."""
+        import numpy as np
+        self._fast_x = np.array(self._x)
         self._fast_out = np.array([getattr(self, n) for n in out_names])
-        arrays = (self._fast_x, self._fast_rows, self._fast_op, self._fast_out)
+        arrays = (self._fast_x, second, self._fast_op, self._fast_out)
         addresses = [a.ctypes.data for a in arrays] + [self._fast_x.ctypes.data] * 10
         vr = {v.name: ref for ref, v in self.vars.items()}
         self._fast_names = out_names
         self._fast = (address, self._dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
-                      [float(getattr(self, n)) for n in _INPUTS], addresses)
+                      [float(getattr(self, n)) for n in _INPUTS], addresses) + \
+            ((slots,) if slots else ())
 
     def _offer_march(self):
         """Once the inputs moved: the compiled march (analytic_step.c: Traverse.march with the
@@ -226,26 +238,19 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         mop.update(dt=self._dt, n_rollers=len(self._x), n=op.n, mu=op.mu, v_st=sc["v_st"],
                    K=op.K, a1=op.a1, clear=op.clear, r=op.r, s=sc["s"], I=op.inertia,
                    pitch=float(sc["pitch"]), roll=float(sc["roll"]), spin_moment=float(op._sm))
-        self._fast_x = np.array(self._x)
         self._fast_state = np.array([[m[0], m[1]] + list(m[2]) for m in self._march],
                                     dtype=float).ravel()
         assert len(state_names) == 2 + len(self._march[0][2])
         self._fast_op = np.array([mop[n] for n in mop_names], dtype=float)
-        self._fast_out = np.array([getattr(self, n) for n in out_names])
-        arrays = (self._fast_x, self._fast_state, self._fast_op, self._fast_out)
-        addresses = [a.ctypes.data for a in arrays] + [self._fast_x.ctypes.data] * 10
-        vr = {v.name: ref for ref, v in self.vars.items()}
-        self._fast_names = out_names
         # where the native layer writes each input (the march's OP) and its allowed range
         slots = []
-        for i, name in enumerate(_INPUTS):
+        for name in _INPUTS:
             p = BY_NAME[name]
             slots.append((self._fast_op.ctypes.data + 8 * mop_names.index(name),
                           -math.inf if p.lo is None else float(p.lo),
                           math.inf if p.hi is None else float(p.hi),
                           int(p.lo_open), int(p.hi_open)))
-        self._fast = (address, self._dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
-                      [float(getattr(self, n)) for n in _INPUTS], addresses, slots)
+        self._offer(address, self._fast_state, out_names, slots)
 
     def _fast_sync(self, k):
         """The native layer took k compiled steps: take their whirl angles and outputs (and

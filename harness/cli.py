@@ -127,6 +127,9 @@ def format_analytic(r: dict) -> str:
             *([] if t["settled"] else [
                 f"  NOT periodic: s(2 pi) - s(0) = {t['mismatch']:.2e} m/s after {t['cycles']} "
                 "cycles of the cycle map (the table is the best cycle run)"]),
+            *([f"  OUTSIDE the range it was checked against the contact model in "
+               f"(docs/validation.md): {'; '.join(t['outside_checked'])}"]
+              if t["outside_checked"] else []),
             f"  {'Fz_mod order 1':28s}{_fmt_o(t['order1'])}",
             f"  {'Fz_mod order 3':28s}{_fmt_o(t['order3'])}",
             f"  {'three rollers order 3':28s}{_fmt_o(t['three_rollers']['order3'])}",

@@ -15,13 +15,14 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 from reduced_model.steady import MAX_CYCLES, MIN_CYCLES, REL_TOL, cycle_change, settled
 from reduced_model.thrust import closed_form
-from reduced_model.traverse import Traverse
+from reduced_model.traverse import CHECKED, Traverse
 
 from .fmus import ROOT
 
 DEG = math.pi / 180
-# the issue's micro-slip scene and the paper's scene, then a low-discrepancy grid over
-# theta 2-20 deg, whirl 2-40 Hz, F_press 300-5000 N, mu_groove 0.03-0.12, clearance 0.05-0.8 mm
+# the issue's micro-slip scene and the paper's scene, then a low-discrepancy grid over the
+# ranges of traverse.CHECKED: theta 2-20 deg, whirl 2-40 Hz, F_press 300-5000 N, mu_groove
+# 0.03-0.12, clearance 0.05-0.8 mm
 NAMED = {
     "paper (section 3.1)": {},
     "small angle, wide groove": {"theta": 3 * DEG, "omega": 50 * math.pi, "F_press": 1500.0,
@@ -36,11 +37,16 @@ def grid() -> dict:
     """{label: overrides} of the validation grid (Halton sequence, not scrambled: the same
     scenes on every machine)."""
     from scipy.stats import qmc
+    (th0, th1), (f0, f1), (p0, p1), (mu0, mu1), (c0, c1) = ((lo, hi) for _, _, lo, hi, _ in
+                                                            CHECKED)
+    r = scene_mod.BY_NAME["r_roller"].default
     out = dict(NAMED)
     for i, u in enumerate(qmc.Halton(5, scramble=False).random(GRID_N + 1)[1:]):
-        ov = {"theta": (2 + 18 * u[0]) * DEG, "omega": 2 * math.pi * 2 * 20 ** u[1],
-              "F_press": 300 * (5000 / 300) ** u[2], "mu_groove": 0.03 + 0.09 * u[3],
-              "r_groove": 0.019 + 0.05e-3 * 16 ** u[4]}
+        # linear in theta and mu_groove, logarithmic in whirl, load and clearance
+        ov = {"theta": (th0 + (th1 - th0) * u[0]) * DEG,
+              "omega": 2 * math.pi * f0 * (f1 / f0) ** u[1],
+              "F_press": p0 * (p1 / p0) ** u[2], "mu_groove": mu0 + (mu1 - mu0) * u[3],
+              "r_groove": r + 1e-3 * c0 * (c1 / c0) ** u[4]}
         out[f"grid {i + 1}"] = ov
     return out
 

@@ -4,7 +4,7 @@ import numpy as np
 from . import scene as scene_mod
 from .orders import order_spectrum
 from .thrust import closed_form, three_roller_thrust, time_series, transition_velocity
-from .traverse import Traverse
+from .traverse import Traverse, outside_checked
 
 N_PER_CYCLE = 1440   # samples per whirl cycle for the FFT (model.md asks for >= 400)
 
@@ -15,7 +15,8 @@ def _o(a_p):
 
 def traverse_report(sc) -> dict | None:
     """The reduced traverse model's orders of Fz_mod and Fz (one roller, three rollers), its
-    regime and reach; None where it does not apply (omega = 0, no load, no friction, or
+    regime and reach, what of the scene lies outside the range it was checked in
+    ("outside_checked", traverse.CHECKED); None where it does not apply (omega = 0, no load, no friction, or
     mu_groove >= 1)."""
     if sc["omega"] <= 0 or sc["F_press"] <= 0 and sc.get("torque", 0.0) <= 0 or \
             not 0 < sc["mu_groove"] < 1 or transition_velocity(sc) <= 0:
@@ -27,7 +28,7 @@ def traverse_report(sc) -> dict | None:
             "three_rollers": {"order1": _o(j[1]), "order3": _o(j[3])},
             "regime": tr.regime(), "friction_reach": tr.g_max,
             "Fx_max": float(tr.Fx.max()), "cycles": tr.cycles, "settled": bool(tr.settled),
-            "mismatch": float(tr.mismatch)}
+            "mismatch": float(tr.mismatch), "outside_checked": outside_checked(sc)}
 
 
 def analytic_report(overrides=None, n=N_PER_CYCLE):

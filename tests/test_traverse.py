@@ -141,3 +141,29 @@ def test_march_without_load_slips_by_the_drive():
     V = op._drive_on(np.array([x]))[2][0]
     assert p == 0.0 and sl == pytest.approx(V, rel=1e-12)
     assert out[:4] == (0.0, 0.0, 0.0, 0.0) and out[4] == abs(sl)
+
+
+def test_the_checked_range_is_where_the_model_was_checked():
+    """traverse.CHECKED is the range docs/validation.md's scenes were drawn over: every one of
+    them inside, and the grid reaching within an eighth of each end (linear, or logarithmic for
+    the log-spaced whirl, load and clearance), so the range claims no more than was checked."""
+    from reduced_model.traverse import CHECKED, outside_checked
+    scenes = [sc.validate(ov, "analytic") for ov in validation.grid().values()]
+    assert [outside_checked(s) for s in scenes] == [[]] * len(scenes)
+    for name, _, lo, hi, value in CHECKED:
+        f = math.log if name in ("whirl", "pressing load", "groove clearance") else float
+        u = [(f(value(s)) - f(lo)) / (f(hi) - f(lo)) for s in scenes]
+        assert min(u) < 0.125 and max(u) > 0.875, (name, min(u), max(u))
+
+
+def test_a_scene_outside_the_checked_range_says_so():
+    from harness.cli import format_analytic
+    from reduced_model import analysis
+    from reduced_model.traverse import outside_checked
+    # 500 rad/s is 79.58 Hz; a torque of 13.2 N m on s = 22 mm gives 13.2 / 0.066 = 200 N
+    out = outside_checked(sc.validate({"omega": 500.0, "torque": 13.2}, "analytic"))
+    assert out == ["whirl 79.58 Hz (checked 2-40 Hz)", "pressing load 200 N (checked 300-5000 N)"]
+    assert outside_checked(sc.validate({"r_roller": 0.0185, "r_groove": 0.0188}, "analytic")) \
+        == ["r_roller = 0.0185 m (checked at 0.019 m only)"]
+    assert "OUTSIDE the range" in format_analytic(analysis.analytic_report({"omega": 500.0}))
+    assert "OUTSIDE" not in format_analytic(analysis.analytic_report({}))
