@@ -69,13 +69,11 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             setattr(self, k, v)
 
     def _fast_arrays(self):
-        """What the native layer needs to step without Python: one roller, ideal or lumped
-        bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off, for
-        comparison)."""
-        r = self.model.rollers[0]
-        arrays = r.fast_arrays()
-        if (len(self.model.rollers) != 1 or arrays is None
-                or os.environ.get("TRIPOD_FAST", "1") == "0"):
+        """What the native layer needs to step without Python: one roller or three, ideal or
+        lumped bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off,
+        for comparison)."""
+        arrays = self.model.fast_arrays()
+        if arrays is None or os.environ.get("TRIPOD_FAST", "1") == "0":
             return None
         fn = native.step_function()
         if fn is not None:
@@ -93,7 +91,8 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         arrays = arrays[:3] + (self._fast_outputs,) + arrays[3:]
         # where each input goes (the model's OP: fast.step derives its operating point) and
         # its allowed range, for the native layer to take a master's new values without Python
-        OP = self.model.rollers[0]._OP
+        # (a joint's: its header row, whose inputs every roller takes)
+        OP = arrays[2].reshape(-1, L.OP_LEN)[0]
         slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ}
         in_slots = []
         for name in _INPUTS:
@@ -115,7 +114,7 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
             return
         for i, name in enumerate(f["names"]):
             self._fast_outputs[i] = out[name]
-        self._fast_hs1 = self.model.rollers[0]._hs[1]
+        self._fast_hs1 = [r._hs[1] for r in self.model.rollers]
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
@@ -124,9 +123,10 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
 
     def _fast_sync(self, k):
         """The native layer took k compiled steps: count them, take their outputs."""
-        self.model.rollers[0].fast_synced(k, self._fast_dt, self._fast_hs1)
+        for r, hs1 in zip(self.model.rollers, self._fast_hs1):
+            r.fast_synced(k, self._fast_dt, hs1)
         self._steps[0] += k
-        self._fast_hs1 = self.model.rollers[0]._hs[1]
+        self._fast_hs1 = [r._hs[1] for r in self.model.rollers]
         for name, v in zip(self._fast_args["names"], self._fast_outputs.tolist()):
             setattr(self, name, v)
 

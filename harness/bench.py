@@ -172,6 +172,10 @@ STEP_COST_CASES = {
     "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}, ()),
     f"the same, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline master)":
         ("TripodRoller", {}, MASTER_INPUTS),
+    "the whole joint (n_rollers = 3) under that master: analytic FMU":
+        ("TripodRollerAnalytic", {"n_rollers": 3}, MASTER_INPUTS),
+    "the whole joint (n_rollers = 3) under that master: contact FMU":
+        ("TripodRoller", {"n_rollers": 3}, MASTER_INPUTS),
 }
 
 

@@ -61,9 +61,11 @@ def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"bearing": 1}, False),
                                      ({"integrator": 1}, False), ({}, True), ({}, "master"),
                                      ({"integrator": 1, "bearing": 1}, "master"),
-                                     ({}, "master-torque")],
+                                     ({}, "master-torque"), ({"n_rollers": 3}, False),
+                                     ({"n_rollers": 3, "bearing": 1}, "master")],
                          ids=["default", "lumped", "integrator1", "theta-steps", "master",
-                              "master-integrator1-lumped", "master-torque"])
+                              "master-integrator1-lumped", "master-torque", "three-rollers",
+                              "three-rollers-lumped-master"])
 def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     slow, slow_log, slow_said, _ = _run(tmp_path, sv, "0", ramp)
     fast, fast_log, fast_said, steps = _run(tmp_path, sv, "1", ramp)

@@ -1,7 +1,8 @@
 """The contact model's communication step as a C function, for the FMU's native layer: a step
 at unchanged inputs (the same inputs and step size as the last one) runs without entering
 Python, so a doStep costs what the kernel costs (issue 13: the contact FMU near the bare FMI
-boundary).  Ideal and lumped bearing, one roller; everything else steps through Python.
+boundary).  Ideal and lumped bearing, one roller or a joint of three (JointModel: the rollers'
+arrays as rows of one array each); the needle-resolved bearing steps through Python.
 
 ContactModel.step (model.py) keeps the operating point in OP and publishes the addresses of
 the arrays; the native layer (fmu_src/native/fmi2_python.c, fast_step) calls ``step`` with
@@ -14,8 +15,9 @@ from numba import carray, cfunc, types
 from . import kernel as K
 from .jit import njit
 
-from .layout import (OP_F, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_THETA, OP_W,  # noqa: F401
-                     OP_X0, N_OUT, OUTPUT_NAMES)
+from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL,  # noqa: F401
+                     OP_THETA, OP_TQ, OP_W, OP_X0, N_OUT, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT,
+                     OUTPUT_NAMES)
 
 _d = types.CPointer(types.float64)
 SIGNATURE = types.int32(*([_d] * 14))
@@ -38,19 +40,53 @@ def outputs_into(o, F_press, dst):
     return True
 
 
+@njit
+def _roller(Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out):
+    """One roller's step at the inputs in its OP."""
+    K.derive_op(P, OP)
+    K.run_substeps(Y, P, OP[OP_THETA], OP[OP_W], OP[OP_F], OP[OP_X0], OP[OP_H],
+                   0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, L, res, Y1, Y2, G, A, b,
+                   None, hs, GW)
+
+
 @cfunc(SIGNATURE, nopython=True, cache=True)
 def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
     """One communication step at the inputs in OP (their operating point derived again when
     they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output (nothing
-    written; the state has moved, as in the Python step)."""
-    Y = carray(pY, (K.Y_LEN,))
-    P = carray(pP, (K.P_LEN,))
-    OP = carray(pOP, (OP_LEN,))
-    out = carray(pout, (K.O_LEN,))
-    K.derive_op(P, OP)
-    K.run_substeps(Y, P, OP[OP_THETA], OP[OP_W], OP[OP_F], OP[OP_X0], OP[OP_H],
-                   0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, carray(pL, (17,)), carray(pres, (19,)),
-                   carray(pY1, (K.Y_LEN,)), carray(pY2, (K.Y_LEN,)),
-                   carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)), carray(pb, (K.NV,)),
-                   None, carray(phs, (5 + K.NV,)), carray(pGW, (K.NV + 8, K.NV)))
-    return 1 if outputs_into(out, OP[OP_F], carray(pOUT, (N_OUT,))) else 2
+    written; the state has moved, as in the Python step).
+
+    OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays).  OP is then a header
+    row, whose inputs (where the native layer writes a master's values) every roller takes,
+    over the n rollers' own OP rows; every other array holds the rollers' arrays one after the
+    other.  The outputs are roller 1's and the joint's (JointModel.step)."""
+    head = carray(pOP, (OP_LEN,))
+    n = int(head[OP_NROLL])
+    dst = carray(pOUT, (N_OUT,))
+    if n == 0:
+        out = carray(pout, (K.O_LEN,))
+        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, carray(pL, (17,)),
+                carray(pres, (19,)), carray(pY1, (K.Y_LEN,)), carray(pY2, (K.Y_LEN,)),
+                carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)), carray(pb, (K.NV,)),
+                carray(phs, (5 + K.NV,)), carray(pGW, (K.NV + 8, K.NV)), out)
+        return 1 if outputs_into(out, head[OP_F], dst) else 2
+    OP = carray(pOP, (n + 1, OP_LEN))
+    Y, P = carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN))
+    L, res = carray(pL, (n, 17)), carray(pres, (n, 19))
+    Y1, Y2 = carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN))
+    G, A = carray(pG, (n, K.NV, 3)), carray(pA, (n, K.NV, K.NV))
+    b, hs = carray(pb, (n, K.NV)), carray(phs, (n, 5 + K.NV))
+    GW, out = carray(pGW, (n, K.NV + 8, K.NV)), carray(pout, (n, K.O_LEN))
+    total = 0.0   # left to right, as JointModel.step
+    for i in range(n):
+        row = OP[i + 1]
+        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT):
+            row[j] = head[j]
+        _roller(Y[i], P[i], row, L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i],
+                out[i])
+        total += out[i, K.O_FZ]
+    if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
+        return 2
+    dst[OUT_FZ_JOINT] = total
+    dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
+    dst[OUT_FZ_3] = out[2, K.O_FZ] if n > 2 else 0.0
+    return 1

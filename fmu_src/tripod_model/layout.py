@@ -33,9 +33,12 @@ N_F = 11   # floats per needle in the state vector
 # --- the communication step as a C function (fast.py) ---
 # the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque and the
 # step dt; what they set (pressing load per roller, pressing offset, substep and count); the
-# inputs it was derived at (OP_KEY: five slots); OP_NOSTEP > 0: outputs only, no substep
+# inputs it was derived at (OP_KEY: five slots); OP_NOSTEP > 0: outputs only, no substep;
+# OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (fast.step)
 (OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_KEY) = range(11)
-OP_LEN = OP_KEY + 5
+OP_NROLL = OP_KEY + 5
+OP_LEN = OP_NROLL + 1
 OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
                 "roller_spin", "Fz_joint", "Fz_2", "Fz_3")
 N_OUT = len(OUTPUT_NAMES)
+OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))

@@ -333,8 +333,7 @@ class ContactModel:
         owns); None where it cannot run (needle-resolved bearing)."""
         if self.NW is not None:
             return None
-        return (self.Y, self.P, self._OP, self._L, self._res, self._Y1, self._Y2, self._G,
-                self._A, self._b, self._hs, self._GW, self.out)
+        return tuple(getattr(self, name) for name in _FAST_ARRAYS)
 
     def fast_synced(self, k, dt, hs1_before):
         """Count k steps of dt [s] that fast.step took (hs[1] was hs1_before)."""
@@ -365,6 +364,10 @@ class ContactModel:
         return {"Fx": Fx, "Fy": o[K.O_FY], "Fz": o[K.O_FZ], "Fz_mod": Fz_mod,
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN]}
+
+
+# the arrays of fast.step's arguments but OUT, in their order
+_FAST_ARRAYS = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "_hs", "_GW", "out")
 
 
 def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1e-4,
@@ -400,7 +403,10 @@ def _joint_outputs(outs):
     """Roller 1's outputs plus the joint's: Fz_joint (the housing thrust, the sum of the
     rollers' Fz [N]), Fz_2, Fz_3 (0 with one roller)."""
     o = dict(outs[0])
-    o["Fz_joint"] = sum(x["Fz"] for x in outs)
+    total = 0.0   # left to right, as fast.step (sum() compensates from Python 3.12 on)
+    for x in outs:
+        total += x["Fz"]
+    o["Fz_joint"] = total
     o["Fz_2"] = outs[1]["Fz"] if len(outs) > 1 else 0.0
     o["Fz_3"] = outs[2]["Fz"] if len(outs) > 2 else 0.0
     return o
@@ -420,6 +426,30 @@ class JointModel:
         self.p = p
         self.rollers = [ContactModel(params, phase=2 * math.pi * i / 3)
                         for i in range(p["n_rollers"])]
+        self._stacks = self._stack() if len(self.rollers) > 1 and p["bearing"] != 2 else None
+
+    def _stack(self):
+        """The rollers' arrays as rows of one array each (fast.step steps them as a joint in
+        one call), the OP array under a header row; each roller keeps views of its rows."""
+        n = len(self.rollers)
+        stacks = {}
+        for name in _FAST_ARRAYS:
+            rows = [getattr(r, name) for r in self.rollers]
+            head = 1 if name == "_OP" else 0
+            st = np.zeros((n + head,) + rows[0].shape)
+            st[head:] = rows
+            for i, r in enumerate(self.rollers):
+                setattr(r, name, st[head + i])
+            stacks[name] = st
+        stacks["_OP"][0, K.OP_NROLL] = n
+        return stacks
+
+    def fast_arrays(self):
+        """The arrays fast.step works on (ContactModel.fast_arrays; for a joint the stacked
+        rows under the OP header), or None where it cannot run."""
+        if self._stacks is None:
+            return self.rollers[0].fast_arrays() if len(self.rollers) == 1 else None
+        return tuple(self._stacks[name] for name in _FAST_ARRAYS)
 
     def pressing(self, F_press, torque):
         """Pressing load per roller [N]: torque / (3 s) when torque > 0, else F_press."""
@@ -427,7 +457,12 @@ class JointModel:
 
     def step(self, dt, theta, omega, F_press, torque=0.0):
         """Advance every roller by dt [s]; returns roller 1's outputs plus Fz_joint, Fz_2, Fz_3."""
-        return _joint_outputs([r.step(dt, theta, omega, F_press, torque) for r in self.rollers])
+        out = _joint_outputs([r.step(dt, theta, omega, F_press, torque) for r in self.rollers])
+        if self._stacks is not None:   # the inputs and step a joint's fast.step takes next
+            head, op = self._stacks["_OP"][0], self.rollers[0]._OP
+            for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT):
+                head[j] = op[j]
+        return out
 
     def initial_outputs(self, theta, omega, F_press, torque=0.0):
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
