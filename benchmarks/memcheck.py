@@ -1,7 +1,7 @@
 """valgrind memcheck on one full run of each FMU, in FMPy and in the plain C host.
 
 A run: instantiate, two whirl cycles (the joint angle moved at the first steps), get and set the
-FMU state, free, exit.  Python runs
+FMU state, free, exit; each FMU with one roller and with three (the whole joint).  Python runs
 with PYTHONMALLOC=malloc so that valgrind sees every allocation.  A baseline run of the same
 interpreter importing the same packages without any FMU tells the reports that belong to the
 interpreter and the system (the dynamic loader) from those of the FMU.  Prints, per run, the
@@ -32,6 +32,9 @@ fz = next(v.valueReference for v in md.modelVariables if v.name == "Fz")
 s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
               instanceName="memcheck")
 s.instantiate(); s.setupExperiment(startTime=0.0)
+if len(sys.argv) > 2:   # n_rollers: the whole joint (the contact FMU steps it as one array)
+    nr = next(v for v in md.modelVariables if v.name == "n_rollers")
+    s.setInteger([nr.valueReference], [int(sys.argv[2])])
 s.enterInitializationMode(); s.exitInitializationMode()
 dt = 1e-4
 th = next(v for v in md.modelVariables if v.name == "theta")
@@ -116,6 +119,8 @@ def main():
         d = extract(str(fmu), unzipdir=os.path.join(tmp, name))
         fz = next(v.valueReference for v in md.modelVariables if v.name == "Fz")
         runs.append((f"{name} in FMPy", [sys.executable, "-c", FULL_RUN, str(fmu)], name))
+        runs.append((f"{name}, three rollers, in FMPy",
+                     [sys.executable, "-c", FULL_RUN, str(fmu), "3"], name))
         runs.append((f"{name} in the C host", [str(host), d, name, md.guid, str(fz), "0.2",
                                                "1e-4", os.path.join(tmp, "fz.txt")], name))
     base = set()
