@@ -24,7 +24,7 @@ from pythonfmu.enums import Fmi2Status
 from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, pressing_load, same_step,
                                  same_value, validate)
 from reduced_model.thrust import Thrust
-from reduced_model.traverse import Traverse, outside_checked
+from reduced_model.traverse import Traverse, outside_checked, outside_span
 from slavekit import Guarded, PickleState, register_table
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
@@ -83,6 +83,7 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         self._tables = 0           # traverse tables derived (the log)
         self._march = None
         self._op = None            # the operating point march steps at
+        self._span = None          # lowest and highest theta, omega, pressing load of the run
         self._prepare()
         self._write_outputs()   # the outputs at the start time, not their declared zeros
 
@@ -139,10 +140,23 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             check_value(name, value)
             self._scene[name] = float(value)
         self._thrust = Thrust(self._scene)
+        sc = self._scene
+        now = (sc["theta"], sc["omega"], pressing_load(sc["F_press"], sc["torque"], sc["s"]))
+        self._widen_span(now, now)
+
+    def _widen_span(self, lows, highs):
+        """The span of the inputs over the run (theta [rad], omega [rad/s], pressing load [N]):
+        what terminate compares with where the traverse model was checked."""
+        if self._span is None:
+            self._span = [list(lows), list(highs)]
+        else:
+            self._span = [list(map(min, self._span[0], lows)),
+                          list(map(max, self._span[1], highs))]
 
     def _get_fmu_state(self):
         return {"vars": super()._get_fmu_state(), "x": list(self._x), "dt": self._dt,
-                "scene": copy.deepcopy(self._scene), "march": copy.deepcopy(self._march)}
+                "scene": copy.deepcopy(self._scene), "march": copy.deepcopy(self._march),
+                "span": copy.deepcopy(self._span)}
 
     def _set_fmu_state(self, state):
         super()._set_fmu_state(state["vars"])
@@ -154,8 +168,18 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             self._table = None
         self._march = march
         self._scene = copy.deepcopy(state["scene"])
+        self._span = copy.deepcopy(state["span"])
 
     def terminate(self):
+        if self._march is not None and self._scene["traverse"]:
+            (t0, w0, f0), (t1, w1, f1) = self._span
+            outside = [p for p in (outside_span("theta", math.degrees(t0), math.degrees(t1)),
+                                   outside_span("whirl", w0 / (2 * math.pi), w1 / (2 * math.pi)),
+                                   outside_span("pressing load", f0, f1)) if p]
+            if outside:
+                self.log("during the run the inputs left the range the traverse model was "
+                         "checked against the contact model in (docs/validation.md): "
+                         + "; ".join(outside), Fmi2Status.warning)
         if self._scene is not None:   # how the steps ran, for a user who checks
             self.log(f"communication steps: {self._steps[0]} compiled, {self._steps[1]} "
                      f"through Python; traverse tables derived: {self._tables}"
@@ -238,6 +262,8 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
         mop.update(dt=self._dt, n_rollers=len(self._x), n=op.n, mu=op.mu, v_st=sc["v_st"],
                    K=op.K, a1=op.a1, clear=op.clear, r=op.r, s=sc["s"], I=op.inertia,
                    pitch=float(sc["pitch"]), roll=float(sc["roll"]), spin_moment=float(op._sm))
+        (mop["theta_lo"], mop["omega_lo"], mop["load_lo"]), \
+            (mop["theta_hi"], mop["omega_hi"], mop["load_hi"]) = self._span
         self._fast_state = np.array([[m[0], m[1]] + list(m[2]) for m in self._march],
                                     dtype=float).ravel()
         assert len(state_names) == 2 + len(self._march[0][2])
@@ -264,7 +290,10 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
             for m, row in zip(self._march, state):
                 m[0], m[1], m[2] = row[0], row[1], tuple(row[2:])
             names = self._fast_lib[5]
-            key = tuple(float(self._fast_op[names.index("key_" + n)]) for n in _INPUTS)
+            at = {n: float(v) for n, v in zip(names, self._fast_op)}
+            self._widen_span([at[n + "_lo"] for n in ("theta", "omega", "load")],
+                             [at[n + "_hi"] for n in ("theta", "omega", "load")])
+            key = tuple(at["key_" + n] for n in _INPUTS)
             if key != tuple(map(float, self._key)):
                 self._take_inputs(key)
                 self._op = Traverse(self._scene, periodic=False)

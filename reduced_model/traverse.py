@@ -66,15 +66,26 @@ CHECKED_AT_DEFAULT = ("v_st", "pitch", "yaw", "roll", "axial", "s", "r_roller", 
                       "m_roller", "spin_inertia", "spin_moment", "E", "nu")
 
 
+def outside_span(name: str, v0: float, v1: float) -> str | None:
+    """A phrase naming the values v0..v1 [CHECKED's unit] of the CHECKED quantity ``name`` if
+    they leave its checked range, else None."""
+    _, unit, lo, hi, _ = next(c for c in CHECKED if c[0] == name)
+    if lo * (1 - 1e-9) <= v0 and v1 <= hi * (1 + 1e-9):
+        return None
+    u = f" {unit}" if unit else ""
+    span = f"{v0:.4g}" if v0 == v1 else f"{v0:.4g}-{v1:.4g}"
+    return f"{name} {span}{u} (checked {lo:g}-{hi:g}{u})"
+
+
 def outside_checked(sc: dict) -> list[str]:
     """What of scene sc lies outside the range the traverse model was checked in (CHECKED,
     CHECKED_AT_DEFAULT), one short phrase each; [] inside it."""
     out = []
-    for name, unit, lo, hi, value in CHECKED:
+    for name, _, _, _, value in CHECKED:
         v = value(sc)
-        if not lo * (1 - 1e-9) <= v <= hi * (1 + 1e-9):
-            u = f" {unit}" if unit else ""
-            out.append(f"{name} {v:.4g}{u} (checked {lo:g}-{hi:g}{u})")
+        phrase = outside_span(name, v, v)
+        if phrase:
+            out.append(phrase)
     for name in CHECKED_AT_DEFAULT:
         p = BY_NAME[name]
         if name in sc and sc[name] != p.default:

@@ -28,7 +28,8 @@ enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, OUT_LEN };
    and the scene's constants */
 enum { M_THETA, M_OMEGA, M_F_PRESS, M_TORQUE, M_KEY_THETA, M_KEY_OMEGA, M_KEY_F_PRESS,
        M_KEY_TORQUE, M_DT, M_N_ROLLERS, M_N, M_MU, M_V_ST, M_K, M_A1, M_CLEAR, M_R, M_S, M_I,
-       M_PITCH, M_ROLL, M_SPIN_MOMENT, MOP_LEN };
+       M_PITCH, M_ROLL, M_SPIN_MOMENT, M_THETA_LO, M_THETA_HI, M_OMEGA_LO, M_OMEGA_HI, M_LOAD_LO,
+       M_LOAD_HI, MOP_LEN };
 enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state per roller */
 
 /* "OP names | output names | march OP names | march state names", each in its array's order */
@@ -38,6 +39,7 @@ const char *tripod_analytic_layout(void)
            "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3"
            "|theta omega F_press torque key_theta key_omega key_F_press key_torque dt n_rollers"
            " n mu v_st K a1 clear r s I pitch roll spin_moment"
+           " theta_lo theta_hi omega_lo omega_hi load_lo load_hi"
            "|s p Fz Fz_mod Fx Fy slip";
 }
 
@@ -291,6 +293,14 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     }
     Op o;
     operating_point(M, &o);
+    /* the span of the inputs over the run (the slave compares it with where the traverse
+       model was checked when the run ends) */
+    M[M_THETA_LO] = fmin(M[M_THETA_LO], key[0]);
+    M[M_THETA_HI] = fmax(M[M_THETA_HI], key[0]);
+    M[M_OMEGA_LO] = fmin(M[M_OMEGA_LO], o.w);
+    M[M_OMEGA_HI] = fmax(M[M_OMEGA_HI], o.w);
+    M[M_LOAD_LO] = fmin(M[M_LOAD_LO], o.F);
+    M[M_LOAD_HI] = fmax(M[M_LOAD_HI], o.F);
     double dt = M[M_DT], table_n = M[M_N];
     double nd = ceil(o.w * dt * table_n / (2.0 * PI) - 1e-9);
     long n = nd > 1.0 ? (long)nd : 1;
