@@ -167,3 +167,11 @@ def test_a_scene_outside_the_checked_range_says_so():
         == ["r_roller = 0.0185 m (checked at 0.019 m only)"]
     assert "OUTSIDE the range" in format_analytic(analysis.analytic_report({"omega": 500.0}))
     assert "OUTSIDE" not in format_analytic(analysis.analytic_report({}))
+
+
+def test_switches_the_analytic_model_ignores_are_not_called_unchecked():
+    # yaw and axial move the contact model only: the analytic one gives the same table
+    from reduced_model.traverse import outside_checked
+    off = sc.validate({"yaw": False, "axial": False}, "analytic")
+    assert outside_checked(off) == []
+    assert np.array_equal(Traverse(off).Fz_mod, Traverse(sc.validate({}, "analytic")).Fz_mod)
