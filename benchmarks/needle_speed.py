@@ -41,7 +41,8 @@ def contact_checks(m):
 @numba.njit
 def _loop_contacts(reps, Y, P, NW, th, x, h, L, e1, e2):
     for _ in range(reps):
-        K.resolved_forces(Y, P, NW, th, x, h, L, e1[0], e1[1], e1[2], e2[0], e2[1], e2[2])
+        K.resolved_forces(Y, P, NW, th, x, h, L, e1[0], e1[1], e1[2], e2[0], e2[1], e2[2], h,
+                          False)
 
 
 @numba.njit

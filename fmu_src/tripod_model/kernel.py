@@ -6,6 +6,8 @@ direction, y = trunnion axis (nominal).  Forces are reported from the roller on 
 """
 import math
 
+import numpy as np
+
 
 from .jit import inline, njit
 from .linalg import solve_small
@@ -270,9 +272,12 @@ def row_load(P, e):
 
 
 @njit
-def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
+def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, hk, cpl):
     """Needle-resolved bearing: the roller's pose and velocity and the trunnion's motion in the
-    trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]."""
+    trunnion frame T, then every needle contact (needles.needle_forces) for a step of h [s]:
+    split (each body's system on its own, scaled tangents) or, with cpl, one system with the
+    roller-needle coupling blocks.  hk: the h of the stiffness's K v term (h, or 0 for a step
+    linearized at a predicted state, bdf2_substep)."""
     NP, SP, FN, AN, FR, AR, ND = NW[0], NW[1], NW[2], NW[3], NW[4], NW[5], NW[6]
     MOM, gn, PM, RS, UN, MR, gn2 = NW[7], NW[8], NW[9], NW[10], NW[11], NW[12], NW[13]
     ax, az = L[0], L[2]
@@ -285,10 +290,11 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z):
     ib = 1.0 / math.sqrt(1.0 + b1 * b1 + b2 * b2)
     d_tr = trunnion_axial(x, theta, P[P_S], P[P_AXIAL] > 0.5)
     g = L[11]   # the frame origin Q accelerates along the groove (z) only
-    NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, o1, o2, o3, vo1, vo2, vo3,
+    NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, hk, cpl, o1, o2, o3,
+                      vo1, vo2, vo3,
                       b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
                       d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
-                      SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2)
+                      SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2, NW[18], NW[19])
 
 
 @inline
@@ -409,7 +415,7 @@ def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, I
     # NW is None for the other bearings: numba then prunes this branch at compile time, so
     # their kernels never compile the needle code (a 15 s first compile)
     if NW is not None:
-        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, h, False)
         FR, AR = NW[4], NW[5]
         for i in range(6):
             b[i] += FR[i]
@@ -802,6 +808,26 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
                 hs[3] = 0.0
                 hs[4] += 1.0
         n = 0
+    elif P[P_INTEG] == 4.0:   # the needle-resolved bearing: BDF2, roller and row in one system
+        for _ in range(n):
+            if hs[3] == 0.0 or h > 2.0 * hs[0]:
+                # no history yet (or a step more than twice the last, where variable-step BDF2
+                # is near its stability limit): one extrapolated step (re)starts it
+                for i in range(ny):
+                    Y2[i] = Y[i]
+                    Y1[i] = Y[i]
+                substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
+                substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+                substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+                for i in range(ny):
+                    Y[i] = 2.0 * Y[i] - Y1[i]
+                hs[3] = 1.0
+            else:
+                bdf2_substep(Y, Y2, Y1, P, theta, w, F_press, x0, h, hs[0], L, res, G, A, b,
+                             NW)
+            hs[0] = h
+            hs[1] += 1.0
+        n = 0
     elif P[P_INTEG] >= 3.0:
         adaptive_steps(Y, P, theta, w, F_press, x0, h * n, h, L, res, Y1, Y2, G, A, b, NW, hs)
         n = 0
@@ -824,7 +850,8 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
      e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, P[P_BEAR] > 0.5)
     groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
     if NW is not None:   # needle loads at the output instant (diagnostics)
-        resolved_forces(Y, P, NW, theta, Y[Y_X], 0.0, L, e1x, e1y, e1z, e2x, e2y, e2z)
+        resolved_forces(Y, P, NW, theta, Y[Y_X], 0.0, L, e1x, e1y, e1z, e2x, e2y, e2z, 0.0,
+                        False)
     out[O_FX] = -res[0]
     out[O_FY] = -res[1]
     out[O_FZ] = -res[2]
@@ -833,3 +860,140 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     out[O_SLIP] = res[13]
     out[O_SPIN] = om
     out[O_FN] = res[9]
+
+
+# velocity unknowns of the roller's step and the positions they move (-1: none), masses' slots
+_RV = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
+_RQ = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
+
+
+@njit
+def coupled_solve(A, b, NW, g, n, trav):
+    """The roller (A y = b, its unknowns) bordering the needles' ring (R x = g FN) through
+    the coupling blocks BN (needle rows, the roller's standard velocities): Schur complement
+    on the roller, R^-1 applied to g FN and the six coupling columns in one elimination
+    (ring_solve_m).  b <- y, FN <- x."""
+    FN, AN, UN, BN, RH, Bp = NW[2], NW[3], NW[11], NW[18], NW[20], NW[23]
+    TM = NW[10][:, 7:13]
+    for j in range(n):
+        for i in range(6):
+            RH[j, i, 0] = g * FN[j, i]
+            for c in range(6):
+                acc = 0.0
+                if trav or c > 0:
+                    for k in range(6):
+                        acc += BN[j, i, k] * TM[c, k]
+                Bp[j, i, c] = acc
+                RH[j, i, 1 + c] = acc
+    NDL.ring_solve_m(AN, UN, RH, 7, n, NW[14], NW[21], NW[16], NW[22])
+    for c in range(6):
+        for d in range(6):
+            acc = 0.0
+            for j in range(n):
+                for i in range(6):
+                    acc += Bp[j, i, c] * RH[j, i, 1 + d]
+            A[c, d] -= acc
+        acc = 0.0
+        for j in range(n):
+            for i in range(6):
+                acc += Bp[j, i, c] * RH[j, i, 0]
+        b[c] -= acc
+    solve_small(A, b, 6)
+    for j in range(n):
+        for i in range(6):
+            acc = RH[j, i, 0]
+            for c in range(6):
+                acc -= RH[j, i, 1 + c] * b[c]
+            FN[j, i] = acc
+
+
+@njit
+def bdf2_substep(Y, Yp, YL, P, theta, w, F_press, x0, h, hp, L, res, G, A, b, NW):
+    """One linearly implicit BDF2 step of h [s] (the previous step hp) with the needle-resolved
+    bearing: Y = y_n -> y_{n+1}, Yp = y_{n-1} -> y_n, YL work.
+
+    y_{n+1} - a1 y_n + a2 y_{n-1} = g f(y_{n+1}) (variable-step BDF2, g = beta h), linearized
+    at the predicted state y_L: velocities extrapolated linearly, positions
+    q_L = a1 q_n - a2 q_{n-1} + g v_L (the BDF2 position rule, so the correction e moves
+    positions by g e_v and the stiffness needs no K v term): (M + g D + g^2 K) e_v =
+    g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a step; second order with
+    any tangent (the linearization error is O(e^2) with e = O(h^2))."""
+    r = h / hp
+    a1 = (1.0 + r) ** 2 / (1.0 + 2.0 * r)
+    a2 = r * r / (1.0 + 2.0 * r)
+    g = (1.0 + r) / (1.0 + 2.0 * r) * h
+    m = P[P_M]
+    It = P[P_IT]
+    NP = NW[0]
+    n = int(NP[NDL.N_N])
+    for i in range(6):
+        vi, qi = _RV[i], _RQ[i]
+        YL[vi] = Y[vi] + r * (Y[vi] - Yp[vi])
+        if qi >= 0:
+            YL[qi] = a1 * Y[qi] - a2 * Yp[qi] + g * YL[vi]
+    for j in range(n):
+        q = Y_LEN + NDL.N_F * j
+        for i in range(5, 11):
+            YL[q + i] = Y[q + i] + r * (Y[q + i] - Yp[q + i])
+        for i in range(3):
+            YL[q + i] = a1 * Y[q + i] - a2 * Yp[q + i] + g * YL[q + 5 + i]
+        YL[q + 3] = a1 * Y[q + 3] - a2 * Yp[q + 3] + g * YL[q + 9]
+        YL[q + 4] = a1 * Y[q + 4] - a2 * Yp[q + 4] - g * YL[q + 8]
+    x = Y[Y_X] + h * w
+    YL[Y_X] = x
+    line_kinematics(x, w, theta, P, L)
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(YL, x0, L, True)
+    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    slip_sensitivities(P[P_R], L, res, e1x, e1y, e1z, e2x, e2y, e2z, True, True, G, b)
+    friction_jacobian(P, g, res, G, 6, A)
+    A[0, 0] += m
+    A[1, 1] += P[P_IS]
+    b[0] -= m * (L[11] * L[2] + YL[Y_U] * (L[6] * L[0] + L[7] * L[1] + L[8] * L[2]))
+    drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
+    kh = groove_stiffness_x(P, res, cx, cy)
+    b[3] -= drag1
+    b[4] -= drag2
+    A[2, 2] += m
+    A[3, 3] += It
+    A[4, 4] += It
+    A[5, 5] += m + g * g * kh
+    resolved_forces(YL, P, NW, theta, x, g, L, e1x, e1y, e1z, e2x, e2y, e2z, 0.0, True)
+    FR, AR = NW[4], NW[5]
+    for i in range(6):
+        b[i] += FR[i]
+        for k in range(6):
+            A[i, k] += AR[i, k]
+    mr = (m, P[P_IS], m, It, It, m)
+    for i in range(6):
+        vi = _RV[i]
+        b[i] = g * b[i] - mr[i] * (YL[vi] - a1 * Y[vi] + a2 * Yp[vi])
+    trav = P[P_TRAV] > 0.5
+    if not trav:
+        hold_slide(A, b, 6)
+    # the needles: the same rule on the ring (right-hand side h FN in ring_solve)
+    FN, AN, UN = NW[2], NW[3], NW[11]
+    mn, I1, I3 = NP[NDL.N_MN], NP[NDL.N_I1], NP[NDL.N_I3]
+    for j in range(n):
+        q = Y_LEN + NDL.N_F * j
+        mj = (mn, mn, mn, I1, I1, I3)
+        for i in range(6):
+            FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
+            AN[j, i, i] += mj[i]
+    coupled_solve(A, b, NW, g, n, trav)
+    for i in range(6):
+        vi, qi = _RV[i], _RQ[i]
+        YL[vi] += b[i]
+        if qi >= 0:
+            YL[qi] += g * b[i]
+    for j in range(n):
+        q = Y_LEN + NDL.N_F * j
+        for i in range(6):
+            YL[q + 5 + i] += FN[j, i]
+        for i in range(3):
+            YL[q + i] += g * FN[j, i]
+        YL[q + 3] += g * FN[j, 4]
+        YL[q + 4] -= g * FN[j, 3]
+    for i in range(Y.shape[0]):
+        Yp[i] = Y[i]
+        Y[i] = YL[i]

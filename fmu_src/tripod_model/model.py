@@ -125,7 +125,9 @@ class ContactModel:
                 np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((n, 10)), np.zeros(6),
                 np.zeros((n, 10)), np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros(10),
                 np.zeros(6), np.zeros((n, 6, 6)), np.zeros((n, 6, 7)), np.zeros((6, 6)),
-                np.zeros((6, 13)))
+                np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros((n, 10)),
+                np.zeros((n, 6, 7)), np.zeros((n, 6, 13)), np.zeros((6, 19)),
+                np.zeros((n, 6, 6)))
 
     def row_bore_radius(self):
         """Radius of the needles' outer race [m]: trunnion + needle diameter + the row's radial

@@ -255,7 +255,7 @@ def _trunnion_law(P1, P2, P3, rho, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3, c,
     mu_r P D/2 at each race).  Returns the force on the needle F [N], n, arm r [m], the
     _contact coefficients kp, coef, w, the load f [N] and the rolling moment and its tangent.
     c: the row's constants (needle_forces)."""
-    rn, Cs, ms, mu, mur, vst, h = c
+    rn, Cs, ms, mu, mur, vst, h, hk = c
     ir = 1.0 / rho
     n1, n2 = P1 * ir, P2 * ir                    # onto the needle
     f, kn = _sphere_approach(Cs, delta)
@@ -270,7 +270,7 @@ def _trunnion_law(P1, P2, P3, rho, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3, c,
     gr = _tanh(3.0 * rn * (w3 - om_tr) / vst)
     mr = 0.5 * mur * f * rn * gr
     cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
-    return (F1 + fd * n1, F2 + fd * n2, F3, n1, n2, r1, r2, r3, h * kn * (u1 * n1 + u2 * n2),
+    return (F1 + fd * n1, F2 + fd * n2, F3, n1, n2, r1, r2, r3, hk * kn * (u1 * n1 + u2 * n2),
             h * h * kn + h * cd - h * iso, h * iso, f, mr, cr)
 
 
@@ -297,7 +297,7 @@ def _bore_law(P1, P2, P3, q1, q2, q3, rb, delta, p1, p2, p3, v1, v2, v3, w1, w2,
     arms r, R [m], the tangent stiffness kn [N/m], both points' normal speeds [m/s], the
     shared coef and the secant iso (each body scales them, see C_NEEDLE), f [N] and the
     rolling moment and its tangent."""
-    rn, Cs, ms, mu, mur, vst, h = c
+    rn, Cs, ms, mu, mur, vst, h, hk = c
     ir = -1.0 / rb
     n1, n2, n3 = q1 * ir, q2 * ir, q3 * ir       # onto the needle
     f, kn = _sphere_approach(Cs, delta)
@@ -323,7 +323,7 @@ def _neighbour_law(P1, P2, P3, Q1, Q2, Q3, dist, delta, p1, p2, p3, v1, v2, v3, 
     pn moving vn, wn; Q = its sphere centre - P): the same laws, each needle damped with half
     the sphere's mass.  Returns the force on the first F [N], n, both arms r, R [m], kp, coef,
     w and f [N]."""
-    rn, Cs, ms, mu, mur, vst, h = c
+    rn, Cs, ms, mu, mur, vst, h, hk = c
     ir = -1.0 / dist
     n1, n2, n3 = Q1 * ir, Q2 * ir, Q3 * ir       # onto the first needle
     f, kn = _sphere_approach(Cs, delta)
@@ -336,11 +336,11 @@ def _neighbour_law(P1, P2, P3, Q1, Q2, Q3, dist, delta, p1, p2, p3, v1, v2, v3, 
     vrel = (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3
     fd, cd = _normal(f, kn, 0.5 * ms, vrel)
     return (F1 + fd * n1, F2 + fd * n2, F3 + fd * n3, n1, n2, n3, r1, r2, r3, R1, R2, R3,
-            h * kn * vrel, h * h * kn + h * cd - h * iso, h * iso, f)
+            hk * kn * vrel, h * h * kn + h * cd - h * iso, h * iso, f)
 
 
 @inline
-def _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h):
+def _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk):
     """The trunnion's flange (inner end) and retainer (outer end): axial stops of a needle
     (centre height p3 [m], speed v3) at +-zax about the trunnion's material offset d_tr,
     Table 1 with damping, no friction.  Returns the force along e3 [N] with its implicit
@@ -352,7 +352,7 @@ def _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h):
     f, kn = _sphere_approach(Cs, over)
     sg = -1.0 if z > 0.0 else 1.0
     fd, cd = _normal(f, kn, mn, sg * (v3 - dd_tr))
-    return sg * fd - h * kn * (v3 - dd_tr), h * h * kn + h * cd, f
+    return sg * fd - hk * kn * (v3 - dd_tr), h * h * kn + h * cd, f
 
 
 @inline
@@ -403,9 +403,9 @@ def _roller_unknowns(RS, e1x, ax, FR, AR):
 
 
 @njit
-def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
+def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                   wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
-                  SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2):
+                  SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2, BN, PB):
     """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
     coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
     unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
@@ -415,9 +415,18 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
     Cs, mn, mu, mur, fric = NP[N_CS], NP[N_MN], NP[N_MU], NP[N_MUR], NP[N_FRIC] > 0.5
     ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
     rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
-    c = (rn, Cs, ms, mu, mur, vst, h)   # one tuple argument: numba inlines calls of < 30
+    c = (rn, Cs, ms, mu, mur, vst, h, hk)   # one tuple argument: numba inlines calls of < 30
     _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR)
     bR, AR6 = RS[:, 0], RS[:, 1:7]
+    cn = 1.0 if cpl else C_NEEDLE   # one system (cpl): no split, so no scaled tangents
+    cr_ = 1.0 if cpl else C_ROLLER
+    if cpl:
+        for j in range(n):
+            for i in range(10):
+                PB[j, i] = 0.0
+            for i in range(6):
+                for l in range(6):
+                    BN[j, i, l] = 0.0
     for j in range(n):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
@@ -443,15 +452,22 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                 (F1, F2, F3, n1, n2, n3, r1, r2, r3, R1, R2, R3, kn, un, zn, kq, iso, f, mr,
                  cr) = _bore_law(P1, P2, P3, q1, q2, q3, rb, delta, p1, p2, p3, v1, v2, v3, w1,
                                  w2, w3, o1, o2, o3, vo1, vo2, vo3, wr1, wr2, wr3, c, fric)
-                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, C_NEEDLE * h * kn * un,
-                         C_NEEDLE * kq, C_NEEDLE * h * iso, Fj, Aj, Mj, gn)
-                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, C_ROLLER * h * kn * zn,
-                         C_ROLLER * kq, C_ROLLER * h * iso, bR, AR6, MR, gn2)
+                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, cn * hk * kn * un,
+                         cn * kq, cn * h * iso, Fj, Aj, Mj, gn)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, cr_ * hk * kn * zn,
+                         cr_ * kq, cr_ * h * iso, bR, AR6, MR, gn2)
+                if cpl:   # needle rows, roller columns: -kq g_n g_r^T, friction from PB
+                    for i in range(6):
+                        for l in range(6):
+                            BN[j, i, l] -= kq * gn[i] * gn2[l]
+                    _add_moments(PB[j], h * iso, r1, r2, r3)
                 if rollr:
                     Fj[5] -= mr
-                    Aj[5, 5] += C_NEEDLE * cr
+                    Aj[5, 5] += cn * cr
                     bR[5] += mr
-                    AR6[5, 5] += C_ROLLER * cr
+                    AR6[5, 5] += cr_ * cr
+                    if cpl:
+                        BN[j, 5, 5] -= cr
                 ND[j, D_BORE] += f
                 ND[j, D_R1] -= F1
                 ND[j, D_R2] -= F2
@@ -476,13 +492,20 @@ def needle_forces(Y, y0, NP, vst, h, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                         UN[j, i, l] -= kq * gn[i] * gn2[l]
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
-        fz, kz, f = _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h)
+        fz, kz, f = _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
         if f > 0.0:
             Fj[2] += fz
             Aj[2, 2] += kz
             ND[j, D_FLANGE] += f
     _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR)
     _roller_unknowns(RS, e1x, ax, FR, AR)
+    if cpl:   # the friction coupling (arms from the roller's centre: R = r + p_j - o)
+        for j in range(n):
+            if PB[j, 0] != 0.0:
+                q = y0 + N_F * j
+                for i in range(10):
+                    PB[j, i] = -PB[j, i]
+                _moment_block(BN[j], PB[j], Y[q] - o1, Y[q + 1] - o2, Y[q + 2] - o3)
 
 
 @njit
@@ -529,133 +552,12 @@ def _touching(U):
 def ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
     """Solve the needles' coupled implicit system in place: block j has diagonal AN[j] (mass
     included), coupling UN[j] to block j+1 (mod n, the ring closes) and UN[j-1]^T to block
-    j-1, right-hand side h FN[j]; the velocity increments replace FN.
-
-    Where two neighbours do not touch the ring is open: then a chain from the needle after that
-    gap (_chain_solve).  A closed ring (every needle touching the next): block tridiagonal
-    elimination bordered by the block that closes it (_closed_ring_solve).
-    CW (n x 6 x 6), XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays.
-    """
-    for k in range(n):
-        if not _touching(UN[k]):
-            _chain_solve(AN, UN, FN, h, n, (k + 1) % n, CW, XW, S, T)
-            return
-    _closed_ring_solve(AN, UN, FN, h, n, CW, XW, S, T)
-
-
-@njit
-def _chain_solve(AN, UN, FN, h, n, j0, CW, XW, S, T):
-    """The ring opened before needle j0 (UN[j0 - 1] = 0): block tridiagonal elimination along
-    j0, j0 + 1, ... (mod n); a gap further on leaves its coupling column out (C_j = 0).  About
-    600 multiply-adds a touching needle, 150 a free one."""
-    prev = -1   # the previous needle of the chain when it touches this one
-    for m in range(n):
-        j = (j0 + m) % n
+    j-1, right-hand side h FN[j]; the velocity increments replace FN.  CW (n x 6 x 6),
+    XW (n x 6 x 7), S (6 x 6), T (6 x 13) are work arrays (ring_solve_m with one column)."""
+    for j in range(n):
         for i in range(6):
-            for l in range(6):
-                S[i, l] = AN[j, i, l]
-            T[i, 6] = h * FN[j, i]
-        if prev >= 0:   # subtract L C_prev and L X_prev, L = UN[prev]^T
-            for i in range(6):
-                for q in range(6):
-                    lim = UN[prev, q, i]
-                    if lim != 0.0:
-                        for l in range(6):
-                            S[i, l] -= lim * CW[prev, q, l]
-                        T[i, 6] -= lim * XW[prev, q, 0]
-        nxt = m < n - 1 and _touching(UN[j])
-        if nxt:
-            for i in range(6):
-                for l in range(6):
-                    T[i, l] = UN[j, i, l]
-            _solve6(S, T, 7)
-        else:
-            for i in range(6):
-                T[i, 0] = T[i, 6]
-            _solve6(S, T, 1)
-            for i in range(6):
-                T[i, 6] = T[i, 0]
-        for i in range(6):
-            for l in range(6):
-                CW[j, i, l] = T[i, l] if nxt else 0.0
-            XW[j, i, 0] = T[i, 6]
-        prev = j if nxt else -1
-    # back substitution: x_j = X_j - C_j x_next (C_j = 0 at a gap, and after the chain's end)
-    for m in range(n - 1, -1, -1):
-        j = (j0 + m) % n
-        jn = (j + 1) % n
-        for i in range(6):
-            acc = XW[j, i, 0]
-            if m < n - 1:
-                for l in range(6):
-                    acc -= CW[j, i, l] * FN[jn, l]
-            FN[j, i] = acc
-
-
-@njit
-def _closed_ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
-    """Every needle touches the next: block tridiagonal elimination on blocks 0..n-2 bordered
-    by block n-1 (which closes the ring): x_j = y_j - Z_j x_{n-1}, then the border's 6 x 6
-    system.  About 1300 multiply-adds a needle."""
-    M = n - 1
-    for k in range(M):
-        for i in range(6):
-            for l in range(6):
-                S[i, l] = AN[k, i, l]
-            for l in range(13):
-                T[i, l] = 0.0
-            if k < M - 1:
-                for l in range(6):
-                    T[i, l] = UN[k, i, l]
-            T[i, 6] = h * FN[k, i]
-            if k == 0:                       # A[0][n-1] = UN[n-1]^T
-                for l in range(6):
-                    T[i, 7 + l] += UN[n - 1, l, i]
-            if k == M - 1:                   # A[n-2][n-1] = UN[n-2]
-                for l in range(6):
-                    T[i, 7 + l] += UN[M - 1, i, l]
-        if k > 0:   # subtract L_k C_{k-1} and L_k X_{k-1}, L_k = UN[k-1]^T
-            for i in range(6):
-                for m in range(6):
-                    lim = UN[k - 1, m, i]
-                    if lim != 0.0:
-                        for l in range(6):
-                            S[i, l] -= lim * CW[k - 1, m, l]
-                        for l in range(7):
-                            T[i, 6 + l] -= lim * XW[k - 1, m, l]
-        _solve6(S, T, 13)
-        for i in range(6):
-            for l in range(6):
-                CW[k, i, l] = T[i, l]
-            for l in range(7):
-                XW[k, i, l] = T[i, 6 + l]
-    for k in range(M - 2, -1, -1):
-        for i in range(6):
-            for l in range(7):
-                acc = 0.0
-                for m in range(6):
-                    acc += CW[k, i, m] * XW[k + 1, m, l]
-                XW[k, i, l] -= acc
-    # border block n-1: A[n-1][0] = UN[n-1], A[n-1][n-2] = UN[n-2]^T
-    for i in range(6):
-        for l in range(6):
-            S[i, l] = AN[n - 1, i, l]
-        T[i, 0] = h * FN[n - 1, i]
-        for m in range(6):
-            a0 = UN[n - 1, i, m]
-            a1 = UN[M - 1, m, i]
-            for l in range(6):
-                S[i, l] -= a0 * XW[0, m, 1 + l] + a1 * XW[M - 1, m, 1 + l]
-            T[i, 0] -= a0 * XW[0, m, 0] + a1 * XW[M - 1, m, 0]
-    _solve6(S, T, 1)
-    for i in range(6):
-        FN[n - 1, i] = T[i, 0]
-    for j in range(M):
-        for i in range(6):
-            acc = XW[j, i, 0]
-            for m in range(6):
-                acc -= XW[j, i, 1 + m] * T[m, 0]
-            FN[j, i] = acc
+            FN[j, i] *= h
+    ring_solve_m(AN, UN, FN.reshape((n, 6, 1)), 1, n, CW, XW, S, T)
 
 
 @njit
@@ -682,3 +584,143 @@ def needle_update(Y, y0, NP, h, FN, AN, UN, CW, XW, S, T):
         Y[q + 2] += h * Y[q + 7]
         Y[q + 3] += h * Y[q + 9]
         Y[q + 4] -= h * Y[q + 8]
+
+
+@njit
+def ring_solve_m(AN, UN, RHS, nr, n, CW, XW, S, T):
+    """The ring's system (ring_solve) for nr right-hand sides at once (RHS[j, :, c],
+    n x 6 x nr, replaced by the solutions): one elimination for all of them.
+
+    Where two neighbours do not touch the ring is open: then a chain from the needle after that
+    gap (_chain_solve_m).  A closed ring (every needle touching the next): block tridiagonal
+    elimination bordered by the block that closes it (_closed_ring_solve_m).
+    CW (n x 6 x 6), XW (n x 6 x (nr + 6)), S (6 x 6), T (6 x (nr + 12)) are work arrays.
+    """
+    for k in range(n):
+        if not _touching(UN[k]):
+            _chain_solve_m(AN, UN, RHS, nr, n, (k + 1) % n, CW, XW, S, T)
+            return
+    _closed_ring_solve_m(AN, UN, RHS, nr, n, CW, XW, S, T)
+
+
+@njit
+def _chain_solve_m(AN, UN, RHS, nr, n, j0, CW, XW, S, T):
+    """The ring opened before needle j0 (UN[j0 - 1] = 0): block tridiagonal elimination along
+    j0, j0 + 1, ... (mod n); a gap further on leaves its coupling column out (C_j = 0).  T's
+    columns 0..nr-1 the right-hand sides, nr..nr+5 the coupling to the next needle.  About
+    600 multiply-adds a touching needle and right-hand side, 150 a free one."""
+    prev = -1   # the previous needle of the chain when it touches this one
+    for m in range(n):
+        j = (j0 + m) % n
+        for i in range(6):
+            for l in range(6):
+                S[i, l] = AN[j, i, l]
+            for c in range(nr):
+                T[i, c] = RHS[j, i, c]
+        if prev >= 0:   # subtract L C_prev and L X_prev, L = UN[prev]^T
+            for i in range(6):
+                for q in range(6):
+                    lim = UN[prev, q, i]
+                    if lim != 0.0:
+                        for l in range(6):
+                            S[i, l] -= lim * CW[prev, q, l]
+                        for c in range(nr):
+                            T[i, c] -= lim * XW[prev, q, c]
+        nxt = m < n - 1 and _touching(UN[j])
+        if nxt:
+            for i in range(6):
+                for l in range(6):
+                    T[i, nr + l] = UN[j, i, l]
+            _solve6(S, T, nr + 6)
+        else:
+            _solve6(S, T, nr)
+        for i in range(6):
+            for l in range(6):
+                CW[j, i, l] = T[i, nr + l] if nxt else 0.0
+            for c in range(nr):
+                XW[j, i, c] = T[i, c]
+        prev = j if nxt else -1
+    # back substitution: x_j = X_j - C_j x_next (C_j = 0 at a gap, and after the chain's end)
+    for m in range(n - 1, -1, -1):
+        j = (j0 + m) % n
+        jn = (j + 1) % n
+        for c in range(nr):
+            for i in range(6):
+                acc = XW[j, i, c]
+                if m < n - 1:
+                    for l in range(6):
+                        acc -= CW[j, i, l] * RHS[jn, l, c]
+                RHS[j, i, c] = acc
+
+
+@njit
+def _closed_ring_solve_m(AN, UN, RHS, nr, n, CW, XW, S, T):
+    """Every needle touches the next: block tridiagonal elimination on blocks 0..n-2 bordered
+    by block n-1 (which closes the ring): x_j = y_j - Z_j x_{n-1}, then the border's 6 x 6
+    system.  T's columns 0..5 the coupling C_k, 6..5+nr the right-hand sides, 6+nr..11+nr the
+    border; XW[k] holds the right-hand sides' and the border's columns (nr + 6)."""
+    M = n - 1
+    nb = nr + 6
+    for k in range(M):
+        for i in range(6):
+            for l in range(6):
+                S[i, l] = AN[k, i, l]
+            for l in range(6 + nb):
+                T[i, l] = 0.0
+            if k < M - 1:
+                for l in range(6):
+                    T[i, l] = UN[k, i, l]
+            for c in range(nr):
+                T[i, 6 + c] = RHS[k, i, c]
+            if k == 0:                       # A[0][n-1] = UN[n-1]^T
+                for l in range(6):
+                    T[i, 6 + nr + l] += UN[n - 1, l, i]
+            if k == M - 1:                   # A[n-2][n-1] = UN[n-2]
+                for l in range(6):
+                    T[i, 6 + nr + l] += UN[M - 1, i, l]
+        if k > 0:   # subtract L_k C_{k-1} and L_k X_{k-1}, L_k = UN[k-1]^T
+            for i in range(6):
+                for m in range(6):
+                    lim = UN[k - 1, m, i]
+                    if lim != 0.0:
+                        for l in range(6):
+                            S[i, l] -= lim * CW[k - 1, m, l]
+                        for l in range(nb):
+                            T[i, 6 + l] -= lim * XW[k - 1, m, l]
+        _solve6(S, T, 6 + nb)
+        for i in range(6):
+            for l in range(6):
+                CW[k, i, l] = T[i, l]
+            for l in range(nb):
+                XW[k, i, l] = T[i, 6 + l]
+    for k in range(M - 2, -1, -1):
+        for i in range(6):
+            for l in range(nb):
+                acc = 0.0
+                for m in range(6):
+                    acc += CW[k, i, m] * XW[k + 1, m, l]
+                XW[k, i, l] -= acc
+    # border block n-1: A[n-1][0] = UN[n-1], A[n-1][n-2] = UN[n-2]^T
+    for i in range(6):
+        for l in range(6):
+            S[i, l] = AN[n - 1, i, l]
+        for c in range(nr):
+            T[i, c] = RHS[n - 1, i, c]
+        for m in range(6):
+            a0 = UN[n - 1, i, m]
+            a1 = UN[M - 1, m, i]
+            for l in range(6):
+                S[i, l] -= a0 * XW[0, m, nr + l] + a1 * XW[M - 1, m, nr + l]
+            for c in range(nr):
+                T[i, c] -= a0 * XW[0, m, c] + a1 * XW[M - 1, m, c]
+    _solve6(S, T, nr)
+    for i in range(6):
+        for c in range(nr):
+            RHS[n - 1, i, c] = T[i, c]
+    for j in range(M):
+        for i in range(6):
+            for c in range(nr):
+                acc = XW[j, i, c]
+                for m in range(6):
+                    acc -= XW[j, i, nr + m] * T[m, c]
+                RHS[j, i, c] = acc
