@@ -103,8 +103,9 @@ PARAMS: tuple[Param, ...] = (
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C),
     Param("integrator", 4, "1", 0, 4,
-          "4 generalized-alpha (implicit, Newton; default; runs as 3 with the "
-          "needle-resolved bearing), 3 linearly implicit Euler extrapolated to 2nd "
+          "4 (default) generalized-alpha (implicit, Newton) with the ideal and lumped "
+          "bearings, linearly implicit BDF2 with the roller and the needle row in one "
+          "system with the needle-resolved bearing, 3 linearly implicit Euler extrapolated to 2nd "
           "order (Richardson) with the substep set by its own error estimate "
           "(step_tolerance), 1 the same at the fixed "
           "automatic substep, 0 linearly implicit Euler, 2 explicit (symplectic) Euler for "

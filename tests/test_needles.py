@@ -121,6 +121,56 @@ def test_ring_solve_against_dense_solve(gaps):
         NDL.ring_solve(AN.copy(), UN.copy(), got, h, n, np.zeros((n, 6, 6)),
                        np.zeros((n, 6, 7)), np.zeros((6, 6)), np.zeros((6, 13)))
         assert np.allclose(got, expect, rtol=1e-9, atol=1e-12), n
+        # several right-hand sides in one elimination (the coupled step's seven)
+        RHS = rng.normal(size=(n, 6, 7))
+        expect = np.linalg.solve(A, RHS.reshape(6 * n, 7)).reshape(n, 6, 7)
+        got = RHS.copy()
+        NDL.ring_solve_m(AN.copy(), UN.copy(), got, 7, n, np.zeros((n, 6, 6)),
+                         np.zeros((n, 6, 13)), np.zeros((6, 6)), np.zeros((6, 19)))
+        assert np.allclose(got, expect, rtol=1e-9, atol=1e-12), n
+
+
+@pytest.mark.parametrize("gaps", [(), (3,)])
+def test_coupled_solve_against_dense_solve(gaps):
+    # the roller bordering the needle ring (BDF2 step): its 6 unknowns y coupled to every
+    # needle by BN (needle rows, the roller's standard velocities, mapped to its unknowns by
+    # TM: B' = BN TM^T), [[R, B'], [B'^T, A]] [x; y] = [g FN; b]; against numpy's dense solve
+    rng = np.random.default_rng(11)
+    m = ContactModel(SCENE)
+    NW, n = m.NW, m.n_needle_bodies
+    AN = rng.normal(size=(n, 6, 6))
+    NW[3][:] = np.einsum("nij,nkj->nik", AN, AN) + 10 * np.eye(6)
+    NW[11][:] = 0.5 * rng.normal(size=(n, 6, 6))
+    for g in gaps:
+        NW[11][g] = 0.0
+    NW[18][:] = 0.3 * rng.normal(size=(n, 6, 6))
+    NW[6][:, NDL.D_BORE] = 1.0        # needles on the bore; two clear of it (no coupling)
+    for j in (2, 7):
+        NW[18][j] = 0.0
+        NW[6][j, NDL.D_BORE] = 0.0
+    TM = rng.normal(size=(6, 6))
+    NW[10][:, 7:13] = TM
+    FN = rng.normal(size=(n, 6))
+    NW[2][:] = FN
+    A = rng.normal(size=(6, 6))
+    A = A @ A.T + 30 * np.eye(6)
+    b = rng.normal(size=6)
+    g = 0.37
+    D = np.zeros((6 * n + 6, 6 * n + 6))
+    for j in range(n):
+        jn = (j + 1) % n
+        D[6 * j:6 * j + 6, 6 * j:6 * j + 6] += NW[3][j]
+        D[6 * j:6 * j + 6, 6 * jn:6 * jn + 6] += NW[11][j]
+        D[6 * jn:6 * jn + 6, 6 * j:6 * j + 6] += NW[11][j].T
+        Bj = NW[18][j] @ TM.T
+        D[6 * j:6 * j + 6, 6 * n:] = Bj
+        D[6 * n:, 6 * j:6 * j + 6] = Bj.T
+    D[6 * n:, 6 * n:] = A
+    sol = np.linalg.solve(D, np.concatenate([g * FN.ravel(), b]))
+    Ac, bc = A.copy(), b.copy()
+    K.coupled_solve(Ac, bc, NW, g, n, True)
+    assert np.allclose(NW[2], sol[:6 * n].reshape(n, 6), rtol=1e-9, atol=1e-12)
+    assert np.allclose(bc, sol[6 * n:], rtol=1e-9, atol=1e-12)
 
 
 def test_fast_tanh_matches_math_tanh():

@@ -792,7 +792,8 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     hs[1] counts accepted, hs[2] rejected substeps.
     P[P_INTEG] = 4 with the ideal or lumped bearing: n generalized-alpha steps of h (ga_step,
     work array GW), hs[3] and hs[5:11] its accelerations, hs[4] counts steps handed to the
-    extrapolated substeps; with the needle-resolved bearing 4 runs as 3.
+    extrapolated substeps; with the needle-resolved bearing n BDF2 substeps (bdf2_steps), Y2
+    the previous state, hs[0] the previous substep, hs[3] whether they are valid.
     L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
     NW the needle work arrays (model.ContactModel) with the resolved bearing, else None.
     """
@@ -809,24 +810,8 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
                 hs[4] += 1.0
         n = 0
     elif P[P_INTEG] == 4.0:   # the needle-resolved bearing: BDF2, roller and row in one system
-        for _ in range(n):
-            if hs[3] == 0.0 or h > 2.0 * hs[0]:
-                # no history yet (or a step more than twice the last, where variable-step BDF2
-                # is near its stability limit): one extrapolated step (re)starts it
-                for i in range(ny):
-                    Y2[i] = Y[i]
-                    Y1[i] = Y[i]
-                substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
-                substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-                substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-                for i in range(ny):
-                    Y[i] = 2.0 * Y[i] - Y1[i]
-                hs[3] = 1.0
-            else:
-                bdf2_substep(Y, Y2, Y1, P, theta, w, F_press, x0, h, hs[0], L, res, G, A, b,
-                             NW)
-            hs[0] = h
-            hs[1] += 1.0
+        if NW is not None:    # (always, here; the test lets numba drop it from the others)
+            bdf2_steps(Y, P, theta, w, F_press, x0, h, n, L, res, Y1, Y2, G, A, b, NW, hs)
         n = 0
     elif P[P_INTEG] >= 3.0:
         adaptive_steps(Y, P, theta, w, F_press, x0, h * n, h, L, res, Y1, Y2, G, A, b, NW, hs)
@@ -870,34 +855,48 @@ _RQ = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
 @njit
 def coupled_solve(A, b, NW, g, n, trav):
     """The roller (A y = b, its unknowns) bordering the needles' ring (R x = g FN) through
-    the coupling blocks BN (needle rows, the roller's standard velocities): Schur complement
-    on the roller, R^-1 applied to g FN and the six coupling columns in one elimination
-    (ring_solve_m).  b <- y, FN <- x."""
-    FN, AN, UN, BN, RH, Bp = NW[2], NW[3], NW[11], NW[18], NW[20], NW[23]
+    the coupling blocks BN (needle rows, the roller's standard velocities; zero for a needle
+    clear of the bore, ND[j, D_BORE] = 0): Schur complement on the roller, R^-1 applied to
+    g FN and the six coupling columns in one elimination (ring_solve_m).  b <- y, FN <- x."""
+    FN, AN, UN, ND, BN, RH = NW[2], NW[3], NW[11], NW[6], NW[18], NW[20]
     TM = NW[10][:, 7:13]
     for j in range(n):
+        bore = ND[j, NDL.D_BORE] > 0.0
         for i in range(6):
             RH[j, i, 0] = g * FN[j, i]
             for c in range(6):
                 acc = 0.0
-                if trav or c > 0:
+                if bore and (trav or c > 0):   # B' = BN TM^T (TM: 7 nonzeros of 36)
                     for k in range(6):
-                        acc += BN[j, i, k] * TM[c, k]
-                Bp[j, i, c] = acc
+                        t = TM[c, k]
+                        if t != 0.0:
+                            acc += BN[j, i, k] * t
                 RH[j, i, 1 + c] = acc
+    # the Schur complement needs B'^T R^-1 B': keep B' (RH's columns are overwritten)
+    Bp = NW[23]
+    for j in range(n):
+        for i in range(6):
+            for c in range(6):
+                Bp[j, i, c] = RH[j, i, 1 + c]
     NDL.ring_solve_m(AN, UN, RH, 7, n, NW[14], NW[21], NW[16], NW[22])
+    U = NW[16]   # B'^T R^-1 B' is symmetric: its upper triangle, then both of A's
     for c in range(6):
         for d in range(6):
-            acc = 0.0
-            for j in range(n):
+            U[c, d] = 0.0
+    for j in range(n):
+        if ND[j, NDL.D_BORE] > 0.0:
+            for c in range(6):
                 for i in range(6):
-                    acc += Bp[j, i, c] * RH[j, i, 1 + d]
-            A[c, d] -= acc
-        acc = 0.0
-        for j in range(n):
-            for i in range(6):
-                acc += Bp[j, i, c] * RH[j, i, 0]
-        b[c] -= acc
+                    bc = Bp[j, i, c]
+                    if bc != 0.0:
+                        b[c] -= bc * RH[j, i, 0]
+                        for d in range(c, 6):
+                            U[c, d] += bc * RH[j, i, 1 + d]
+    for c in range(6):
+        A[c, c] -= U[c, c]
+        for d in range(c + 1, 6):
+            A[c, d] -= U[c, d]
+            A[d, c] -= U[c, d]
     solve_small(A, b, 6)
     for j in range(n):
         for i in range(6):
@@ -905,6 +904,31 @@ def coupled_solve(A, b, NW, g, n, trav):
             for c in range(6):
                 acc -= RH[j, i, 1 + c] * b[c]
             FN[j, i] = acc
+
+
+@njit
+def bdf2_steps(Y, P, theta, w, F_press, x0, h, n, L, res, Y1, Y2, G, A, b, NW, hs):
+    """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing; Y2 carries the
+    previous state and hs[0] the previous substep from call to call, hs[3] whether they are
+    valid, hs[1] counts substeps."""
+    ny = Y.shape[0]
+    for _ in range(n):
+        if hs[3] == 0.0 or h > 2.0 * hs[0]:
+            # no history yet (or a step more than twice the last, where variable-step BDF2
+            # nears its stability limit): one extrapolated split step (re)starts it
+            for i in range(ny):
+                Y2[i] = Y[i]
+                Y1[i] = Y[i]
+            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+            for i in range(ny):
+                Y[i] = 2.0 * Y[i] - Y1[i]
+            hs[3] = 1.0
+        else:
+            bdf2_substep(Y, Y2, Y1, P, theta, w, F_press, x0, h, hs[0], L, res, G, A, b, NW)
+        hs[0] = h
+        hs[1] += 1.0
 
 
 @njit

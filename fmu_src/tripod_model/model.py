@@ -215,6 +215,7 @@ class ContactModel:
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
         if self.n_needle_bodies:
             self._start_needles(theta)
+        self._hs[3] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
         self._started = True
 
     def _start_needles(self, theta):
@@ -345,7 +346,7 @@ class ContactModel:
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
-                "hs": self._hs.copy(),
+                "hs": self._hs.copy(), "Y2": self._Y2.copy(),   # Y2: BDF2's previous state
                 "ND": None if self.NW is None else self.NW[6].copy(),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
@@ -355,6 +356,7 @@ class ContactModel:
         if self.NW is not None:
             self.NW[6][:] = st["ND"]
         self._hs[:] = st["hs"]
+        self._Y2[:] = st["Y2"]
         self.P[K.P_VST] = st["vst"]
         self._OP[K.OP_KEY] = np.nan   # derive the operating point again at the next step
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
