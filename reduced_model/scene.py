@@ -112,8 +112,8 @@ PARAMS: tuple[Param, ...] = (
           "comparison", kind="int", models=_C),
     Param("step_tolerance", 0.0, "1", 0.0, 1.0,
           "integrator 3: largest error of one substep in the roller's slip velocities, as a "
-          "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (its chaotic needle "
-          "row moves order 3 by about 1 % anyway)", models=_C),
+          "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (the split step's "
+          "needle row moves order 3 by about 1 % anyway)", models=_C),
     Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_A),
     Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_A),
     Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),

@@ -11,22 +11,31 @@ theta w = 11 rad/s, gives forces below 1e-3 of the needle loads and is neglected
 Needle j state, N_F = 11 floats from Y_LEN + 11 j: centre p1, p2, p3 [m], axis tilts t1, t2
 (axis direction ~ (t1, t2, 1)), velocity v1..v3 [m/s], angular velocity w1..w3 [rad/s].
 
-Integration (see kernel.substep): one contact evaluation per substep gives every body its forces
-and its implicit tangent (stiffness, contact damping, friction secant).  The needles step
-together: their neighbour contacts couple them in a ring, solved as one block-cyclic
-tridiagonal system (ring_solve); the roller steps on its own 6 velocities, split from the
-needles with its and their tangents scaled so the split matrix dominates the coupled one
-(C_ROLLER, C_NEEDLE; _contact).  The implicit step damps the 300 kHz contact modes of the
-needles (300 times lighter than the roller) instead of resolving them (L-stable); the contact
-damping (_normal) takes the rebound out of free needles hitting a race.
+Integration, two ways.  The default (integrator 4, kernel.bdf2_substep): a linearly implicit
+BDF2 step with the roller and every needle in one system: needle_forces with cpl adds the
+roller-needle coupling blocks BN (needle rows, the roller's standard velocities; the friction's
+from the moments PB, as for neighbouring needles) and leaves every tangent unscaled; the
+roller borders the needles' ring (kernel.coupled_solve: the ring for seven right-hand sides,
+ring_solve_m, then the roller's 6 x 6 Schur complement).  One contact evaluation a substep,
+linearized at a predicted state, which converges only because the system is the whole one.
+The others (kernel.substep, integrators 0, 1, 3): one contact evaluation per substep gives
+every body its forces and its implicit tangent (stiffness, contact damping, friction secant);
+the needles step together in the ring (ring_solve), the roller on its own 6 velocities, split
+from the needles with its and their tangents scaled so the split matrix dominates the coupled
+one (C_ROLLER, C_NEEDLE; _contact).  Either way the implicit step damps the 300 kHz contact
+modes of the needles (300 times lighter than the roller) instead of resolving them
+(L-stable); the contact damping (_normal) takes the rebound out of free needles hitting a
+race.
 
 needle_forces' arguments: Y[y0:] the needle states; o, vo: roller centre and its velocity in T
 [m, m/s]; ob: bore axis direction (unit); wr: roller angular velocity in T [rad/s]; e1x, ax:
 global x in T (e1x e1 + ax e3); d_tr, dd_tr: trunnion material axial offset [m] and velocity
 [m/s]; om_tr: trunnion spin about e3 [rad/s]; g1..g3: acceleration of the frame origin in T
-[m/s^2].  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10) friction moments of each
-needle and each neighbour pair, RS (6 x 13) and MR (10) the roller's system in its standard
-velocities and its friction moments, gn, gn2 (6).
+[m/s^2]; hk: the step of the stiffness's K v term (h, or 0 from a predicted state); cpl: one
+system (BN, PB filled) or split.  Scratch: SP (N x N_s x 3) sphere centres, MOM, PM (N x 10)
+friction moments of each needle and each neighbour pair, RS (6 x 13) and MR (10) the
+roller's system in its standard velocities and its friction moments, gn, gn2 (6), BN
+(N x 6 x 6) and PB (N x 10) the roller-needle coupling and its friction moments.
 """
 import math
 
