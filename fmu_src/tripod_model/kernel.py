@@ -950,19 +950,7 @@ def bdf2_substep(Y, Yp, YL, P, theta, w, F_press, x0, h, hp, L, res, G, A, b, NW
     It = P[P_IT]
     NP = NW[0]
     n = int(NP[NDL.N_N])
-    for i in range(6):
-        vi, qi = _RV[i], _RQ[i]
-        YL[vi] = Y[vi] + r * (Y[vi] - Yp[vi])
-        if qi >= 0:
-            YL[qi] = a1 * Y[qi] - a2 * Yp[qi] + g * YL[vi]
-    for j in range(n):
-        q = Y_LEN + NDL.N_F * j
-        for i in range(5, 11):
-            YL[q + i] = Y[q + i] + r * (Y[q + i] - Yp[q + i])
-        for i in range(3):
-            YL[q + i] = a1 * Y[q + i] - a2 * Yp[q + i] + g * YL[q + 5 + i]
-        YL[q + 3] = a1 * Y[q + 3] - a2 * Yp[q + 3] + g * YL[q + 9]
-        YL[q + 4] = a1 * Y[q + 4] - a2 * Yp[q + 4] - g * YL[q + 8]
+    _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
     x = Y[Y_X] + h * w
     YL[Y_X] = x
     line_kinematics(x, w, theta, P, L)
@@ -1005,6 +993,34 @@ def bdf2_substep(Y, Yp, YL, P, theta, w, F_press, x0, h, hp, L, res, G, A, b, NW
             FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
             AN[j, i, i] += mj[i]
     coupled_solve(A, b, NW, g, n, trav)
+    _bdf2_correct(Y, Yp, YL, b, FN, g, n)
+
+
+@njit
+def _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n):
+    """bdf2_substep's predicted state YL: velocities extrapolated from y_n, y_{n-1} (step ratio
+    r), positions by the BDF2 rule q_L = a1 q_n - a2 q_{n-1} + g v_L (needle tilts: t1' = w2,
+    t2' = -w1)."""
+    for i in range(6):
+        vi, qi = _RV[i], _RQ[i]
+        YL[vi] = Y[vi] + r * (Y[vi] - Yp[vi])
+        if qi >= 0:
+            YL[qi] = a1 * Y[qi] - a2 * Yp[qi] + g * YL[vi]
+    for j in range(n):
+        q = Y_LEN + NDL.N_F * j
+        for i in range(5, 11):
+            YL[q + i] = Y[q + i] + r * (Y[q + i] - Yp[q + i])
+        for i in range(3):
+            YL[q + i] = a1 * Y[q + i] - a2 * Yp[q + i] + g * YL[q + 5 + i]
+        YL[q + 3] = a1 * Y[q + 3] - a2 * Yp[q + 3] + g * YL[q + 9]
+        YL[q + 4] = a1 * Y[q + 4] - a2 * Yp[q + 4] - g * YL[q + 8]
+
+
+@njit
+def _bdf2_correct(Y, Yp, YL, b, FN, g, n):
+    """bdf2_substep's new state: the predicted one plus the velocity corrections (b: the
+    roller's unknowns, FN: each needle's), positions moved by g times them; Yp <- y_n,
+    Y <- y_{n+1}."""
     for i in range(6):
         vi, qi = _RV[i], _RQ[i]
         YL[vi] += b[i]

@@ -411,6 +411,66 @@ def _roller_unknowns(RS, e1x, ax, FR, AR):
             AR[a, c] = acc
 
 
+@inline
+def _clear_coupling(n, BN, PB):
+    for j in range(n):
+        for i in range(10):
+            PB[j, i] = 0.0
+        for i in range(6):
+            for l in range(6):
+                BN[j, i, l] = 0.0
+
+
+@inline
+def _sub_outer(B, kq, gn, gn2):
+    """B -= kq gn gn2^T: a contact's coupling of two bodies (rows: the one with generalized
+    normal gn, columns: gn2's)."""
+    for i in range(6):
+        for l in range(6):
+            B[i, l] -= kq * gn[i] * gn2[l]
+
+
+@inline
+def _couple(B, M, kq, w, cr, r1, r2, r3, gn, gn2):
+    """A bore contact's coupling of the needle (rows) and the roller (columns): the normal
+    part, the rolling resistance's tangent cr on the two spins, and its friction's moments
+    (weight w, the needle's arm r) into M (_coupling_friction)."""
+    _sub_outer(B, kq, gn, gn2)
+    B[5, 5] -= cr
+    _add_moments(M, w, r1, r2, r3)
+
+
+@inline
+def _bore_diagnostics(NDj, f, F1, F2, F3):
+    """A bore contact's load f [N] and its force F on the needle, as on the roller [N]."""
+    NDj[D_BORE] += f
+    NDj[D_R1] -= F1
+    NDj[D_R2] -= F2
+    NDj[D_R3] -= F3
+
+
+@inline
+def _axial_stop(Fj, Aj, NDj, p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk):
+    """A needle on its flange or retainer (_axial_stop_law) into its system and ND."""
+    fz, kz, f = _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
+    if f > 0.0:
+        Fj[2] += fz
+        Aj[2, 2] += kz
+        NDj[D_FLANGE] += f
+
+
+@njit
+def _coupling_friction(Y, y0, n, BN, PB, o1, o2, o3):
+    """The friction's coupling blocks, BN[j] -= sum w G(r) G(R)^T from the moments PB[j]
+    (the roller's arm R = r + p_j - o, o its centre)."""
+    for j in range(n):
+        if PB[j, 0] != 0.0:
+            q = y0 + N_F * j
+            for i in range(10):
+                PB[j, i] = -PB[j, i]
+            _moment_block(BN[j], PB[j], Y[q] - o1, Y[q + 1] - o2, Y[q + 2] - o3)
+
+
 @njit
 def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
                   wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
@@ -430,12 +490,7 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
     cn = 1.0 if cpl else C_NEEDLE   # one system (cpl): no split, so no scaled tangents
     cr_ = 1.0 if cpl else C_ROLLER
     if cpl:
-        for j in range(n):
-            for i in range(10):
-                PB[j, i] = 0.0
-            for i in range(6):
-                for l in range(6):
-                    BN[j, i, l] = 0.0
+        _clear_coupling(n, BN, PB)
     for j in range(n):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
@@ -465,22 +520,14 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
                          cn * kq, cn * h * iso, Fj, Aj, Mj, gn)
                 _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, cr_ * hk * kn * zn,
                          cr_ * kq, cr_ * h * iso, bR, AR6, MR, gn2)
-                if cpl:   # needle rows, roller columns: -kq g_n g_r^T, friction from PB
-                    for i in range(6):
-                        for l in range(6):
-                            BN[j, i, l] -= kq * gn[i] * gn2[l]
-                    _add_moments(PB[j], h * iso, r1, r2, r3)
                 if rollr:
                     Fj[5] -= mr
                     Aj[5, 5] += cn * cr
                     bR[5] += mr
                     AR6[5, 5] += cr_ * cr
-                    if cpl:
-                        BN[j, 5, 5] -= cr
-                ND[j, D_BORE] += f
-                ND[j, D_R1] -= F1
-                ND[j, D_R2] -= F2
-                ND[j, D_R3] -= F3
+                if cpl:
+                    _couple(BN[j], PB[j], kq, h * iso, cr if rollr else 0.0, r1, r2, r3, gn, gn2)
+                _bore_diagnostics(ND[j], f, F1, F2, F3)
             Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
             dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
             delta = dc - dist                                 # the next needle's sphere k
@@ -496,25 +543,14 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
                 _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, FN[jn], AN[jn],
                          MOM[jn], gn2)
                 _add_moments(PM[j], wi, r1, r2, r3)
-                for i in range(6):
-                    for l in range(6):
-                        UN[j, i, l] -= kq * gn[i] * gn2[l]
+                _sub_outer(UN[j], kq, gn, gn2)
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
-        fz, kz, f = _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
-        if f > 0.0:
-            Fj[2] += fz
-            Aj[2, 2] += kz
-            ND[j, D_FLANGE] += f
+        _axial_stop(Fj, Aj, ND[j], p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
     _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR)
     _roller_unknowns(RS, e1x, ax, FR, AR)
-    if cpl:   # the friction coupling (arms from the roller's centre: R = r + p_j - o)
-        for j in range(n):
-            if PB[j, 0] != 0.0:
-                q = y0 + N_F * j
-                for i in range(10):
-                    PB[j, i] = -PB[j, i]
-                _moment_block(BN[j], PB[j], Y[q] - o1, Y[q + 1] - o2, Y[q + 2] - o3)
+    if cpl:
+        _coupling_friction(Y, y0, n, BN, PB, o1, o2, o3)
 
 
 @njit
