@@ -467,6 +467,26 @@ def lumped_radial_step(Y, h, m, Fe, ktot):
     Y[Y_E] = Y[Y_E] + h * Y[Y_ED]
 
 
+@inline
+def _roller_system(Y, P, theta, w, x0, x, h, L, res, G, A, b, sixdof, resolved, nv):
+    """The roller's own part of a linearly implicit step of h [s] ending at whirl angle x
+    [rad]: the groove contact on the state Y, its friction Jacobian in the nv unknowns, the
+    masses, the driving acceleration along the axis.  Returns the contact centre's x, y [m]
+    and the row axes e1, e2."""
+    line_kinematics(x, w, theta, P, L)
+    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
+     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, sixdof)
+    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
+    slip_sensitivities(P[P_R], L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved, G, b)
+    friction_jacobian(P, h, res, G, nv, A)
+    m = P[P_M]
+    A[0, 0] += m
+    A[1, 1] += P[P_IS]
+    # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
+    b[0] -= m * (L[11] * L[2] + Y[Y_U] * (L[6] * L[0] + L[7] * L[1] + L[8] * L[2]))
+    return cx, cy, e1x, e1y, e1z, e2x, e2y, e2z
+
+
 @njit
 def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     """One linearly implicit Euler substep of h [s] on the state Y (in place).
@@ -484,17 +504,9 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     sixdof = lumped or resolved
     x = Y[Y_X] + h * w
     Y[Y_X] = x
-    line_kinematics(x, w, theta, P, L)
-    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
-     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(Y, x0, L, sixdof)
-    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
-    slip_sensitivities(P[P_R], L, res, e1x, e1y, e1z, e2x, e2y, e2z, sixdof, resolved, G, b)
     nv = 6 if resolved else 5 if lumped else 2
-    friction_jacobian(P, h, res, G, nv, A)
-    A[0, 0] += m
-    A[1, 1] += P[P_IS]
-    # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a
-    b[0] -= m * (L[11] * L[2] + Y[Y_U] * (L[6] * L[0] + L[7] * L[1] + L[8] * L[2]))
+    cx, cy, e1x, e1y, e1z, e2x, e2y, e2z = _roller_system(Y, P, theta, w, x0, x, h, L, res, G,
+                                                           A, b, sixdof, resolved, nv)
     It = P[P_IT]
     drag1 = drag2 = kh = Fr = kr = 0.0
     if sixdof:
@@ -514,6 +526,20 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     advance_roller(Y, b, h, trav, sixdof, resolved, NW)
     if lumped:
         lumped_radial_step(Y, h, m, res[0] + Fr, kh + kr)
+
+
+@njit
+def extrapolated_step(Y, Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
+    """One substep of h [s] extrapolated (Richardson) from one linearly implicit Euler step of
+    h (in Y1, work) and two of h/2: second order, L-stable (integrator 1)."""
+    ny = Y.shape[0]
+    for i in range(ny):
+        Y1[i] = Y[i]
+    substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
+    substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+    substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
+    for i in range(ny):
+        Y[i] = 2.0 * Y[i] - Y1[i]
 
 
 @njit
@@ -797,7 +823,6 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
     NW the needle work arrays (model.ContactModel) with the resolved bearing, else None.
     """
-    ny = Y.shape[0]
     extrap = P[P_INTEG] == 1.0
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
@@ -818,13 +843,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
         n = 0
     for _ in range(n):
         if extrap:
-            for i in range(ny):
-                Y1[i] = Y[i]
-            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-            for i in range(ny):
-                Y[i] = 2.0 * Y[i] - Y1[i]
+            extrapolated_step(Y, Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
         else:
             substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
         hs[1] += 1.0   # substeps taken, as the adaptive ones count theirs
@@ -918,12 +937,7 @@ def bdf2_steps(Y, P, theta, w, F_press, x0, h, n, L, res, Y1, Y2, G, A, b, NW, h
             # nears its stability limit): one extrapolated split step (re)starts it
             for i in range(ny):
                 Y2[i] = Y[i]
-                Y1[i] = Y[i]
-            substep(Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-            substep(Y, P, theta, w, F_press, x0, 0.5 * h, L, res, G, A, b, NW)
-            for i in range(ny):
-                Y[i] = 2.0 * Y[i] - Y1[i]
+            extrapolated_step(Y, Y1, P, theta, w, F_press, x0, h, L, res, G, A, b, NW)
             hs[3] = 1.0
         else:
             bdf2_substep(Y, Y2, Y1, P, theta, w, F_press, x0, h, hs[0], L, res, G, A, b, NW)
@@ -953,15 +967,8 @@ def bdf2_substep(Y, Yp, YL, P, theta, w, F_press, x0, h, hp, L, res, G, A, b, NW
     _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
     x = Y[Y_X] + h * w
     YL[Y_X] = x
-    line_kinematics(x, w, theta, P, L)
-    (cx, cy, cz, vx, vy, vz, wx, wy, wz,
-     e1x, e1y, e1z, e2x, e2y, e2z) = roller_motion(YL, x0, L, True)
-    groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res)
-    slip_sensitivities(P[P_R], L, res, e1x, e1y, e1z, e2x, e2y, e2z, True, True, G, b)
-    friction_jacobian(P, g, res, G, 6, A)
-    A[0, 0] += m
-    A[1, 1] += P[P_IS]
-    b[0] -= m * (L[11] * L[2] + YL[Y_U] * (L[6] * L[0] + L[7] * L[1] + L[8] * L[2]))
+    cx, cy, e1x, e1y, e1z, e2x, e2y, e2z = _roller_system(YL, P, theta, w, x0, x, g, L, res, G,
+                                                           A, b, True, True, 6)
     drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
     kh = groove_stiffness_x(P, res, cx, cy)
     b[3] -= drag1
