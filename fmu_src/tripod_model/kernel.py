@@ -6,8 +6,6 @@ direction, y = trunnion axis (nominal).  Forces are reported from the roller on 
 """
 import math
 
-import numpy as np
-
 
 from .jit import inline, njit
 from .linalg import solve_small
@@ -400,14 +398,15 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
 
 @inline
 def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh,
-                       drag1, drag2, A, b):
+                       drag1, drag2, A, b, hk, cpl):
     """Needle-resolved bearing in the implicit step: the roller's own inertia and the groove's
     radial stiffness, then every needle contact on the roller with its tangent, evaluated at
-    the start of the substep (needles and roller step on the same state)."""
+    the start of the substep (needles and roller step on the same state); hk, cpl as in
+    resolved_forces."""
     m = P[P_M]
     b[3] -= drag1
     b[4] -= drag2
-    b[5] -= h * kh * Y[Y_ED]
+    b[5] -= hk * kh * Y[Y_ED]
     A[2, 2] += m
     A[3, 3] += It
     A[4, 4] += It
@@ -415,7 +414,7 @@ def resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, I
     # NW is None for the other bearings: numba then prunes this branch at compile time, so
     # their kernels never compile the needle code (a 15 s first compile)
     if NW is not None:
-        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, h, False)
+        resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, hk, cpl)
         FR, AR = NW[4], NW[5]
         for i in range(6):
             b[i] += FR[i]
@@ -516,7 +515,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
         Fr, kr = lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b)
     if resolved:
         resolved_row_terms(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh,
-                           drag1, drag2, A, b)
+                           drag1, drag2, A, b, h, False)
     trav = P[P_TRAV] > 0.5
     if not trav:
         hold_slide(A, b, nv)
@@ -866,7 +865,8 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     out[O_FN] = res[9]
 
 
-# velocity unknowns of the roller's step and the positions they move (-1: none), masses' slots
+# the roller's velocity unknowns in Y (ud, om, wd, b1d, b2d, ed) and the positions they move
+# (-1: none)
 _RV = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
 _RQ = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
 
@@ -877,7 +877,7 @@ def coupled_solve(A, b, NW, g, n, trav):
     the coupling blocks BN (needle rows, the roller's standard velocities; zero for a needle
     clear of the bore, ND[j, D_BORE] = 0): Schur complement on the roller, R^-1 applied to
     g FN and the six coupling columns in one elimination (ring_solve_m).  b <- y, FN <- x."""
-    FN, AN, UN, ND, BN, RH = NW[2], NW[3], NW[11], NW[6], NW[18], NW[20]
+    FN, AN, UN, ND, BN, RH, Bp = NW[2], NW[3], NW[11], NW[6], NW[18], NW[20], NW[23]
     TM = NW[10][:, 7:13]
     for j in range(n):
         bore = ND[j, NDL.D_BORE] > 0.0
@@ -891,12 +891,7 @@ def coupled_solve(A, b, NW, g, n, trav):
                         if t != 0.0:
                             acc += BN[j, i, k] * t
                 RH[j, i, 1 + c] = acc
-    # the Schur complement needs B'^T R^-1 B': keep B' (RH's columns are overwritten)
-    Bp = NW[23]
-    for j in range(n):
-        for i in range(6):
-            for c in range(6):
-                Bp[j, i, c] = RH[j, i, 1 + c]
+                Bp[j, i, c] = acc   # kept: the solve overwrites RH, the Schur complement needs it
     NDL.ring_solve_m(AN, UN, RH, 7, n, NW[14], NW[21], NW[16], NW[22])
     U = NW[16]   # B'^T R^-1 B' is symmetric: its upper triangle, then both of A's
     for c in range(6):
@@ -971,18 +966,8 @@ def bdf2_substep(Y, Yp, YL, P, theta, w, F_press, x0, h, hp, L, res, G, A, b, NW
                                                            A, b, True, True, 6)
     drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
     kh = groove_stiffness_x(P, res, cx, cy)
-    b[3] -= drag1
-    b[4] -= drag2
-    A[2, 2] += m
-    A[3, 3] += It
-    A[4, 4] += It
-    A[5, 5] += m + g * g * kh
-    resolved_forces(YL, P, NW, theta, x, g, L, e1x, e1y, e1z, e2x, e2y, e2z, 0.0, True)
-    FR, AR = NW[4], NW[5]
-    for i in range(6):
-        b[i] += FR[i]
-        for k in range(6):
-            A[i, k] += AR[i, k]
+    resolved_row_terms(YL, P, NW, theta, x, g, L, e1x, e1y, e1z, e2x, e2y, e2z, It, kh, drag1,
+                       drag2, A, b, 0.0, True)
     mr = (m, P[P_IS], m, It, It, m)
     for i in range(6):
         vi = _RV[i]

@@ -365,6 +365,15 @@ def _axial_stop_law(p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk):
 
 
 @inline
+def _coupling_block(B, M, d1, d2, d3):
+    """A friction coupling block of two bodies from the moments M of the first's arms:
+    B -= sum w G(r) G(r + d)^T, d the first's reference point less the second's (M is spent)."""
+    for i in range(10):
+        M[i] = -M[i]
+    _moment_block(B, M, d1, d2, d3)
+
+
+@inline
 def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
     """The friction parts of the systems from their moments: each needle's own block, each
     neighbour pair's coupling block (UN -= sum w G_j G_jn^T) and the roller's block."""
@@ -374,9 +383,7 @@ def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
         if PM[j, 0] != 0.0:
             jn = j + 1 if j + 1 < n else 0
             q, qn = y0 + N_F * j, y0 + N_F * jn
-            for i in range(10):
-                PM[j, i] = -PM[j, i]
-            _moment_block(UN[j], PM[j], Y[q] - Y[qn], Y[q + 1] - Y[qn + 1], Y[q + 2] - Y[qn + 2])
+            _coupling_block(UN[j], PM[j], Y[q] - Y[qn], Y[q + 1] - Y[qn + 1], Y[q + 2] - Y[qn + 2])
     _mirror(AR6)
     _moment_block(AR6, MR, 0.0, 0.0, 0.0)
 
@@ -466,9 +473,7 @@ def _coupling_friction(Y, y0, n, BN, PB, o1, o2, o3):
     for j in range(n):
         if PB[j, 0] != 0.0:
             q = y0 + N_F * j
-            for i in range(10):
-                PB[j, i] = -PB[j, i]
-            _moment_block(BN[j], PB[j], Y[q] - o1, Y[q + 1] - o2, Y[q + 2] - o3)
+            _coupling_block(BN[j], PB[j], Y[q] - o1, Y[q + 1] - o2, Y[q + 2] - o3)
 
 
 @njit

@@ -165,4 +165,5 @@ def derive(P, OP):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "amplitude_A", "amplitude_B", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "ga_step_size", "substep", "groove_offset", "lumped_offset", "derive")
+             "_rate_amplitude", "ga_step_size", "substep", "groove_offset", "lumped_offset",
+             "derive")
