@@ -130,18 +130,23 @@ def test_ring_solve_against_dense_solve(gaps):
         assert np.allclose(got, expect, rtol=1e-9, atol=1e-12), n
 
 
-@pytest.mark.parametrize("gaps", [(), (3,)])
+@pytest.mark.parametrize("gaps", [(), (3,), (0,), (-1,), (1, 5, 9), "all", "indefinite"])
 def test_coupled_solve_against_dense_solve(gaps):
     # the roller bordering the needle ring (BDF2 step): its 6 unknowns y coupled to every
     # needle by BN (needle rows, the roller's standard velocities, mapped to its unknowns by
-    # TM: B' = BN TM^T), [[R, B'], [B'^T, A]] [x; y] = [g FN; b]; against numpy's dense solve
+    # TM: B' = BN TM^T), [[R, B'], [B'^T, A]] [x; y] = [g FN; b]; against numpy's dense solve.
+    # Closed ring: the general elimination; open (gaps): the block Cholesky along the chain;
+    # a block that is not positive definite (indefinite) falls back to the general one
     rng = np.random.default_rng(11)
     m = ContactModel(SCENE)
     NW, n = m.NW, m.n_needle_bodies
     AN = rng.normal(size=(n, 6, 6))
     NW[3][:] = np.einsum("nij,nkj->nik", AN, AN) + 10 * np.eye(6)
     NW[11][:] = 0.5 * rng.normal(size=(n, 6, 6))
-    for g in gaps:
+    if gaps == "indefinite":
+        gaps = (4,)
+        NW[3][6, 2, 2] = -50.0
+    for g in (range(n) if gaps == "all" else gaps):
         NW[11][g] = 0.0
     NW[18][:] = 0.3 * rng.normal(size=(n, 6, 6))
     NW[6][:, NDL.D_BORE] = 1.0        # needles on the bore; two clear of it (no coupling)

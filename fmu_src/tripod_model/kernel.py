@@ -875,12 +875,51 @@ _RQ = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
 def coupled_solve(A, b, NW, g, n, trav):
     """The roller (A y = b, its unknowns) bordering the needles' ring (R x = g FN) through
     the coupling blocks BN (needle rows, the roller's standard velocities; zero for a needle
-    clear of the bore, ND[j, D_BORE] = 0): Schur complement on the roller, R^-1 applied to
-    g FN and the six coupling columns in one elimination (ring_solve_m).  b <- y, FN <- x."""
-    FN, AN, UN, ND, BN, RH, Bp = NW[2], NW[3], NW[11], NW[6], NW[18], NW[20], NW[23]
+    clear of the bore, ND[j, D_BORE] = 0): Schur complement on the roller.  b <- y, FN <- x.
+
+    An open ring (some neighbours apart, the usual case): block Cholesky along the chain
+    (needles.chain_forward), U = Z^T Z with Z = L^-1 B', one back substitution.  A closed ring,
+    or a block that is not positive definite: R^-1 applied to g FN and the six coupling
+    columns in one elimination (ring_solve_m, _coupled_solve_general)."""
+    FN, AN, UN, RH, ZF = NW[2], NW[3], NW[11], NW[20], NW[25]
+    _coupled_rhs(NW, g, n, trav)
+    j0 = -1
+    for k in range(n):
+        if not NDL._touching(UN[k]):
+            j0 = (k + 1) % n
+            break
+    if j0 < 0 or not NDL.chain_forward(AN, UN, RH, ZF, n, j0, NW[24], NW[14]):
+        if j0 >= 0:
+            _coupled_rhs(NW, g, n, trav)   # the failed sweep wrote over them
+        _coupled_solve_general(A, b, NW, n)
+        return
+    U = NW[16]   # Z^T Z is symmetric: its upper triangle, then both of A's
+    for c in range(6):
+        for d in range(6):
+            U[c, d] = 0.0
+    for j in range(n):
+        if ZF[j] > 0.0:
+            for i in range(6):
+                y0 = RH[j, i, 0]
+                for c in range(6):
+                    zc = RH[j, i, 1 + c]
+                    if zc != 0.0:
+                        b[c] -= zc * y0
+                        for d in range(c, 6):
+                            U[c, d] += zc * RH[j, i, 1 + d]
+    _schur_solve(A, b, U)
+    NDL.chain_backward(RH, ZF, b, UN, n, j0, NW[24], NW[14], FN)
+
+
+@njit
+def _coupled_rhs(NW, g, n, trav):
+    """coupled_solve's right-hand sides RH[j] = (g FN[j], B'[j]) with B' = BN TM^T, zero for a
+    needle clear of the bore; ZF[j] flags those on it."""
+    FN, ND, BN, RH, ZF = NW[2], NW[6], NW[18], NW[20], NW[25]
     TM = NW[10][:, 7:13]
     for j in range(n):
         bore = ND[j, NDL.D_BORE] > 0.0
+        ZF[j] = 1.0 if bore else 0.0
         for i in range(6):
             RH[j, i, 0] = g * FN[j, i]
             for c in range(6):
@@ -891,9 +930,30 @@ def coupled_solve(A, b, NW, g, n, trav):
                         if t != 0.0:
                             acc += BN[j, i, k] * t
                 RH[j, i, 1 + c] = acc
-                Bp[j, i, c] = acc   # kept: the solve overwrites RH, the Schur complement needs it
+
+
+@inline
+def _schur_solve(A, b, U):
+    """y = (A - U)^-1 b in b, U symmetric (its upper triangle given)."""
+    for c in range(6):
+        A[c, c] -= U[c, c]
+        for d in range(c + 1, 6):
+            A[c, d] -= U[c, d]
+            A[d, c] -= U[c, d]
+    solve_small(A, b, 6)
+
+
+@njit
+def _coupled_solve_general(A, b, NW, n):
+    """coupled_solve for any ring, its right-hand sides RH already set (g FN, then B'):
+    R^-1 applied to all seven in one elimination (ring_solve_m), then the Schur complement."""
+    FN, AN, UN, ND, RH, Bp = NW[2], NW[3], NW[11], NW[6], NW[20], NW[23]
+    for j in range(n):
+        for i in range(6):
+            for c in range(6):
+                Bp[j, i, c] = RH[j, i, 1 + c]   # kept: the solve overwrites RH
     NDL.ring_solve_m(AN, UN, RH, 7, n, NW[14], NW[21], NW[16], NW[22])
-    U = NW[16]   # B'^T R^-1 B' is symmetric: its upper triangle, then both of A's
+    U = NW[16]   # B'^T R^-1 B' is symmetric: its upper triangle
     for c in range(6):
         for d in range(6):
             U[c, d] = 0.0
@@ -906,12 +966,7 @@ def coupled_solve(A, b, NW, g, n, trav):
                         b[c] -= bc * RH[j, i, 0]
                         for d in range(c, 6):
                             U[c, d] += bc * RH[j, i, 1 + d]
-    for c in range(6):
-        A[c, c] -= U[c, c]
-        for d in range(c + 1, 6):
-            A[c, d] -= U[c, d]
-            A[d, c] -= U[c, d]
-    solve_small(A, b, 6)
+    _schur_solve(A, b, U)
     for j in range(n):
         for i in range(6):
             acc = RH[j, i, 0]

@@ -774,3 +774,120 @@ def _closed_ring_solve_m(AN, UN, RHS, nr, n, CW, XW, S, T):
                 for m in range(6):
                     acc -= XW[j, i, nr + m] * T[m, c]
                 RHS[j, i, c] = acc
+
+
+# The one-system step's ring solve (kernel.coupled_solve): the ring's matrix is symmetric
+# positive definite (masses plus h^2 K + h D + the friction secant's G G^T, all symmetric
+# positive semi-definite), so an open ring factors as a block Cholesky L L^T along the chain:
+# the roller's Schur complement then needs only the forward sweep (Z = L^-1 B', U = Z^T Z)
+# and one back substitution, half the work of eliminating seven columns both ways.
+
+@inline
+def _chol6(S, L):
+    """Cholesky factor of the symmetric 6 x 6 S (its lower triangle read) into L's lower
+    triangle, the diagonal holding the reciprocals 1 / L_kk.  False if S is not positive
+    definite (a non-positive or NaN pivot)."""
+    for k in range(6):
+        for i in range(k, 6):
+            acc = S[i, k]
+            for p in range(k):
+                acc -= L[i, p] * L[k, p]
+            if i == k:
+                if not acc > 0.0:
+                    return False
+                L[k, k] = 1.0 / math.sqrt(acc)
+            else:
+                L[i, k] = acc * L[k, k]
+    return True
+
+
+@inline
+def _forward6(L, X, c0, nc):
+    """X[:, c0:c0 + nc] <- L^-1 X[:, c0:c0 + nc] (L from _chol6)."""
+    for c in range(c0, c0 + nc):
+        for k in range(6):
+            acc = X[k, c]
+            for p in range(k):
+                acc -= L[k, p] * X[p, c]
+            X[k, c] = acc * L[k, k]
+
+
+@inline
+def _backward6(L, x):
+    """x <- L^-T x (one column; L from _chol6)."""
+    for k in range(5, -1, -1):
+        acc = x[k]
+        for p in range(k + 1, 6):
+            acc -= L[p, k] * x[p]
+        x[k] = acc * L[k, k]
+
+
+@njit
+def chain_forward(AN, UN, RH, ZF, n, j0, LW, CW):
+    """Forward sweep of the open ring's block Cholesky, chain j0, j0 + 1, ... (mod n; the
+    ring open before j0, UN[j0 - 1] = 0; a further gap leaves its coupling out): LW[j] the
+    diagonal block's factor, CW[j] = L_j^-1 UN[j] (W_j, when j touches the next), RH[j, :, 0]
+    <- the forward-solved right-hand side, RH[j, :, 1:7] <- Z_j = (L^-1 B')_j where needle j
+    carries a coupling column (ZF[j] > 0 on entry: its own; on return: its own or filled in
+    along the chain; elsewhere Z_j = 0 and left as is).  False if a block is not positive
+    definite (nothing else written then but LW, CW and RH)."""
+    prev = -1
+    for m in range(n):
+        j = (j0 + m) % n
+        L = LW[j]
+        S = CW[j]    # scratch for the Schur-updated block until W_j is written over it
+        for i in range(6):
+            for l in range(i + 1):
+                S[i, l] = AN[j, i, l]
+        if prev >= 0:   # S -= W_prev^T W_prev, rhs -= W_prev^T Y_prev
+            W = CW[prev]
+            if ZF[prev] > 0.0:
+                ZF[j] = 1.0
+            nc = 7 if ZF[j] > 0.0 else 1
+            for i in range(6):
+                for l in range(i + 1):
+                    acc = 0.0
+                    for q in range(6):
+                        acc += W[q, i] * W[q, l]
+                    S[i, l] -= acc
+                for c in range(nc):
+                    acc = 0.0
+                    if c == 0 or ZF[prev] > 0.0:
+                        for q in range(6):
+                            acc += W[q, i] * RH[prev, q, c]
+                    RH[j, i, c] -= acc
+        if not _chol6(S, L):
+            return False
+        _forward6(L, RH[j], 0, 7 if ZF[j] > 0.0 else 1)
+        nxt = m < n - 1 and _touching(UN[j])
+        if nxt:
+            for i in range(6):
+                for l in range(6):
+                    S[i, l] = UN[j, i, l]
+            _forward6(L, S, 0, 6)
+        prev = j if nxt else -1
+    return True
+
+
+@njit
+def chain_backward(RH, ZF, y, UN, n, j0, LW, CW, X):
+    """Back substitution of the open ring after chain_forward: x_j = L_j^-T (Y_j - Z_j y -
+    W_j x_next) along the chain backwards (y: the roller's solution), into X (n x 6)."""
+    for m in range(n - 1, -1, -1):
+        j = (j0 + m) % n
+        xj = X[j]
+        for i in range(6):
+            acc = RH[j, i, 0]
+            if ZF[j] > 0.0:
+                for c in range(6):
+                    acc -= RH[j, i, 1 + c] * y[c]
+            xj[i] = acc
+        if m < n - 1 and _touching(UN[j]):
+            jn = (j + 1) % n
+            W = CW[j]
+            for i in range(6):
+                acc = 0.0
+                for l in range(6):
+                    acc += W[i, l] * X[jn, l]
+                xj[i] -= acc
+        _backward6(LW[j], xj)
