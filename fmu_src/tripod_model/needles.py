@@ -79,21 +79,22 @@ def _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, coef, w, b, A, MOM, gn):
     w = c h iso.  The friction part sum_c w G G^T = w (G G^T) over the contacts is built once a
     substep from the moments MOM (_moment_block); only the rank-one normal part is per contact.
     """
-    gn[0], gn[1], gn[2] = n1, n2, n3
-    gn[3] = r2 * n3 - r3 * n2
-    gn[4] = r3 * n1 - r1 * n3
-    gn[5] = r1 * n2 - r2 * n1
-    b[0] += F1 - kp * gn[0]
-    b[1] += F2 - kp * gn[1]
-    b[2] += F3 - kp * gn[2]
-    b[3] += r2 * F3 - r3 * F2 - kp * gn[3]
-    b[4] += r3 * F1 - r1 * F3 - kp * gn[4]
-    b[5] += r1 * F2 - r2 * F1 - kp * gn[5]
+    # g_n in registers (a tuple), stored to gn for the caller: read back from gn after each
+    # store to A, it cost a load per product (numba cannot tell the arrays apart)
+    g = (n1, n2, n3, r2 * n3 - r3 * n2, r3 * n1 - r1 * n3, r1 * n2 - r2 * n1)
+    for i in range(6):
+        gn[i] = g[i]
+    b[0] += F1 - kp * g[0]
+    b[1] += F2 - kp * g[1]
+    b[2] += F3 - kp * g[2]
+    b[3] += r2 * F3 - r3 * F2 - kp * g[3]
+    b[4] += r3 * F1 - r1 * F3 - kp * g[4]
+    b[5] += r1 * F2 - r2 * F1 - kp * g[5]
     if coef != 0.0:   # upper triangle only: A is symmetric (_mirror completes it)
         for i in range(6):
-            ci = coef * gn[i]
+            ci = coef * g[i]
             for l in range(i, 6):
-                A[i, l] += ci * gn[l]
+                A[i, l] += ci * g[l]
     if w != 0.0:
         _add_moments(MOM, w, r1, r2, r3)
 
@@ -293,7 +294,11 @@ def _bore_gap(P1, P2, P3, o1, o2, o3, ob1, ob2, ob3, hw, Rb, rn):
     if not abs(al) <= hw:   # (written so that NaN skips, like every test here)
         return 0.0, 0.0, 0.0, 1.0, -1.0
     q1, q2, q3 = e1_ - al * ob1, e2_ - al * ob2, e3_ - al * ob3
-    rb = math.sqrt(q1 * q1 + q2 * q2 + q3 * q3)
+    q = q1 * q1 + q2 * q2 + q3 * q3
+    lim = Rb - rn
+    if q < lim * lim * (1.0 - 1e-12):   # clear by far more than rounding: no square root
+        return 0.0, 0.0, 0.0, 1.0, -1.0
+    rb = math.sqrt(q)
     return q1, q2, q3, rb, rb + rn - Rb
 
 
@@ -432,9 +437,11 @@ def _clear_coupling(n, BN, PB):
 def _sub_outer(B, kq, gn, gn2):
     """B -= kq gn gn2^T: a contact's coupling of two bodies (rows: the one with generalized
     normal gn, columns: gn2's)."""
+    a = (gn[0], gn[1], gn[2], gn[3], gn[4], gn[5])       # in registers (see _contact)
+    c = (gn2[0], gn2[1], gn2[2], gn2[3], gn2[4], gn2[5])
     for i in range(6):
         for l in range(6):
-            B[i, l] -= kq * gn[i] * gn2[l]
+            B[i, l] -= kq * a[i] * c[l]
 
 
 @inline
@@ -496,6 +503,11 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
     cr_ = 1.0 if cpl else C_ROLLER
     if cpl:
         _clear_coupling(n, BN, PB)
+    # the square roots only for spheres that may touch: a squared distance beyond these
+    # bounds (wider than the contact by 1e-12, far more than rounding) cannot
+    rt = Rt + rn
+    rt2 = rt * rt * (1.0 + 1e-12)
+    dc2 = dc * dc * (1.0 + 1e-12)
     for j in range(n):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
@@ -505,8 +517,9 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
         Aj, Fj, Mj = AN[j], FN[j], MOM[j]
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
-            rho = math.sqrt(P1 * P1 + P2 * P2)
-            delta = Rt + rn - rho                             # trunnion
+            rho2 = P1 * P1 + P2 * P2
+            rho = math.sqrt(rho2) if rho2 < rt2 else rt
+            delta = rt - rho                                  # trunnion
             if delta > 0.0:
                 F1, F2, F3, n1, n2, r1, r2, r3, kp, kq, wi, f, mr, cr = _trunnion_law(
                     P1, P2, P3, rho, delta, p1, p2, p3, v1, v2, v3, w1, w2, w3, c, fric, om_tr,
@@ -534,7 +547,8 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
                     _couple(BN[j], PB[j], kq, h * iso, cr if rollr else 0.0, r1, r2, r3, gn, gn2)
                 _bore_diagnostics(ND[j], f, F1, F2, F3)
             Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
-            dist = math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3)
+            dist2 = Q1 * Q1 + Q2 * Q2 + Q3 * Q3
+            dist = math.sqrt(dist2) if dist2 < dc2 else dc
             delta = dc - dist                                 # the next needle's sphere k
             if delta > 0.0 and jn != j:
                 (F1, F2, F3, n1, n2, n3, r1, r2, r3, R1, R2, R3, kp, kq, wi,
