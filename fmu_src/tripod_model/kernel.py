@@ -917,18 +917,32 @@ def _coupled_rhs(NW, g, n, trav):
     needle clear of the bore; ZF[j] flags those on it."""
     FN, ND, BN, RH, ZF = NW[2], NW[6], NW[18], NW[20], NW[25]
     TM = NW[10][:, 7:13]
+    # B' = BN TM^T: TM has 7 nonzeros of 36 (needles._roller_unknowns), listed once here
+    nz = 0
+    KC = NW[16]   # scratch (6 x 6): row c lists TM[c]'s nonzero columns, -1 after the last
+    for c in range(6):
+        m = 0
+        if trav or c > 0:
+            for k in range(6):
+                if TM[c, k] != 0.0:
+                    KC[c, m] = k
+                    m += 1
+        if m < 6:
+            KC[c, m] = -1.0
+        nz += m
     for j in range(n):
-        bore = ND[j, NDL.D_BORE] > 0.0
+        bore = ND[j, NDL.D_BORE] > 0.0 and nz > 0
         ZF[j] = 1.0 if bore else 0.0
         for i in range(6):
             RH[j, i, 0] = g * FN[j, i]
             for c in range(6):
                 acc = 0.0
-                if bore and (trav or c > 0):   # B' = BN TM^T (TM: 7 nonzeros of 36)
-                    for k in range(6):
-                        t = TM[c, k]
-                        if t != 0.0:
-                            acc += BN[j, i, k] * t
+                if bore:
+                    for m in range(6):
+                        k = int(KC[c, m])
+                        if k < 0:
+                            break
+                        acc += BN[j, i, k] * TM[c, k]
                 RH[j, i, 1 + c] = acc
 
 
