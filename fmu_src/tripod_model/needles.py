@@ -39,7 +39,7 @@ roller's system in its standard velocities and its friction moments, gn, gn2 (6)
 """
 import math
 
-from .jit import inline, njit
+from .jit import inline, njit, prange
 
 from .layout import (  # noqa: F401  (re-exported: NDL.N_F etc.)
     N_F, N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
@@ -201,41 +201,43 @@ def _normal(f, kn, m, sn):
 
 
 @inline
-def _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR):
-    """Clear every body's system; each needle's inertial force of the moving frame (its origin
-    accelerating at g [m/s^2]) and its sphere centres SP (spheres evenly along its axis)."""
-    n = int(NP[N_N])
+def _clear_needle(j, y0, NP, Y, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM):
+    """Clear needle j's system; its inertial force of the moving frame (its origin accelerating
+    at g [m/s^2]) and its sphere centres SP (spheres evenly along its axis)."""
     ns = int(NP[N_NS])
     ln = NP[N_LN]
     mn = NP[N_MN]
+    q = y0 + N_F * j
+    for i in range(6):
+        FN[j, i] = 0.0
+        for k in range(6):
+            AN[j, i, k] = 0.0
+            UN[j, i, k] = 0.0
+    for i in range(10):
+        MOM[j, i] = 0.0
+        PM[j, i] = 0.0
+    for i in range(D_LEN):
+        ND[j, i] = 0.0
+    FN[j, 0] = -mn * g1
+    FN[j, 1] = -mn * g2
+    FN[j, 2] = -mn * g3
+    t1, t2 = Y[q + 3], Y[q + 4]
+    inv = 1.0 / math.sqrt(1.0 + t1 * t1 + t2 * t2)
+    d1, d2, d3 = t1 * inv, t2 * inv, inv
+    for k in range(ns):
+        sk = ((k + 0.5) / ns - 0.5) * ln
+        SP[j, k, 0] = Y[q] + sk * d1
+        SP[j, k, 1] = Y[q + 1] + sk * d2
+        SP[j, k, 2] = Y[q + 2] + sk * d3
+
+
+@inline
+def _clear_roller(RS, MR):
     for i in range(6):
         for k in range(13):
             RS[i, k] = 0.0
     for i in range(10):
         MR[i] = 0.0
-    for j in range(n):
-        q = y0 + N_F * j
-        for i in range(6):
-            FN[j, i] = 0.0
-            for k in range(6):
-                AN[j, i, k] = 0.0
-                UN[j, i, k] = 0.0
-        for i in range(10):
-            MOM[j, i] = 0.0
-            PM[j, i] = 0.0
-        for i in range(D_LEN):
-            ND[j, i] = 0.0
-        FN[j, 0] = -mn * g1
-        FN[j, 1] = -mn * g2
-        FN[j, 2] = -mn * g3
-        t1, t2 = Y[q + 3], Y[q + 4]
-        inv = 1.0 / math.sqrt(1.0 + t1 * t1 + t2 * t2)
-        d1, d2, d3 = t1 * inv, t2 * inv, inv
-        for k in range(ns):
-            sk = ((k + 0.5) / ns - 0.5) * ln
-            SP[j, k, 0] = Y[q] + sk * d1
-            SP[j, k, 1] = Y[q + 1] + sk * d2
-            SP[j, k, 2] = Y[q + 2] + sk * d3
 
 
 # The contact laws below take and return scalars only: they run for every touching sphere,
@@ -491,30 +493,134 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
     coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
     unknowns of kernel.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
     ND diagnostics.  Arguments: see the module's docstring."""
+    n = int(NP[N_N])
+    _clear_roller(RS, MR)
+    for j in range(n):
+        _clear_needle(j, y0, NP, Y, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM)
+    if cpl:
+        _clear_coupling(n, BN, PB)
+    _contacts_range(0, n, Y, y0, NP, vst, h, hk, cpl,
+                    (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr),
+                    (SP, FN, AN, UN, ND, MOM, PM, BN, PB), (FN, AN, MOM, ND), RS, MR, gn, gn2)
+    _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
+                    PB)
+
+
+BLOCK = 8   # needles a block in needle_forces_2: 8 needles' arrays fill whole cache lines
+
+
+@njit(parallel=True)
+def needle_forces_2(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
+                    wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
+                    SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, BN, PB, PW):
+    """needle_forces on two threads: needle j's contacts on thread (j // BLOCK) % 2 (blocks
+    that share no cache line and spread the loaded zone over both threads), each writing only its
+    own needles' systems, the next needle's share of their contacts into that needle's side
+    buffers (PW: FN2, AN2, MOM2, ND2) and the roller's into its own copy (RS2, MR2; GN2 its
+    g_n scratch), added up in a fixed order after: the result does not depend on the number of
+    threads (NUMBA_NUM_THREADS=1 gives it bit for bit)."""
+    FN2, AN2, MOM2, ND2, RS2, MR2, GN2 = PW
+    n = int(NP[N_N])
+    for t in prange(2):   # one call a thread: a call passing arrays costs reference counting
+        _clear_part(t, Y, y0, NP, cpl, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, BN, PB, PW)
+    for t in prange(2):   # after every needle's SP: the neighbour tests read SP[jn]
+        for j0 in range(BLOCK * t, n, 2 * BLOCK):
+            _contacts_range(j0, min(j0 + BLOCK, n), Y, y0, NP, vst, h, hk, cpl,
+                            (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr,
+                             dd_tr, om_tr), (SP, FN, AN, UN, ND, MOM, PM, BN, PB), PW[:4],
+                            PW[4][t], PW[5][t], PW[6][t, 0], PW[6][t, 1])
+    for j in range(n):
+        for i in range(6):
+            FN[j, i] += FN2[j, i]
+            for k in range(6):
+                AN[j, i, k] += AN2[j, i, k]
+        for i in range(10):
+            MOM[j, i] += MOM2[j, i]
+        ND[j, D_NEIGH] += ND2[j, D_NEIGH]
+    for i in range(6):
+        for k in range(7):
+            RS[i, k] = RS2[0, i, k] + RS2[1, i, k]
+        for k in range(7, 13):
+            RS[i, k] = 0.0
+    for i in range(10):
+        MR[i] = MR2[0, i] + MR2[1, i]
+    _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
+                    PB)
+
+
+@njit
+def _clear_part(t, Y, y0, NP, cpl, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, BN, PB, PW):
+    """needle_forces_2's clearing on thread t: its needles' systems and sphere centres, the
+    side buffers its contacts write, its copy of the roller's system."""
+    FN2, AN2, MOM2, ND2, RS2, MR2, GN2 = PW
+    n = int(NP[N_N])
+    _clear_roller(RS2[t], MR2[t])
+    for j in range(n):
+        if (j // BLOCK) % 2 != t:
+            continue
+        _clear_needle(j, y0, NP, Y, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM)
+        jn = j + 1 if j + 1 < n else 0
+        for i in range(6):
+            FN2[jn, i] = 0.0
+            for k in range(6):
+                AN2[jn, i, k] = 0.0
+        for i in range(10):
+            MOM2[jn, i] = 0.0
+        ND2[jn, D_NEIGH] = 0.0
+        if cpl:
+            for i in range(10):
+                PB[j, i] = 0.0
+            for i in range(6):
+                for k in range(6):
+                    BN[j, i, k] = 0.0
+
+
+@inline
+def _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
+                    PB):
+    """After every contact: the friction blocks from their moments, the roller's system in its
+    unknowns and, with cpl, the friction's roller-needle coupling blocks."""
+    _friction_blocks(Y, y0, n, AN, MOM, UN, PM, RS[:, 1:7], MR)
+    _roller_unknowns(RS, e1x, ax, FR, AR)
+    if cpl:
+        _coupling_friction(Y, y0, n, BN, PB, o1, o2, o3)
+
+
+@njit
+def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS, MR,
+                    gn, gn2):
+    """The contacts of needles j0 .. j1 - 1 (their spheres on the trunnion, the bore and the
+    next needle jn, their axial stops) into their own systems, the coupling blocks UN[j],
+    BN[j], PB[j], the roller's system (RS: b in column 0, A in 1..6; MR) and, for the contacts
+    with needle jn, jn's share into sides = (FN, AN, MOM, ND) (needle_forces) or side buffers
+    of the same shapes (needle_forces_2).  pose = (o, vo, ob, wr, d_tr, dd_tr, om_tr) as
+    scalars (needle_forces), arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB).  One call for
+    many needles: a call passing arrays costs reference counting on each."""
+    (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr) = pose
+    SP, FN, AN, UN, ND, MOM, PM, BN, PB = arrays
+    FNs, ANs, MOMs, NDs = sides
+    bR, AR6 = RS[:, 0], RS[:, 1:7]
     n, ns = int(NP[N_N]), int(NP[N_NS])
     rn, Rt, Rb, hw, dc, zax = NP[N_RN], NP[N_RT], NP[N_RBR], NP[N_HW], NP[N_DC], NP[N_ZAX]
     Cs, mn, mu, mur, fric = NP[N_CS], NP[N_MN], NP[N_MU], NP[N_MUR], NP[N_FRIC] > 0.5
     ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
     rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
     c = (rn, Cs, ms, mu, mur, vst, h, hk)   # one tuple argument: numba inlines calls of < 30
-    _start_systems(Y, y0, NP, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, RS, MR)
-    bR, AR6 = RS[:, 0], RS[:, 1:7]
     cn = 1.0 if cpl else C_NEEDLE   # one system (cpl): no split, so no scaled tangents
     cr_ = 1.0 if cpl else C_ROLLER
-    if cpl:
-        _clear_coupling(n, BN, PB)
     # the square roots only for spheres that may touch: a squared distance beyond these
     # bounds (wider than the contact by 1e-12, far more than rounding) cannot
     rt = Rt + rn
     rt2 = rt * rt * (1.0 + 1e-12)
     dc2 = dc * dc * (1.0 + 1e-12)
-    for j in range(n):
+    for j in range(j0, j1):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
         w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
         jn = j + 1 if j + 1 < n else 0
         qn = y0 + N_F * jn
         Aj, Fj, Mj = AN[j], FN[j], MOM[j]
+        Fn, An, Mn, NDn = FNs[jn], ANs[jn], MOMs[jn], NDs[jn]
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
             rho2 = P1 * P1 + P2 * P2
@@ -559,17 +665,12 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
                 # both needles' own blocks and the coupling block UN[j] (row j, column jn):
                 # the ring is solved together (ring_solve), so a touching chain moves as one
                 _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, wi, Fj, Aj, Mj, gn)
-                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, FN[jn], AN[jn],
-                         MOM[jn], gn2)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, Fn, An, Mn, gn2)
                 _add_moments(PM[j], wi, r1, r2, r3)
                 _sub_outer(UN[j], kq, gn, gn2)
                 ND[j, D_NEIGH] += f
-                ND[jn, D_NEIGH] += f
+                NDn[D_NEIGH] += f
         _axial_stop(Fj, Aj, ND[j], p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
-    _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR)
-    _roller_unknowns(RS, e1x, ax, FR, AR)
-    if cpl:
-        _coupling_friction(Y, y0, n, BN, PB, o1, o2, o3)
 
 
 @njit
