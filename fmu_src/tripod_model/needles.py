@@ -589,13 +589,11 @@ def _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR,
 @njit
 def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS, MR,
                     gn, gn2):
-    """The contacts of needles j0 .. j1 - 1 (their spheres on the trunnion, the bore and the
-    next needle jn, their axial stops) into their own systems, the coupling blocks UN[j],
-    BN[j], PB[j], the roller's system (RS: b in column 0, A in 1..6; MR) and, for the contacts
-    with needle jn, jn's share into sides = (FN, AN, MOM, ND) (needle_forces) or side buffers
-    of the same shapes (needle_forces_2).  pose = (o, vo, ob, wr, d_tr, dd_tr, om_tr) as
-    scalars (needle_forces), arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB).  One call for
-    many needles: a call passing arrays costs reference counting on each."""
+    """Needles j0 .. j1 - 1's contacts (trunnion, bore, next needle jn, axial stops) into their
+    systems, UN[j], BN[j], PB[j], the roller's (RS: b, A in columns 0, 1..6; MR) and jn's share
+    into sides = (FN, AN, MOM, ND) or side buffers of those shapes (needle_forces_2).  pose:
+    needle_forces' scalars o .. om_tr; arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB).  A call
+    for many needles: a call passing arrays costs reference counting on each."""
     (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr) = pose
     SP, FN, AN, UN, ND, MOM, PM, BN, PB = arrays
     FNs, ANs, MOMs, NDs = sides
@@ -608,11 +606,8 @@ def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS,
     c = (rn, Cs, ms, mu, mur, vst, h, hk)   # one tuple argument: numba inlines calls of < 30
     cn = 1.0 if cpl else C_NEEDLE   # one system (cpl): no split, so no scaled tangents
     cr_ = 1.0 if cpl else C_ROLLER
-    # the square roots only for spheres that may touch: a squared distance beyond these
-    # bounds (wider than the contact by 1e-12, far more than rounding) cannot
-    rt = Rt + rn
-    rt2 = rt * rt * (1.0 + 1e-12)
-    dc2 = dc * dc * (1.0 + 1e-12)
+    rt = Rt + rn   # square roots only within these bounds (1e-12 wider, beyond rounding)
+    rt2, dc2 = rt * rt * (1.0 + 1e-12), dc * dc * (1.0 + 1e-12)
     for j in range(j0, j1):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
