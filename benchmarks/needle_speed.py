@@ -79,7 +79,7 @@ def _loop_substep(reps, Y0, Yp0, Y, Yp, YL, P, th, om, F, x0, h, L, res, G, A, b
 def substep_profile(m, reps=3000):
     """[us] per substep of the default (integrator 4: BDF2, one contact evaluation a substep),
     timed inside numba on the model's state: every needle contact with the implicit system's
-    blocks (roller and row in one system), its solve (the ring for seven right-hand sides and
+    blocks (roller and row in one system), its solve (block Cholesky along the open ring, forward for seven right-hand sides, and
     the roller's Schur complement), and one whole substep."""
     th, om = m.p["theta"], m.p["omega"]
     NW, L = m.NW, m._L
@@ -185,9 +185,10 @@ def main():
     print("| part | us per evaluation | share |")
     print("|---|---|---|")
     rest = max(ts - tc - tr, 0.0)   # the difference of three timings: noisy on a busy machine
-    for name, t in (("needle contacts: geometry, Table 1 law, friction, implicit blocks", tc),
-                    ("solve: the ring for 7 right-hand sides, the roller's Schur complement",
-                     tr),
+    for name, t in (("needle contacts (two threads): geometry, Table 1 law, friction, implicit "
+                     "blocks", tc),
+                    ("solve: block Cholesky of the ring (7 right-hand sides forward), the "
+                     "roller's Schur complement", tr),
                     ("roller, prediction and update of every state", rest)):
         print(f"| {name} | {t:.1f} | {100 * t / ts:.0f} % |")
     print(f"| whole substep | {ts:.1f} | 100 % |\n")
