@@ -79,8 +79,9 @@ def _loop_substep(reps, Y0, Yp0, Y, Yp, YL, P, th, om, F, x0, h, L, res, G, A, b
 def substep_profile(m, reps=3000):
     """[us] per substep of the default (integrator 4: BDF2, one contact evaluation a substep),
     timed inside numba on the model's state: every needle contact with the implicit system's
-    blocks (roller and row in one system), its solve (block Cholesky along the open ring, forward for seven right-hand sides, and
-    the roller's Schur complement), and one whole substep."""
+    blocks (roller and row in one system), its solve (block Cholesky along the open ring,
+    forward for seven right-hand sides, and the roller's Schur complement), and one whole
+    substep."""
     th, om = m.p["theta"], m.p["omega"]
     NW, L = m.NW, m._L
     h = m._OP[LY.OP_H]
