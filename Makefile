@@ -28,8 +28,8 @@ fmu: $(STAMP)
 bench: $(STAMP)
 	$(BIN)/python benchmarks/fmu_speed.py
 
-# the native layer's proofs: 300 + 50 fresh processes per FMU (and 50 with the needle row's
-# threads), 1000 load/free cycles, valgrind
+# the native layer's proofs: 300 + 50 fresh processes per FMU (and 50 with the needle row,
+# numba-compiled), 1000 load/free cycles, valgrind
 native-check: $(STAMP)
 	$(BIN)/python benchmarks/exit_clean.py --runs 300 --cli-runs 50 --needle-runs 50
 	$(BIN)/python benchmarks/soak.py --cycles 1000

@@ -29,8 +29,8 @@ r = simulate_fmu(sys.argv[1], output_interval=1e-4)
 assert len(r) == 2001 and abs(r["Fz"][-1]) < 1e6, len(r)
 """
 
-# the needle-resolved bearing: numba-compiled, its contacts on two OpenMP threads that are
-# still there when the process exits (a short run: the compiled kernel comes from the cache)
+# the needle-resolved bearing: numba-compiled at run time, not the prebuilt kernel (a short
+# run: the compiled kernel comes from the cache)
 SCRIPT_NEEDLES = """
 import sys
 from fmpy import simulate_fmu
@@ -59,7 +59,7 @@ def main():
     ap.add_argument("--runs", type=int, default=300, help="fmpy.simulate_fmu runs per FMU")
     ap.add_argument("--cli-runs", type=int, default=50, help="fmpy simulate runs per FMU")
     ap.add_argument("--needle-runs", type=int, default=0,
-                    help="fmpy.simulate_fmu runs of the contact FMU with bearing = 2")
+                    help="fmpy.simulate_fmu runs of the contact FMU with bearing = 2 (numba)")
     ap.add_argument("--fmu", nargs="*", help="FMU files (default: both of this project)")
     args = ap.parse_args()
     fmus = [Path(f) for f in args.fmu] if args.fmu else [ensure_fmu(n) for n in FMU_NAMES]

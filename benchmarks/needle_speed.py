@@ -186,8 +186,7 @@ def main():
     print("| part | us per evaluation | share |")
     print("|---|---|---|")
     rest = max(ts - tc - tr, 0.0)   # the difference of three timings: noisy on a busy machine
-    for name, t in (("needle contacts (two threads): geometry, Table 1 law, friction, implicit "
-                     "blocks", tc),
+    for name, t in (("needle contacts: geometry, Table 1 law, friction, implicit blocks", tc),
                     ("solve: block Cholesky of the ring (7 right-hand sides forward), the "
                      "roller's Schur complement", tr),
                     ("roller, prediction and update of every state", rest)):

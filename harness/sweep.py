@@ -2,11 +2,9 @@
 dask.distributed cluster.  Each point is one FMPy run in its own subprocess."""
 from __future__ import annotations
 
-import contextlib
 import csv
 import itertools
 import math
-import os
 from pathlib import Path
 
 import numpy as np
@@ -102,30 +100,11 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact",
     tasks = [dask.delayed(run_point)(fmu, base, p, max_cycles, dt) for p in pts]
     kw = {"scheduler": "sync"} if scheduler == "sync" else {"scheduler": "processes",
                                                               "num_workers": workers}
-    with _one_thread_each(scheduler != "sync" and workers > 1):
-        if progress:
-            from dask.diagnostics import ProgressBar
-            with ProgressBar():
-                return list(dask.compute(*tasks, **kw))
-        return list(dask.compute(*tasks, **kw))
-
-
-@contextlib.contextmanager
-def _one_thread_each(on: bool):
-    """A process per point already fills the cores: the needle row's second thread
-    (NUMBA_NUM_THREADS, inherited by the workers' FMU runs) would only oversubscribe them.
-    Results do not depend on it."""
-    old = os.environ.get("NUMBA_NUM_THREADS")
-    if on:
-        os.environ["NUMBA_NUM_THREADS"] = "1"
-    try:
-        yield
-    finally:
-        if on:
-            if old is None:
-                os.environ.pop("NUMBA_NUM_THREADS", None)
-            else:
-                os.environ["NUMBA_NUM_THREADS"] = old
+    if progress:
+        from dask.diagnostics import ProgressBar
+        with ProgressBar():
+            return list(dask.compute(*tasks, **kw))
+    return list(dask.compute(*tasks, **kw))
 
 
 def write_csv(rows: list[dict], path) -> Path:

@@ -73,17 +73,11 @@ if HAVE_NUMBA:
         pass
 
 
-def njit(fn=None, *, parallel=False):
-    """numba.njit(cache=True) if available, else the function unchanged; parallel: its prange
-    loops on numba's threads."""
-    if fn is None:
-        return lambda f: njit(f, parallel=parallel)
+def njit(fn):
+    """numba.njit(cache=True) if available, else the function unchanged."""
     if HAVE_NUMBA:
-        return _nb.njit(cache=True, nogil=True, parallel=parallel)(fn)
+        return _nb.njit(cache=True, nogil=True)(fn)
     return fn
-
-
-prange = _nb.prange if HAVE_NUMBA else range
 
 
 def inline(fn):

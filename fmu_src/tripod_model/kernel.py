@@ -288,17 +288,10 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1x, e1y, e1z, e2x, e2y, e2z, hk, 
     ib = 1.0 / math.sqrt(1.0 + b1 * b1 + b2 * b2)
     d_tr = trunnion_axial(x, theta, P[P_S], P[P_AXIAL] > 0.5)
     g = L[11]   # the frame origin Q accelerates along the groove (z) only
-    if cpl:   # the one-system step: the contacts on two threads (needle_forces_2)
-        NDL.needle_forces_2(Y, Y_LEN, NP, P[P_VST], h, hk, cpl, o1, o2, o3, vo1, vo2, vo3,
-                            b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
-                            d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
-                            SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, NW[18], NW[19],
-                            NW[26])
-    else:
-        NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, hk, cpl, o1, o2, o3, vo1, vo2, vo3,
-                          b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
-                          d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
-                          SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2, NW[18], NW[19])
+    NDL.needle_forces(Y, Y_LEN, NP, P[P_VST], h, hk, cpl, o1, o2, o3, vo1, vo2, vo3,
+                      b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM], e1x, ax,
+                      d_tr, L[12], L[13], g * e1z, g * e2z, g * az,
+                      SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, gn, gn2, NW[18], NW[19])
 
 
 @inline

@@ -122,17 +122,14 @@ class ContactModel:
         # NP, SP, FN, AN, FR, AR, ND, MOM, gn, PM, RS, UN, MR, gn2, CW, XW, S, T, then the
         # one-system step's BN, PB, RH (7 right-hand sides), XW and T for them, B', the open
         # ring's Cholesky factors and fill flags (kernel.resolved_forces and coupled_solve,
-        # needles.needle_forces, ring_solve and chain_forward), needle_forces_2's side buffers
+        # needles.needle_forces, ring_solve and chain_forward)
         return (NP, np.zeros((n, ns, 3)), np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros(6),
                 np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((n, 10)), np.zeros(6),
                 np.zeros((n, 10)), np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros(10),
                 np.zeros(6), np.zeros((n, 6, 6)), np.zeros((n, 6, 7)), np.zeros((6, 6)),
                 np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros((n, 10)),
                 np.zeros((n, 6, 7)), np.zeros((n, 6, 13)), np.zeros((6, 19)),
-                np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros(n),
-                (np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros((n, 10)),
-                 np.zeros((n, NDL.D_LEN)), np.zeros((2, 6, 13)), np.zeros((2, 10)),
-                 np.zeros((2, 2, 6))))
+                np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros(n))
 
     def row_bore_radius(self):
         """Radius of the needles' outer race [m]: trunnion + needle diameter + the row's radial

@@ -39,7 +39,7 @@ roller's system in its standard velocities and its friction moments, gn, gn2 (6)
 """
 import math
 
-from .jit import inline, njit, prange
+from .jit import inline, njit
 
 from .layout import (  # noqa: F401  (re-exported: NDL.N_F etc.)
     N_F, N_N, N_NS, N_RN, N_RT, N_RBR, N_LN, N_MN, N_I1, N_I3, N_CS, N_DC, N_ZAX, N_HW,
@@ -506,75 +506,6 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
                     PB)
 
 
-BLOCK = 8   # needles a block in needle_forces_2: 8 needles' arrays fill whole cache lines
-
-
-@njit(parallel=True)
-def needle_forces_2(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3,
-                    wr1, wr2, wr3, e1x, ax, d_tr, dd_tr, om_tr, g1, g2, g3,
-                    SP, FN, AN, UN, FR, AR, ND, MOM, PM, RS, MR, BN, PB, PW):
-    """needle_forces on two threads: needle j's contacts on thread (j // BLOCK) % 2 (blocks
-    that share no cache line and spread the loaded zone over both threads), each writing only its
-    own needles' systems, the next needle's share of their contacts into that needle's side
-    buffers (PW: FN2, AN2, MOM2, ND2) and the roller's into its own copy (RS2, MR2; GN2 its
-    g_n scratch), added up in a fixed order after: the result does not depend on the number of
-    threads (NUMBA_NUM_THREADS=1 gives it bit for bit)."""
-    FN2, AN2, MOM2, ND2, RS2, MR2, GN2 = PW
-    n = int(NP[N_N])
-    for t in prange(2):   # one call a thread: a call passing arrays costs reference counting
-        _clear_part(t, Y, y0, NP, cpl, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, BN, PB, PW)
-    for t in prange(2):   # after every needle's SP: the neighbour tests read SP[jn]
-        for j0 in range(BLOCK * t, n, 2 * BLOCK):
-            _contacts_range(j0, min(j0 + BLOCK, n), Y, y0, NP, vst, h, hk, cpl,
-                            (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr,
-                             dd_tr, om_tr), (SP, FN, AN, UN, ND, MOM, PM, BN, PB), PW[:4],
-                            PW[4][t], PW[5][t], PW[6][t, 0], PW[6][t, 1])
-    for j in range(n):
-        for i in range(6):
-            FN[j, i] += FN2[j, i]
-            for k in range(6):
-                AN[j, i, k] += AN2[j, i, k]
-        for i in range(10):
-            MOM[j, i] += MOM2[j, i]
-        ND[j, D_NEIGH] += ND2[j, D_NEIGH]
-    for i in range(6):
-        for k in range(7):
-            RS[i, k] = RS2[0, i, k] + RS2[1, i, k]
-        for k in range(7, 13):
-            RS[i, k] = 0.0
-    for i in range(10):
-        MR[i] = MR2[0, i] + MR2[1, i]
-    _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
-                    PB)
-
-
-@njit
-def _clear_part(t, Y, y0, NP, cpl, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM, BN, PB, PW):
-    """needle_forces_2's clearing on thread t: its needles' systems and sphere centres, the
-    side buffers its contacts write, its copy of the roller's system."""
-    FN2, AN2, MOM2, ND2, RS2, MR2, GN2 = PW
-    n = int(NP[N_N])
-    _clear_roller(RS2[t], MR2[t])
-    for j in range(n):
-        if (j // BLOCK) % 2 != t:
-            continue
-        _clear_needle(j, y0, NP, Y, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM)
-        jn = j + 1 if j + 1 < n else 0
-        for i in range(6):
-            FN2[jn, i] = 0.0
-            for k in range(6):
-                AN2[jn, i, k] = 0.0
-        for i in range(10):
-            MOM2[jn, i] = 0.0
-        ND2[jn, D_NEIGH] = 0.0
-        if cpl:
-            for i in range(10):
-                PB[j, i] = 0.0
-            for i in range(6):
-                for k in range(6):
-                    BN[j, i, k] = 0.0
-
-
 @inline
 def _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
                     PB):
@@ -591,7 +522,7 @@ def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS,
                     gn, gn2):
     """Needles j0 .. j1 - 1's contacts (trunnion, bore, next needle jn, axial stops) into their
     systems, UN[j], BN[j], PB[j], the roller's (RS: b, A in columns 0, 1..6; MR) and jn's share
-    into sides = (FN, AN, MOM, ND) or side buffers of those shapes (needle_forces_2).  pose:
+    into sides = (FN, AN, MOM, ND) (the same arrays, or buffers of those shapes).  pose:
     needle_forces' scalars o .. om_tr; arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB).  A call
     for many needles: a call passing arrays costs reference counting on each."""
     (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr) = pose
