@@ -15,8 +15,9 @@ Integration, two ways.  The default (integrator 4, kernel.bdf2_substep): a linea
 BDF2 step with the roller and every needle in one system: needle_forces with cpl adds the
 roller-needle coupling blocks BN (needle rows, the roller's standard velocities; the friction's
 from the moments PB, as for neighbouring needles) and leaves every tangent unscaled; the
-roller borders the needles' ring (kernel.coupled_solve: the ring for seven right-hand sides,
-ring_solve_m, then the roller's 6 x 6 Schur complement).  One contact evaluation a substep,
+roller borders the needles' ring (kernel.coupled_solve: block Cholesky along the open ring,
+chain_forward / chain_backward, and the roller's 6 x 6 Schur complement; a closed ring by
+ring_solve_m for seven right-hand sides).  One contact evaluation a substep,
 linearized at a predicted state, which converges only because the system is the whole one.
 The others (kernel.substep, integrators 0, 1, 3): one contact evaluation per substep gives
 every body its forces and its implicit tangent (stiffness, contact damping, friction secant);
@@ -499,9 +500,9 @@ def needle_forces(Y, y0, NP, vst, h, hk, cpl, o1, o2, o3, vo1, vo2, vo3, ob1, ob
         _clear_needle(j, y0, NP, Y, g1, g2, g3, SP, FN, AN, UN, ND, MOM, PM)
     if cpl:
         _clear_coupling(n, BN, PB)
-    _contacts_range(0, n, Y, y0, NP, vst, h, hk, cpl,
-                    (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr),
-                    (SP, FN, AN, UN, ND, MOM, PM, BN, PB), (FN, AN, MOM, ND), RS, MR, gn, gn2)
+    _contacts(Y, y0, NP, vst, h, hk, cpl,
+              (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr),
+              (SP, FN, AN, UN, ND, MOM, PM, BN, PB), RS, MR, gn, gn2)
     _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR, FR, AR, BN,
                     PB)
 
@@ -518,16 +519,13 @@ def _finish_systems(Y, y0, n, cpl, e1x, ax, o1, o2, o3, AN, MOM, UN, PM, RS, MR,
 
 
 @njit
-def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS, MR,
-                    gn, gn2):
-    """Needles j0 .. j1 - 1's contacts (trunnion, bore, next needle jn, axial stops) into their
-    systems, UN[j], BN[j], PB[j], the roller's (RS: b, A in columns 0, 1..6; MR) and jn's share
-    into sides = (FN, AN, MOM, ND) (the same arrays, or buffers of those shapes).  pose:
-    needle_forces' scalars o .. om_tr; arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB).  A call
-    for many needles: a call passing arrays costs reference counting on each."""
+def _contacts(Y, y0, NP, vst, h, hk, cpl, pose, arrays, RS, MR, gn, gn2):
+    """Every needle's contacts (trunnion, bore, next needle jn, axial stops) into the needles'
+    systems, UN[j], BN[j], PB[j] and the roller's (RS: b, A in columns 0, 1..6; MR).  pose:
+    needle_forces' scalars o .. om_tr; arrays = (SP, FN, AN, UN, ND, MOM, PM, BN, PB) (tuples:
+    needle_forces' systems are cleared and finished around this loop)."""
     (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr) = pose
     SP, FN, AN, UN, ND, MOM, PM, BN, PB = arrays
-    FNs, ANs, MOMs, NDs = sides
     bR, AR6 = RS[:, 0], RS[:, 1:7]
     n, ns = int(NP[N_N]), int(NP[N_NS])
     rn, Rt, Rb, hw, dc, zax = NP[N_RN], NP[N_RT], NP[N_RBR], NP[N_HW], NP[N_DC], NP[N_ZAX]
@@ -539,14 +537,13 @@ def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS,
     cr_ = 1.0 if cpl else C_ROLLER
     rt = Rt + rn   # square roots only within these bounds (1e-12 wider, beyond rounding)
     rt2, dc2 = rt * rt * (1.0 + 1e-12), dc * dc * (1.0 + 1e-12)
-    for j in range(j0, j1):
+    for j in range(n):
         q = y0 + N_F * j
         p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
         w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
         jn = j + 1 if j + 1 < n else 0
         qn = y0 + N_F * jn
         Aj, Fj, Mj = AN[j], FN[j], MOM[j]
-        Fn, An, Mn, NDn = FNs[jn], ANs[jn], MOMs[jn], NDs[jn]
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
             rho2 = P1 * P1 + P2 * P2
@@ -591,11 +588,12 @@ def _contacts_range(j0, j1, Y, y0, NP, vst, h, hk, cpl, pose, arrays, sides, RS,
                 # both needles' own blocks and the coupling block UN[j] (row j, column jn):
                 # the ring is solved together (ring_solve), so a touching chain moves as one
                 _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, wi, Fj, Aj, Mj, gn)
-                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, Fn, An, Mn, gn2)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, FN[jn], AN[jn],
+                         MOM[jn], gn2)
                 _add_moments(PM[j], wi, r1, r2, r3)
                 _sub_outer(UN[j], kq, gn, gn2)
                 ND[j, D_NEIGH] += f
-                NDn[D_NEIGH] += f
+                ND[jn, D_NEIGH] += f
         _axial_stop(Fj, Aj, ND[j], p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
 
 
@@ -871,7 +869,7 @@ def chain_forward(AN, UN, RH, ZF, n, j0, LW, CW):
     <- the forward-solved right-hand side, RH[j, :, 1:7] <- Z_j = (L^-1 B')_j where needle j
     carries a coupling column (ZF[j] > 0 on entry: its own; on return: its own or filled in
     along the chain; elsewhere Z_j = 0 and left as is).  False if a block is not positive
-    definite (nothing else written then but LW, CW and RH)."""
+    definite (LW, CW, RH and ZF then partly written: coupled_solve sets RH, ZF again)."""
     prev = -1
     for m in range(n):
         j = (j0 + m) % n
