@@ -188,3 +188,41 @@ def test_fast_tanh_matches_math_tanh():
         got = NDL._tanh(float(x))
         assert abs(got - want) <= 1e-12 * abs(want), x
     assert math.isnan(NDL._tanh(float("nan")))
+
+
+def test_pair_blocks_match_per_contact_sums():
+    # a touching pair's blocks built once from S = sum kq g g^T (_pair_blocks) against the
+    # sums over its contacts written out: needle jn sees the same contact at arm R = r + d, so
+    # Ajn = sum kq g_n g_n^T, the coupling -sum kq g g_n^T, and jn's friction moments of R
+    rng = np.random.default_rng(7)
+    d = rng.normal(size=3) * 3e-3
+    Aj0, Ajn0 = rng.normal(size=(6, 6)), rng.normal(size=(6, 6))
+    Mj0, Mjn0 = rng.normal(size=10), rng.normal(size=10)
+    U, PM = np.zeros((6, 6)), np.zeros(10)
+    Aj, Ajn, Uw, M = Aj0.copy(), Ajn0.copy(), np.zeros((6, 6)), [np.zeros(10), np.zeros(10)]
+
+    def moments(w, r):
+        return w * np.array([1, *r, r[0] ** 2, r[1] ** 2, r[2] ** 2, r[0] * r[1], r[0] * r[2],
+                             r[1] * r[2]])
+    for _ in range(7):
+        nv = rng.normal(size=3)
+        nv /= np.linalg.norm(nv)
+        r = rng.normal(size=3) * 4e-3
+        kq, w = rng.uniform(1e3, 1e6), rng.uniform(0.0, 10.0)
+        g, g2 = np.r_[nv, np.cross(r, nv)], np.r_[nv, np.cross(r + d, nv)]
+        U += np.triu(kq * np.outer(g, g))   # what _contacts leaves: the upper triangle
+        PM += moments(w, r)
+        Aj += kq * np.outer(g, g)
+        Ajn += kq * np.outer(g2, g2)
+        Uw -= kq * np.outer(g, g2)
+        M[0] += moments(w, r)
+        M[1] += moments(w, r + d)
+    Mj, Mjn = Mj0.copy(), Mjn0.copy()
+    Ajg, Ajng = Aj0.copy(), Ajn0.copy()
+    NDL._pair_blocks(Ajg, Ajng, U, Mj, Mjn, PM.copy(), *d)
+    iu = np.triu_indices(6)   # the systems' upper triangles (mirrored later)
+    assert np.allclose(Ajg[iu], Aj[iu], rtol=1e-12, atol=1e-14 * np.abs(Aj).max())
+    assert np.allclose(Ajng[iu], Ajn[iu], rtol=1e-12, atol=1e-14 * np.abs(Ajn).max())
+    assert np.allclose(U, Uw, rtol=1e-12, atol=1e-12 * np.abs(Uw).max())
+    assert np.allclose(Mj, Mj0 + M[0], rtol=1e-12, atol=1e-15)
+    assert np.allclose(Mjn, Mjn0 + M[1], rtol=1e-12, atol=1e-15)

@@ -458,6 +458,65 @@ def _couple(B, M, kq, w, cr, r1, r2, r3, gn, gn2):
 
 
 @inline
+def _pair_load(b, F1, F2, F3, n1, n2, n3, R1, R2, R3, kp):
+    """The next needle's share of a neighbour contact (force -F at its arm R, -kp) into its
+    right-hand side b, as _contact adds it (its block: _pair_blocks)."""
+    b[0] += kp * n1 - F1
+    b[1] += kp * n2 - F2
+    b[2] += kp * n3 - F3
+    b[3] += R3 * F2 - R2 * F3 + kp * (R2 * n3 - R3 * n2)
+    b[4] += R1 * F3 - R3 * F1 + kp * (R3 * n1 - R1 * n3)
+    b[5] += R2 * F1 - R1 * F2 + kp * (R1 * n2 - R2 * n1)
+
+
+@inline
+def _pair_blocks(Aj, Ajn, U, Mj, Mjn, PMj, d1, d2, d3):
+    """A touching pair's blocks from U = S = sum kq g g^T over its contacts (upper triangle,
+    g = (n, r x n) in needle j's arms): needle jn's g is T g, T = [[I, 0], [D, I]], D v = d x v,
+    d = p_j - p_jn, so Aj += S, Ajn += T S T^T, U <- -S T^T (the coupling, as -sum kq g g_n^T),
+    Mj += PMj and Mjn += PMj shifted by d (the friction moments in jn's arms, R = r + d).
+    Once a pair instead of once a contact: a pair has up to N_s contacts."""
+    _mirror(U)
+    for i in range(6):
+        for l in range(i, 6):
+            Aj[i, l] += U[i, l]
+    for i in range(6):   # X = S T^T: columns 3..5 += d x (columns 0..2)
+        s0, s1, s2 = U[i, 0], U[i, 1], U[i, 2]
+        U[i, 3] += d2 * s2 - d3 * s1
+        U[i, 4] += d3 * s0 - d1 * s2
+        U[i, 5] += d1 * s1 - d2 * s0
+    for l in range(6):   # Ajn += T X (upper): rows 3..5 += d x (rows 0..2)
+        x0, x1, x2 = U[0, l], U[1, l], U[2, l]
+        Ajn[0, l] += x0
+        if l >= 1:
+            Ajn[1, l] += x1
+        if l >= 2:
+            Ajn[2, l] += x2
+        if l >= 3:
+            Ajn[3, l] += U[3, l] + d2 * x2 - d3 * x1
+        if l >= 4:
+            Ajn[4, l] += U[4, l] + d3 * x0 - d1 * x2
+        if l >= 5:
+            Ajn[5, l] += U[5, l] + d1 * x1 - d2 * x0
+    for i in range(6):
+        for l in range(6):
+            U[i, l] = -U[i, l]
+    s0, a1, a2, a3 = PMj[0], PMj[1], PMj[2], PMj[3]
+    for i in range(10):
+        Mj[i] += PMj[i]
+    Mjn[0] += s0
+    Mjn[1] += a1 + s0 * d1
+    Mjn[2] += a2 + s0 * d2
+    Mjn[3] += a3 + s0 * d3
+    Mjn[4] += PMj[4] + 2.0 * a1 * d1 + s0 * d1 * d1
+    Mjn[5] += PMj[5] + 2.0 * a2 * d2 + s0 * d2 * d2
+    Mjn[6] += PMj[6] + 2.0 * a3 * d3 + s0 * d3 * d3
+    Mjn[7] += PMj[7] + a1 * d2 + d1 * a2 + s0 * d1 * d2
+    Mjn[8] += PMj[8] + a1 * d3 + d1 * a3 + s0 * d1 * d3
+    Mjn[9] += PMj[9] + a2 * d3 + d2 * a3 + s0 * d2 * d3
+
+
+@inline
 def _bore_diagnostics(NDj, f, F1, F2, F3):
     """A bore contact's load f [N] and its force F on the needle, as on the roller [N]."""
     NDj[D_BORE] += f
@@ -544,6 +603,7 @@ def _contacts(Y, y0, NP, vst, h, hk, cpl, pose, arrays, RS, MR, gn, gn2):
         jn = j + 1 if j + 1 < n else 0
         qn = y0 + N_F * jn
         Aj, Fj, Mj = AN[j], FN[j], MOM[j]
+        pair = False   # j touches jn: UN[j] holds S = sum kq g g^T until _pair_blocks
         for k in range(ns):
             P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
             rho2 = P1 * P1 + P2 * P2
@@ -585,15 +645,16 @@ def _contacts(Y, y0, NP, vst, h, hk, cpl, pose, arrays, RS, MR, gn, gn2):
                                      v3, w1, w2, w3, Y[qn], Y[qn + 1], Y[qn + 2], Y[qn + 5],
                                      Y[qn + 6], Y[qn + 7], Y[qn + 8], Y[qn + 9], Y[qn + 10],
                                      c, fric)
-                # both needles' own blocks and the coupling block UN[j] (row j, column jn):
-                # the ring is solved together (ring_solve), so a touching chain moves as one
-                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, wi, Fj, Aj, Mj, gn)
-                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, kq, wi, FN[jn], AN[jn],
-                         MOM[jn], gn2)
+                # both needles' loads now; their blocks once for the pair (_pair_blocks)
+                _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, 0.0, Fj, UN[j], Mj, gn)
+                _pair_load(FN[jn], F1, F2, F3, n1, n2, n3, R1, R2, R3, kp)
                 _add_moments(PM[j], wi, r1, r2, r3)
-                _sub_outer(UN[j], kq, gn, gn2)
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
+                pair = True
+        if pair:
+            _pair_blocks(Aj, AN[jn], UN[j], Mj, MOM[jn], PM[j], p1 - Y[qn], p2 - Y[qn + 1],
+                         p3 - Y[qn + 2])
         _axial_stop(Fj, Aj, ND[j], p3, v3, d_tr, dd_tr, zax, Cs, mn, h, hk)
 
 
