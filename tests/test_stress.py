@@ -99,11 +99,16 @@ def test_work_precision_pipeline_on_a_small_ladder(tmp_path, monkeypatch):
         ("analytic", "TripodRollerAnalytic", {}, 1e-3, False)])
     monkeypatch.setattr(bench, "GA_PYTHON_STEPS", ())
     monkeypatch.setattr(genalpha, "simulate", lambda *a, **k: None)
-    rows, detail = bench.work_precision(tmp_path, runs=1, fresh=False, log=lambda m: None)
+    rows, detail = bench.work_precision(tmp_path, runs=2, fresh=False, log=lambda m: None)
     assert [r["setting"] for r in rows] == ["defaults, dt=0.002", "defaults, dt=0.001"]
     assert all(isinstance(r["pareto"], bool) for r in rows) and any(r["pareto"] for r in rows)
     assert rows[1]["err_order3"] < rows[0]["err_order3"]   # the finer step is closer to 5e-4's
     assert detail["analytic"] == 0.0
+    for r in rows:   # every median with the spread of its runs, in the CSV and the table
+        assert r["in_process_min_s"] <= r["in_process_s"] <= r["in_process_max_s"]
+        assert f"{r['in_process_s']:.4f} [{r['in_process_min_s']:.4g}-" in (
+            tmp_path / "work_precision.md").read_text()
+    assert "in_process_min_s,in_process_max_s" in (tmp_path / "work_precision.csv").read_text()
     for f in ("work_precision.md", "work_precision.csv", "work_precision.png"):
         assert (tmp_path / f).stat().st_size > 0
 
