@@ -458,18 +458,6 @@ def _couple(B, M, kq, w, cr, r1, r2, r3, gn, gn2):
 
 
 @inline
-def _pair_load(b, F1, F2, F3, n1, n2, n3, R1, R2, R3, kp):
-    """The next needle's share of a neighbour contact (force -F at its arm R, -kp) into its
-    right-hand side b, as _contact adds it (its block: _pair_blocks)."""
-    b[0] += kp * n1 - F1
-    b[1] += kp * n2 - F2
-    b[2] += kp * n3 - F3
-    b[3] += R3 * F2 - R2 * F3 + kp * (R2 * n3 - R3 * n2)
-    b[4] += R1 * F3 - R3 * F1 + kp * (R3 * n1 - R1 * n3)
-    b[5] += R2 * F1 - R1 * F2 + kp * (R1 * n2 - R2 * n1)
-
-
-@inline
 def _pair_blocks(Aj, Ajn, U, Mj, Mjn, PMj, d1, d2, d3):
     """A touching pair's blocks from U = S = sum kq g g^T over its contacts (upper triangle,
     g = (n, r x n) in needle j's arms): needle jn's g is T g, T = [[I, 0], [D, I]], D v = d x v,
@@ -645,9 +633,11 @@ def _contacts(Y, y0, NP, vst, h, hk, cpl, pose, arrays, RS, MR, gn, gn2):
                                      v3, w1, w2, w3, Y[qn], Y[qn + 1], Y[qn + 2], Y[qn + 5],
                                      Y[qn + 6], Y[qn + 7], Y[qn + 8], Y[qn + 9], Y[qn + 10],
                                      c, fric)
-                # both needles' loads now; their blocks once for the pair (_pair_blocks)
+                # both needles' loads now (jn's: no block, no moments); their blocks once for
+                # the pair from S = sum kq g g^T, gathered in UN[j] (_pair_blocks)
                 _contact(F1, F2, F3, n1, n2, n3, r1, r2, r3, kp, kq, 0.0, Fj, UN[j], Mj, gn)
-                _pair_load(FN[jn], F1, F2, F3, n1, n2, n3, R1, R2, R3, kp)
+                _contact(-F1, -F2, -F3, n1, n2, n3, R1, R2, R3, -kp, 0.0, 0.0, FN[jn], AN[jn],
+                         MOM[jn], gn2)
                 _add_moments(PM[j], wi, r1, r2, r3)
                 ND[j, D_NEIGH] += f
                 ND[jn, D_NEIGH] += f
