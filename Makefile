@@ -1,22 +1,45 @@
 # The README's two commands: `make demo` and `make test`. Both set up .venv first.
-PY ?= python3.11
+# The newest working Python 3.11-3.13 on the machine, or PY=...  (`command -v` alone is not
+# enough: a pyenv shim exists for every version but runs only the selected ones)
+PY ?= $(shell for v in 3.13 3.12 3.11; do p=$$(command -v python$$v) && "$$p" -c 'import sys' \
+        >/dev/null 2>&1 && { echo "$$p"; break; }; done)
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
+UV := .uv/bin/uv
+# uv installs uv.lock exactly; it never downloads a Python of its own
+UV_ENV := UV_PROJECT_ENVIRONMENT=$(VENV) UV_PYTHON_DOWNLOADS=never UV_NO_PROGRESS=1
 
-.PHONY: demo test venv fmu bench native-check docs docs-quick clean
+.PHONY: demo test venv lock fmu bench native-check docs docs-quick clean
 
 venv: $(STAMP)
 
-# Reinstall only when the project's own dependency list changes.  The FMUs' binary is compiled
-# from fmu_src/native/ (a C compiler is all it needs): install gcc where none is found.
-$(STAMP): pyproject.toml
+# the installer, pinned by hash, beside the project (the Python's own site-packages untouched)
+$(UV): tools/uv.txt
+	@[ -n "$(PY)" ] && "$(PY)" -c 'import sys; sys.exit(not (3, 11) <= sys.version_info[:2] <= (3, 13))' \
+	  || { echo "make: Python 3.11, 3.12 or 3.13 is needed (none found as python3.1x; give one with PY=/path/to/python3)"; exit 1; }
+	"$(PY)" -m pip --version >/dev/null 2>&1 || { [ "$$(id -u)" = 0 ] && apt-get update -qq && \
+	  apt-get install -y -qq python3-pip; } || { echo "make: $(PY) has no pip (apt-get install python3-pip)"; exit 1; }
+	rm -rf .uv
+	"$(PY)" -m pip install --quiet --disable-pip-version-check --no-warn-script-location \
+	  --require-hashes --target .uv -r tools/uv.txt
+	touch $(UV)
+
+# Reinstall only when the lock changes: exactly the locked versions (uv refuses a lock that no
+# longer matches pyproject.toml).  The FMUs' binary is compiled from fmu_src/native/ (a C
+# compiler is all it needs): install gcc where none is found.  Exudyn (the peer extra) where
+# the registry has a wheel for this Python.
+$(STAMP): uv.lock pyproject.toml $(UV)
 	command -v cc >/dev/null 2>&1 || { [ "$$(id -u)" = 0 ] && apt-get update -qq && \
 	  apt-get install -y -qq gcc; } || { echo "make: a C compiler is needed (apt-get install gcc)"; exit 1; }
-	test -x $(BIN)/python || $(PY) -m venv $(VENV)
-	$(BIN)/python -m pip install --quiet --upgrade pip
-	$(BIN)/python -m pip install --quiet -e '.[test,peer]' || $(BIN)/python -m pip install --quiet -e '.[test]'
+	$(UV_ENV) $(UV) sync --locked --python "$(PY)" --extra test --extra peer \
+	  || $(UV_ENV) $(UV) sync --locked --python "$(PY)" --extra test
 	touch $(STAMP)
+
+# the one command that updates the lock: every dependency to its newest release within
+# pyproject.toml's ranges (then make test, and commit uv.lock with what it changed)
+lock: $(UV)
+	$(UV_ENV) $(UV) lock --upgrade --python "$(PY)"
 
 # the main job: both FMUs (built when missing or stale) compared on the paper's scene
 demo: $(STAMP)
@@ -59,4 +82,4 @@ docs-quick: $(STAMP)
 	$(BIN)/python -m harness.docgen
 
 clean:
-	rm -rf build out .pytest_cache
+	rm -rf build out .pytest_cache .uv

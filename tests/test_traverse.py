@@ -96,11 +96,22 @@ def test_table_solves_the_trapezoid_and_is_periodic(ov):
     tr = Traverse(sc.validate(ov, "analytic"))
     h = 2 * math.pi / tr.scene["omega"] / tr.n
     s, p, V = tr.slip, tr.p, tr.V
-    # T4 by the trapezoidal rule, point to point: each step's Newton stops at a change below
-    # 1e-9 v_st, which leaves at most the residual's slope (3 rho mu / v_st + h / 2) times that
+    # T4 by the trapezoidal rule, point to point: f(z) = rho_c p(z) - h z / 2 - rhs0 per step.
+    # Its Newton stops once a step changes z by less than 1e-9 v_st; that last step leaves a
+    # residual of at most (|f'| + |d|) 1e-9 v_st, d its finite-difference slope, both within a
+    # factor 2 of the local f' (so 4 |f'| 1e-9 v_st).  f' is not bounded by the tanh's 3 mu / v_st:
+    # where the spin moment takes a share of the friction (T3) p(s) is far steeper (100x in
+    # the first scene), so f' is measured at each point.  Rounding of r itself: 8 eps times its
+    # terms.
+    i = np.arange(1, tr.n + 1)
+    e = 1e-6 * tr.vst
+    dp = np.array([(tr._p(k, z + e) - tr._p(k, z - e)) / (2 * e) for k, z in zip(i, s[1:])])
+    slope = np.abs(tr.rho_c * dp) + 0.5 * h
+    terms = tr.rho_c * (abs(p[1:]) + abs(p[:-1])) + 0.5 * h * (
+        abs(s[1:]) + abs(s[:-1]) + abs(V[1:]) + abs(V[:-1]))
     r = tr.rho_c * np.diff(p) - 0.5 * h * (s[1:] + s[:-1] - V[1:] - V[:-1])
-    mu = tr.scene["mu_groove"]
-    assert np.abs(r).max() <= 2 * (3 * tr.rho_c * mu / tr.vst + 0.5 * h) * 1e-9 * tr.vst
+    bound = 4 * slope * 1e-9 * tr.vst + 8 * np.finfo(float).eps * terms
+    assert (np.abs(r) <= bound).all(), (np.abs(r) / bound).max()
     # periodic: the tanh friction moves by 3e-5 of mu f_n at most over the mismatch
     assert abs(s[-1] - s[0]) <= 1e-5 * tr.vst
     assert tr.settled and tr.cycles < 20
