@@ -12,8 +12,8 @@ from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from fmi2bridge import requirements
-from reduced_model.scene import BY_NAME, check_value
-from slavekit import Guarded, PickleState, register_table
+from reduced_model.scene import BY_NAME, check_value, params_for
+from slavekit import DataState, Guarded, StateError, register_table, same_layout
 from tripod_model import native
 from tripod_model.model import JointModel
 
@@ -29,7 +29,7 @@ def _have_numba():
 _NUMBA_ON = os.environ.get("TRIPOD_NUMBA", "1") != "0"   # 0: plain Python on purpose
 
 
-class TripodRoller(Guarded, PickleState, Fmi2Slave):
+class TripodRoller(Guarded, DataState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
                    "trunnion motions as driving constraints, Hertz contact, tanh friction, "
@@ -37,6 +37,8 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
                    "Fz_mod.")
     # two whirl cycles of the paper's scene (10 Hz)
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
+    # a state belongs to the parameters it was taken with (the model's layout follows them)
+    STRUCTURAL = tuple(p.name for p in params_for("contact") if p.causality != "input")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -158,10 +160,22 @@ class TripodRoller(Guarded, PickleState, Fmi2Slave):
         return {"vars": super()._get_fmu_state(),
                 "model": None if self.model is None else self.model.get_state()}
 
+    def _check_state(self, state):
+        """A state fits this instance: its layout, its parameters, inputs in range."""
+        if self.model is None:
+            raise StateError("a state can be restored only after initialisation")
+        same_layout(state, self._get_fmu_state())
+        for n in self.STRUCTURAL:
+            if state["vars"][n] != getattr(self, n):
+                raise StateError(f"state taken with {n} = {state['vars'][n]}, this instance "
+                                 f"has {getattr(self, n)}")
+        for n in _INPUTS:
+            check_value(n, state["vars"][n])
+
     def _set_fmu_state(self, state):
+        self._check_state(state)       # before anything changes
         super()._set_fmu_state(state["vars"])
-        if state["model"] is not None and self.model is not None:
-            self.model.set_state(copy.deepcopy(state["model"]))
+        self.model.set_state(copy.deepcopy(state["model"]))
 
     def _advance(self, current_time, step_size):
         self._fast = None

@@ -21,11 +21,11 @@ import os
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, pressing_load, same_step,
-                                 same_value, validate)
+from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, params_for, pressing_load,
+                                 same_step, same_value, validate)
 from reduced_model.thrust import Thrust
 from reduced_model.traverse import Traverse, outside_checked, outside_span
-from slavekit import Guarded, PickleState, register_table
+from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
@@ -51,13 +51,15 @@ def _fast_library(resources):
     return lib, address, op, out, march, mop, state
 
 
-class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
+class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
     author = "tripod-thrust"
     description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
                    "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), the "
                    "roller spin-inertia thrust and (traverse = true) the roller's slide across "
                    "the groove with micro-slip. Needs numpy only.")
     default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
+    # a state belongs to the parameters it was taken with
+    STRUCTURAL = tuple(p.name for p in params_for("analytic") if p.causality != "input")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
@@ -158,7 +160,43 @@ class TripodRollerAnalytic(Guarded, PickleState, Fmi2Slave):
                 "scene": copy.deepcopy(self._scene), "march": copy.deepcopy(self._march),
                 "span": copy.deepcopy(self._span)}
 
+    def _check_state(self, st):
+        """A state fits this instance: its layout, its parameters, one whirl angle (and one
+        march row of five outputs) a roller, every number finite, inputs in range."""
+        if self._scene is None:
+            raise StateError("a state can be restored only after initialisation")
+        want = self._get_fmu_state()
+        if not isinstance(st, dict) or set(st) != set(want):
+            raise StateError(f"expected the keys {sorted(want)}")
+        same_layout(st["vars"], want["vars"], "vars")
+        same_layout(st["scene"], want["scene"], "scene")
+        for n in self.STRUCTURAL:
+            if st["vars"][n] != getattr(self, n) or st["scene"].get(n, want["scene"].get(n)) \
+                    != want["scene"].get(n):
+                raise StateError(f"state taken with another {n} than this instance's")
+        for n in _INPUTS:
+            check_value(n, st["vars"][n])
+            check_value(n, st["scene"][n])
+        n = len(self._x)
+        same_layout(st["x"], [0.0] * n, "x")
+        if st["dt"] is not None:
+            same_layout(st["dt"], 1.0, "dt")
+        if st["march"] is not None:
+            for i, m in enumerate(st["march"] if isinstance(st["march"], list) else [None]):
+                if not (isinstance(m, list) and len(m) == 3):
+                    raise StateError(f"march[{i}]: expected [slip, p, outputs]")
+                if m[0] is not None:
+                    same_layout(m[0], 0.0, f"march[{i}][0]")
+                same_layout(m[1], 0.0, f"march[{i}][1]")
+                if m[2] is not None:
+                    same_layout(m[2], [0.0] * 5, f"march[{i}][2]")
+            if len(st["march"]) != n:
+                raise StateError(f"march: expected {n} rows, one a roller")
+        if st["span"] is not None:
+            same_layout(st["span"], [[0.0] * 3, [0.0] * 3], "span")
+
     def _set_fmu_state(self, state):
+        self._check_state(state)       # before anything changes
         super()._set_fmu_state(state["vars"])
         self._x = list(state["x"])
         self._dt = state["dt"]

@@ -29,15 +29,21 @@ def requirements(resources):
 
 
 def _check_guid(resources, guid):
-    """The host's fmuGUID must be the one of modelDescription.xml beside resources/."""
+    """The host's fmuGUID must be the one of modelDescription.xml beside resources/; returns
+    this FMU's GUID (what its serialised states carry)."""
     try:
         with open(os.path.join(os.path.dirname(resources), "modelDescription.xml")) as f:
             m = re.search(r'\sguid="([^"]*)"', f.read(4096))
     except OSError:
-        return
-    if guid and m and m.group(1) != guid:
-        raise FmuError(f"fmuGUID {guid} is not this FMU's ({m.group(1)}): the host's "
+        m = None
+    if not m:
+        if not guid:
+            raise FmuError("fmuGUID is empty and no modelDescription.xml is beside resources/")
+        return guid
+    if guid != m.group(1):
+        raise FmuError(f"fmuGUID {guid!r} is not this FMU's ({m.group(1)}): the host's "
                        "modelDescription.xml and this binary come from different builds")
+    return m.group(1)
 
 
 def _import(module_name, resources, owned):
@@ -70,10 +76,11 @@ def create(module_name, instance_name, resources, guid, visible, owned):
     """Instantiate the FMU's slave.  Returns (slave, its log queue, the variable table, the
     variables' names): the table has two characters a value reference, its type (R, I, B, S)
     and when it may be set (p fixed parameter, t tunable parameter, i input, - never)."""
-    _check_guid(resources, guid)
+    fmu_guid = _check_guid(resources, guid)
     module = _import(module_name, resources, owned)
     slave = _slave_class(module)(instance_name=instance_name, resources=resources,
                                  visible=bool(visible))
+    slave.fmu_guid = fmu_guid
     table, names = [], []
     for i, (vr, var) in enumerate(slave.vars.items()):
         if vr != i:

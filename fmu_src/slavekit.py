@@ -1,7 +1,12 @@
-"""What both pythonfmu slaves share: variables generated from the parameter table, and an FMU
-state serialised with pickle (numpy arrays included).  Bundled into each FMU's resources/."""
-import pickle
+"""What both pythonfmu slaves share: variables generated from the parameter table, the error
+contract, and the serialised FMU state (data only).  Bundled into each FMU's resources/."""
+import json
+import math
+import struct
 import traceback
+import zlib
+
+import numpy as np
 
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
 from pythonfmu.enums import Fmi2Status
@@ -73,13 +78,161 @@ class Guarded:
             return False
 
 
-class PickleState:
-    """FMU state to and from bytes with pickle (pythonfmu's default JSON drops numpy arrays)."""
+# --- the serialised FMU state: data only -------------------------------------------------------
+# MAGIC, a little-endian u32 header length, the header (UTF-8 JSON), the arrays' bytes, and a
+# CRC-32 of all that (a file damaged in storage or transfer is refused, not half-used).  The
+# header holds the format version, the FMU's GUID, the structural parameters the state was taken
+# with and the state's tree: JSON values, and {"@array": [dtype, shape, offset]} for an array.
+# Decoding parses JSON and copies bytes into arrays of allowed dtypes whose sizes are checked
+# against the buffer first: nothing in a state can run code or size an allocation unchecked.
+STATE_MAGIC, STATE_VERSION = b"TTSTATE\0", 1
+_DTYPES = {"<f8": np.float64, "<i8": np.int64, "|b1": np.bool_}
+MAX_STATE_BYTES = 1 << 28     # 256 MiB: far above any state (a needle row's is about 50 kB)
 
-    @staticmethod
-    def _fmu_state_to_bytes(state):
-        return pickle.dumps(state, protocol=pickle.HIGHEST_PROTOCOL)
 
-    @staticmethod
-    def _fmu_state_from_bytes(data):
-        return pickle.loads(data)
+class StateError(ValueError):
+    """A serialised or restored FMU state refused, with the reason."""
+
+
+def encode_state(tree, guid, structural) -> bytes:
+    """``tree`` (dicts with str keys, lists, str, bool, int, float, None, numpy arrays) as bytes."""
+    blobs, size = [], 0
+
+    def enc(v):
+        nonlocal size
+        if isinstance(v, np.ndarray):
+            a = np.ascontiguousarray(v, dtype=v.dtype.newbyteorder("<"))
+            if a.dtype.str not in _DTYPES:
+                raise StateError(f"array of dtype {a.dtype} in the state")
+            blobs.append(a.tobytes())
+            size += a.nbytes
+            return {"@array": [a.dtype.str, list(a.shape), size - a.nbytes]}
+        if isinstance(v, dict):
+            return {str(k): enc(x) for k, x in v.items()}
+        if isinstance(v, (list, tuple)):
+            return [enc(x) for x in v]
+        if isinstance(v, float):                         # JSON has no inf or nan
+            return v if math.isfinite(v) else {"@float": repr(v)}
+        if isinstance(v, (np.floating, np.integer, np.bool_)):
+            return enc(v.item())
+        if v is None or isinstance(v, (bool, int, str)):
+            return v
+        raise StateError(f"{type(v).__name__} in the state")
+    head = json.dumps({"version": STATE_VERSION, "guid": guid, "structural": structural,
+                       "state": enc(tree)}, separators=(",", ":")).encode()
+    data = STATE_MAGIC + struct.pack("<I", len(head)) + head + b"".join(blobs)
+    return data + struct.pack("<I", zlib.crc32(data))
+
+
+def decode_state(data, guid, structural):
+    """The tree ``encode_state`` wrote, after checking every length, dtype and shape against
+    the buffer, and the GUID and structural parameters against this instance's."""
+    data = bytes(data)
+    if len(data) > MAX_STATE_BYTES or len(data) < len(STATE_MAGIC) + 8 or \
+            not data.startswith(STATE_MAGIC):
+        raise StateError("not a serialised state of this FMU (bad magic or size)")
+    if zlib.crc32(data[:-4]) != struct.unpack("<I", data[-4:])[0]:
+        raise StateError("the state is damaged (checksum mismatch)")
+    data = data[:-4]
+    n = struct.unpack_from("<I", data, len(STATE_MAGIC))[0]
+    start = len(STATE_MAGIC) + 4
+    if n > len(data) - start:
+        raise StateError(f"header length {n} exceeds the {len(data) - start} bytes given")
+    try:
+        head = json.loads(data[start:start + n].decode("utf-8"))
+    except (UnicodeDecodeError, ValueError) as e:
+        raise StateError(f"corrupt header ({e.__class__.__name__})") from None
+    if not isinstance(head, dict) or head.get("version") != STATE_VERSION:
+        raise StateError(f"state format version {head.get('version') if isinstance(head, dict) else '?'}"
+                         f" is not {STATE_VERSION}")
+    if head.get("guid") != guid:
+        raise StateError(f"state of another FMU or build (GUID {head.get('guid')!r}, this "
+                         f"FMU's {guid!r})")
+    if head.get("structural") != structural:
+        raise StateError(f"state taken with other structural parameters ({head.get('structural')}"
+                         f"; this instance: {structural})")
+    body = memoryview(data)[start + n:]
+
+    def dec(v, depth=0):
+        if depth > 32:
+            raise StateError("state nested too deep")
+        if isinstance(v, list):
+            return [dec(x, depth + 1) for x in v]
+        if isinstance(v, dict):
+            if set(v) == {"@float"}:
+                if v["@float"] not in ("inf", "-inf", "nan"):
+                    raise StateError("corrupt non-finite float")
+                return float(v["@float"])
+            if set(v) == {"@array"}:
+                return _array(v["@array"], body)
+            return {k: dec(x, depth + 1) for k, x in v.items()}
+        return v
+    return dec(head.get("state"))
+
+
+def _array(spec, body):
+    ok = isinstance(spec, list) and len(spec) == 3 and spec[0] in _DTYPES and \
+        isinstance(spec[1], list) and len(spec[1]) <= 4 and \
+        all(type(d) is int and 0 <= d <= MAX_STATE_BYTES for d in spec[1]) and \
+        type(spec[2]) is int and spec[2] >= 0
+    if not ok:
+        raise StateError(f"corrupt array description {str(spec)[:80]}")
+    dt = np.dtype(_DTYPES[spec[0]])
+    count = math.prod(spec[1])
+    end = spec[2] + count * dt.itemsize
+    if end > len(body):
+        raise StateError(f"array of {count} {dt} runs past the state's end")
+    return np.frombuffer(body[spec[2]:end], dtype=dt).reshape(spec[1]).copy()
+
+
+def same_layout(got, want, where="state"):
+    """Raise StateError unless ``got`` has ``want``'s layout: the same keys, list lengths,
+    scalar types and array dtypes and shapes (None matches anything of that kind in ``want``
+    only where ``want`` is None too), and no non-finite float where ``want`` has a finite one."""
+    if isinstance(want, np.ndarray):
+        if not isinstance(got, np.ndarray) or got.dtype != want.dtype or got.shape != want.shape:
+            raise StateError(f"{where}: expected a {want.dtype} array of shape {want.shape}")
+        if got.dtype.kind == "f" and not np.isfinite(got[np.isfinite(want)]).all():
+            raise StateError(f"{where}: non-finite value")
+        return
+    if isinstance(want, dict):
+        if not isinstance(got, dict) or set(got) != set(want):
+            raise StateError(f"{where}: expected the keys {sorted(want)}")
+        for k in want:
+            same_layout(got[k], want[k], f"{where}.{k}")
+        return
+    if isinstance(want, (list, tuple)):
+        if not isinstance(got, (list, tuple)) or len(got) != len(want):
+            raise StateError(f"{where}: expected a list of {len(want)}")
+        for i, (g, w) in enumerate(zip(got, want)):
+            same_layout(g, w, f"{where}[{i}]")
+        return
+    if want is None:
+        if got is not None:
+            raise StateError(f"{where}: expected nothing")
+        return
+    kinds = (bool,) if isinstance(want, bool) else (int,) if isinstance(want, int) else \
+        (int, float) if isinstance(want, float) else (str,)
+    if not isinstance(got, kinds) or (isinstance(got, bool) and kinds != (bool,)):
+        raise StateError(f"{where}: expected a {type(want).__name__}")
+    if isinstance(want, float) and math.isfinite(want) and not math.isfinite(got):
+        raise StateError(f"{where}: non-finite value")
+
+
+class DataState:
+    """FMU state to and from bytes without pickle (``encode_state``).  A slave names the
+    parameters that fix its state's layout (``STRUCTURAL``) and checks a state before using it
+    in ``_check_state`` (raise StateError); the native layer sets ``fmu_guid``."""
+    STRUCTURAL: tuple = ()
+    fmu_guid = ""
+
+    def _structural(self):
+        return {n: getattr(self, n) for n in self.STRUCTURAL}
+
+    def _fmu_state_to_bytes(self, state):
+        return encode_state(state, self.fmu_guid, self._structural())
+
+    def _fmu_state_from_bytes(self, data):
+        state = decode_state(data, self.fmu_guid, self._structural())
+        self._check_state(state)
+        return state

@@ -191,8 +191,10 @@ def same_step(dt, dt0, t):
 
 def same_value(a, b):
     """Whether input values a and b differ only by rounding (within 64 ulps of the larger): a
-    master's interpolation of a constant stretch of an input table moves its last bits."""
-    return abs(a - b) <= STEP_ROUNDING * max(abs(a), abs(b))
+    master's interpolation of a constant stretch of an input table moves its last bits.  Never
+    for a non-finite value (inf - inf is no rounding: such an input is refused, not kept)."""
+    return math.isfinite(a) and math.isfinite(b) and \
+        abs(a - b) <= STEP_ROUNDING * max(abs(a), abs(b))
 
 
 _TRUE = {"1", "true", "yes", "on"}

@@ -8,6 +8,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
+from rounding import ulps
 
 from harness.cosim import run_libcosim
 from harness.fmus import ensure_fmu
@@ -58,7 +59,9 @@ def test_outputs_at_start_time_are_the_start_state():
     assert r["Fx"][0] == pytest.approx(p["F_press"], rel=1e-6)
     spin = p["s"] * math.tan(p["theta"]) * p["omega"] / p["r_roller"]
     assert r["roller_spin"][0] == pytest.approx(spin, rel=1e-9)
-    assert r["Fz_joint"][0] == pytest.approx(r["Fz"][0] + r["Fz_2"][0] + r["Fz_3"][0], abs=1e-12)
+    # a sum of three in some order: two roundings of the largest partial sum, margin 4
+    fz = [r[n][0] for n in ("Fz", "Fz_2", "Fz_3")]
+    assert r["Fz_joint"][0] == pytest.approx(sum(fz), abs=ulps(8, sum(map(abs, fz))))
     assert abs(r["Fx"][1] - r["Fx"][0]) < 0.01 * p["F_press"]   # no jump into the first step
 
 

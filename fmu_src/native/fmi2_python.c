@@ -1309,7 +1309,9 @@ fmi2Status fmi2FreeFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
         xdecref(s->bytes);
         GIL_END
     }
-    s->magic = 0;
+    /* volatile: a plain store before free() is dead to the optimiser, and the magic is what
+       refuses a freed state handed back (as long as the allocator leaves the word alone) */
+    *(volatile __typeof__(s->magic) *)&s->magic = 0;
     free(s);
     *FMUstate = NULL;
     return finish(c, fmi2OK);
@@ -1386,7 +1388,9 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
         return finish(c, fmi2Error);
     }
     memcpy(head, serializedState + 8, 8);
-    if (head[0] < INSTANTIATED || head[0] > ERRORED) {
+    double t_ok;
+    memcpy(&t_ok, serializedState + 16, 8);
+    if (head[0] < INSTANTIATED || head[0] > ERRORED || !isfinite(t_ok)) {
         logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: corrupt header");
         return finish(c, fmi2Error);
     }
@@ -1399,8 +1403,7 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
     PyObject *obj = b ? PyObject_CallFunction(c->m_from_bytes, "(O)", b) : NULL;
     xdecref(b);
     if (obj) {
-        *s = (State){STATE_MAGIC, obj, NULL, (Phase)head[0], 0.0};
-        memcpy(&s->last_ok_time, serializedState + 16, 8);
+        *s = (State){STATE_MAGIC, obj, NULL, (Phase)head[0], t_ok};
         *FMUstate = s;
     } else {
         free(s);

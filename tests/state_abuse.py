@@ -1,0 +1,167 @@
+"""Feeds a built FMU bad serialised states in its own process (tests/test_state_abuse.py, and
+benchmarks/state_fuzz.py for the long run).
+
+Usage: python state_abuse.py FMU CASES_JSON; prints one JSON object: for each case whether the
+FMU refused it (fmi2Error from deserialise or set) or, where it took it, whether the outputs of
+the next steps stayed finite.  A marker file that a pickle payload would create is checked.
+"""
+import json
+import math
+import os
+import pickle
+import random
+import struct
+import sys
+import zlib
+
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+
+fmu, spec = sys.argv[1], json.loads(sys.argv[2])
+md = read_model_description(fmu)
+d = extract(fmu)
+vr = {v.name: v.valueReference for v in md.modelVariables}
+OUT = [vr[n] for n in ("Fx", "Fz", "Fz_mod", "Fz_joint", "Fz_2", "Fz_3")]
+HEADER = 24                          # the native layer's: magic, phase, reserved, time
+
+
+def make(ints=None, name="a"):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName=name)
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    for k, v in (ints or {}).items():
+        s.setInteger([vr[k]], [int(v)])
+    s.exitInitializationMode()
+    return s
+
+
+def steps(s, n, t0, moving=False):
+    for i in range(n):
+        if moving:
+            s.setReal([vr["theta"]], [0.17 + 0.001 * math.sin(i)])
+        s.doStep(t0 + i * 1e-4, 1e-4)
+    return s.getReal(OUT)
+
+
+def reseal(blob, tree_edit):
+    """The native header and a state re-encoded with its tree edited (a crafted state with a
+    valid checksum: what a hostile host writes)."""
+    body = blob[HEADER:]
+    n = struct.unpack_from("<I", body, 8)[0]
+    head = json.loads(body[12:12 + n])
+    arrays = body[12 + n:-4]
+    tree_edit(head)
+    h = json.dumps(head).encode()
+    data = body[:8] + struct.pack("<I", len(h)) + h + arrays
+    return blob[:HEADER] + data + struct.pack("<I", zlib.crc32(data))
+
+
+def _first_array(h):
+    stack = [h["state"]]
+    while stack:
+        v = stack.pop()
+        if isinstance(v, dict):
+            if "@array" in v:
+                return v["@array"]
+            stack += v.values()
+        elif isinstance(v, list):
+            stack += v
+
+
+def _deep(h):
+    v = 0.0
+    for _ in range(200):
+        v = [v]
+    h["state"]["vars"]["Fz"] = v
+
+
+CRAFTED = {   # name: an edit of the decoded header (then re-sealed with a valid checksum)
+    "nan-output": lambda h: h["state"]["vars"].update(Fz={"@float": "nan"}),
+    "inf-input": lambda h: h["state"]["vars"].update(theta={"@float": "inf"}),
+    "input-out-of-range": lambda h: h["state"]["vars"].update(omega=-1.0),
+    "extra-variable": lambda h: h["state"]["vars"].update(__class__=1.0),
+    "missing-variable": lambda h: h["state"]["vars"].pop("Fz"),
+    "other-guid": lambda h: h.update(guid="{00000000-0000-0000-0000-000000000000}"),
+    "other-structural": lambda h: h["structural"].update(n_rollers=4 - h["structural"]["n_rollers"]),
+    "other-version": lambda h: h.update(version=99),
+    "array-longer-than-data": lambda h: _first_array(h).__setitem__(1, [10 ** 7]),
+    "array-offset-past-end": lambda h: _first_array(h).__setitem__(2, 10 ** 9),
+    "array-negative-shape": lambda h: _first_array(h).__setitem__(1, [-1]),
+    "array-object-dtype": lambda h: _first_array(h).__setitem__(0, "|O"),
+    "nested-200-deep": _deep,
+    "string-for-number": lambda h: h["state"]["vars"].update(Fx="1.0"),
+    # the analytic FMU: three whirl angles and one march row (was memory corruption)
+    "three-angles-one-row": lambda h: (h["state"].update(x=[0.0, 2.1, 4.2]),
+                                       h["state"].update(march=(h["state"]["march"] or [[0.0, 0.0, None]])[:1])),
+    "nan-in-march": lambda h: h["state"].update(march=[[{"@float": "nan"}, 0.0, None]]),
+}
+
+
+def try_state(s, blob):
+    """'refused', or 'finite'/'non-finite' for the outputs of 20 steps after restoring."""
+    try:
+        st = s.deSerializeFMUstate(blob)
+        s.setFMUstate(st)
+    except Exception:
+        return "refused"
+    try:
+        y = steps(s, 20, 0.1)
+    except Exception:
+        return "refused-later"
+    return "finite" if all(map(math.isfinite, y)) else "non-finite"
+
+
+ints = spec.get("ints", {})
+src = make(ints)
+steps(src, 300, 0.0, moving=spec.get("moving", False))
+good = src.serializeFMUstate(src.getFMUstate())
+target = make(spec.get("target_ints", ints), "b")
+steps(target, 10, 0.0)
+marker = spec["marker"]
+res = {"size": len(good), "cases": {}}
+
+
+class Payload:
+    def __reduce__(self):
+        return (os.system, (f"touch {marker}",))
+
+
+cases = {"good": good}
+cases["pickle"] = good[:HEADER] + pickle.dumps(Payload())
+cases["pickle-after-magic"] = good[:HEADER] + good[HEADER:HEADER + 8] + pickle.dumps(Payload())
+rng = random.Random(spec.get("seed", 1))
+for k in range(spec.get("truncations", 0)):
+    n = rng.randrange(0, len(good))
+    cases[f"truncated-{n}"] = good[:n]
+for k in range(spec.get("flips", 0)):
+    b = bytearray(good)
+    i = rng.randrange(HEADER, len(b))
+    b[i] ^= 1 << rng.randrange(8)
+    cases[f"flip-{i}"] = bytes(b)
+for k in range(spec.get("random", 0)):
+    cases[f"random-{k}"] = good[:HEADER + 8] + rng.randbytes(rng.randrange(0, 2000))
+for name in spec.get("crafted", ()):
+    cases[name] = reseal(good, CRAFTED[name])
+for name, blob in cases.items():
+    res["cases"][name] = try_state(target, blob)
+for name, value in spec.get("inputs", ()):
+    # a master sets a bad input during the run: the step is refused (fmi2Discard), outputs
+    # stay the last good ones
+    s = make(ints, f"in-{name}")
+    steps(s, 50, 0.0)
+    before = s.getReal(OUT)
+    s.setReal([vr[name]], [float(value)])
+    try:
+        s.doStep(0.005, 1e-4)
+        y = s.getReal(OUT)
+        res.setdefault("inputs", {})[f"{name}={value}"] = \
+            "ok-finite" if all(map(math.isfinite, y)) else "ok-non-finite"
+    except Exception as e:
+        kept = s.getReal(OUT) == before
+        res.setdefault("inputs", {})[f"{name}={value}"] = \
+            ("discard" if "2" in str(getattr(e, "status", "")) or "Discard" in str(e) else
+             f"error: {e}") + ("" if kept else " (outputs changed)")
+res["code_ran"] = os.path.exists(marker)
+print(json.dumps(res))
