@@ -29,7 +29,8 @@ from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
 _INPUTS = ("theta", "omega", "F_press", "torque")
 # outputs the reduced model defines (no contact point, no roller spin state)
-_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3")
+_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3",
+        "whirl_angle")
 FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
 
 
@@ -393,3 +394,4 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self.Fz_joint = total
         self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
         self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
+        self.whirl_angle = self._x[0]

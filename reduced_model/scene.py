@@ -151,6 +151,8 @@ OUTPUTS = (
     ("Fz_joint", "N", "housing axial force: sum of Fz over the rollers (= Fz with n_rollers = 1)"),
     ("Fz_2", "N", "thrust of roller 2 (whirl phase 120 deg; 0 with n_rollers = 1)"),
     ("Fz_3", "N", "thrust of roller 3 (whirl phase 240 deg; 0 with n_rollers = 1)"),
+    ("whirl_angle", "rad", "whirl angle of roller 1 the trunnion motions use: the integral of "
+     "omega as held over each communication step, 0 at the start (for order tracking)"),
 )
 
 

@@ -202,3 +202,11 @@ def test_modeldescription_ranges_units_display():
             assert t.get("min") is not None and t.get("max") is not None, sv.get("name")
     theta = next(sv for sv in root.iter("ScalarVariable") if sv.get("name") == "theta")
     assert theta[0].get("unit") == "rad" and theta[0].get("displayUnit") == "deg"
+
+
+def test_libcosim_returns_every_sample_of_a_long_run():
+    # 25,000 steps: libcosim's observer keeps 10,000 samples unless told otherwise (the run
+    # used to come back from 0.30002 s on, silently)
+    r = run_libcosim(ensure_fmu("TripodRollerAnalytic"), stop_time=0.5, step=2e-5)
+    assert len(r["time"]) == 25000 and r["time"][0] == 0.0
+    assert np.allclose(np.diff(r["time"]), 2e-5)

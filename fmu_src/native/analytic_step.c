@@ -21,7 +21,7 @@
 #define PI 3.141592653589793   /* math.pi */
 
 enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, OP_LEN };
-enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, OUT_LEN };
+enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, WHIRL, OUT_LEN };
 
 /* the march's operating point (tripod_analytic_march): the inputs where the native layer
    writes a master's new values, the inputs the operating point was derived for (key), the step,
@@ -36,7 +36,7 @@ enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state p
 const char *tripod_analytic_layout(void)
 {
     return "w n_rollers F table scale n A B muF k th kspin"
-           "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3"
+           "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3 whirl_angle"
            "|theta omega F_press torque key_theta key_omega key_F_press key_torque dt n_rollers"
            " n mu v_st K a1 clear r s I pitch roll spin_moment"
            " theta_lo theta_hi omega_lo omega_hi load_lo load_hi"
@@ -109,6 +109,7 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
     o[FZ_JOINT] = fz[0] + fz[1] + fz[2];
     o[FZ_2] = fz[1];
     o[FZ_3] = fz[2];
+    o[WHIRL] = X[0];
     for (int q = 0; q < OUT_LEN; ++q)
         if (!isfinite(o[q])) return 2;
     for (int q = 0; q < OUT_LEN; ++q) OUT[q] = o[q];
@@ -350,6 +351,7 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     o_[FZ_JOINT] = fz[0] + fz[1] + fz[2];
     o_[FZ_2] = fz[1];
     o_[FZ_3] = fz[2];
+    o_[WHIRL] = x1[0];
     int ok = 1;
     for (int q = 0; q < OUT_LEN; ++q) ok = ok && isfinite(o_[q]);
     for (int i = 0; i < nr; ++i)

@@ -31,7 +31,7 @@ def outputs_into(o, F_press, dst):
     Fx = o[K.O_FX]
     Fz_mod = o[K.O_FZ] * F_press / Fx if Fx > 1e-9 * max(F_press, 1.0) else 0.0
     vals = (Fx, o[K.O_FY], o[K.O_FZ], Fz_mod, Fx - F_press, o[K.O_CY], o[K.O_CZ], o[K.O_SLIP],
-            o[K.O_SPIN], o[K.O_FZ], 0.0, 0.0)
+            o[K.O_SPIN], o[K.O_FZ], 0.0, 0.0, o[K.O_X])
     for v in vals:
         if not math.isfinite(v):
             return False
@@ -43,7 +43,7 @@ def outputs_into(o, F_press, dst):
 @njit
 def _roller(Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out):
     """One roller's step at the inputs in its OP."""
-    K.derive_op(P, OP)
+    K.inputs_jumped(P, hs, K.derive_op(P, OP))
     K.run_substeps(Y, P, OP[OP_THETA], OP[OP_W], OP[OP_F], OP[OP_X0], OP[OP_H],
                    0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, L, res, Y1, Y2, G, A, b,
                    None, hs, GW)

@@ -16,7 +16,7 @@ from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
     P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
     P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN,
     Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN, NV,
-    O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN,
+    O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_LEN,
     W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
 
 from . import oppoint
@@ -562,12 +562,26 @@ RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) let the s
                # 0.6-0.9 all stayed below 0.02 % at 25-50 us (paper's scene, ideal bearing)
 GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-2: same order 3)
 GA_MAXIT = 12
-# the method's coefficients from rho_inf (Chung & Hulbert: second order, maximal damping at
-# infinity for the given rho_inf)
-GA_AM = (2.0 * RHO_GA - 1.0) / (RHO_GA + 1.0)
-GA_AF = RHO_GA / (RHO_GA + 1.0)
-GA_GAMMA = 0.5 - GA_AM + GA_AF
-GA_BETA = 0.25 * (1.0 - GA_AM + GA_AF) ** 2
+
+
+def _ga_coefficients(rho):
+    """(alpha_m, alpha_f, gamma, beta) from the spectral radius at infinity rho (Chung &
+    Hulbert: second order, maximal damping at infinity for the given rho)."""
+    am, af = (2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0)
+    return am, af, 0.5 - am + af, 0.25 * (1.0 - am + af) ** 2
+
+
+GA_STEP = _ga_coefficients(RHO_GA)
+# The step right after the inputs jumped (hs[3] = -1).  The method weighs the forces at
+# t_{n+1-alpha_f}, the velocities there (1 - af) v1 + af v0; v0 equilibrated with the old inputs,
+# so where friction pins the slip to the new inputs' value within far less than a step, v1
+# overshoots that value by af / (1 - af) of the jump (0.8 at rho 0.8) and rings down at -rho a
+# step: the one-sample spikes and, with a master that moves the inputs every step, a bias of up
+# to 10 % in order 3.  With rho = 0 (af = 0) the forces are taken at t_{n+1}: the slip lands on
+# the new value, still second order, at the cost of the same one step.
+GA_RESTART = _ga_coefficients(0.0)
+GA_RELAX = -2.0        # hs[3]: the next step by the adaptive substeps (inputs_jumped)
+GA_JUMP_RELAX = 0.02   # the slip amplitude's change over v_st above which that is taken
 
 
 # unknowns of the generalized-alpha step: their position and velocity in Y (-1: the spin
@@ -624,10 +638,11 @@ def ga_forces(Y, P, theta, w, x0, L, res, Q, M):
 
 
 @njit
-def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
+def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q, co):
     """Residual M ((1 - am) a1 + am a0) - Q(t_f, q_f, v_f) of the generalized-alpha equations at
-    the trial accelerations GW[ra] into GW[rr]; GW[W_A0] holds a0, GW[W_M] the masses."""
-    am, af, ga, be = GA_AM, GA_AF, GA_GAMMA, GA_BETA
+    the trial accelerations GW[ra] into GW[rr]; GW[W_A0] holds a0, GW[W_M] the masses; co the
+    coefficients (GA_STEP or GA_RESTART)."""
+    am, af, ga, be = co
     nv = 6 if P[P_BEAR] == 1.0 else 2
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -648,16 +663,16 @@ def _ga_residual(Y, Yf, P, theta, w, x0, h, GW, ra, rr, L, res, Q):
 
 
 @inline
-def _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q):
+def _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q, co):
     """GW[0:nv, 0:nv]: the residual's Jacobian in the accelerations, column j by a finite
     difference of 1e-4 v_st in unknown j's velocity."""
-    vs, r, ga = P[P_VST], P[P_R], GA_GAMMA
+    vs, r, ga = P[P_VST], P[P_R], co[2]
     for j in range(nv):
         d = 1e-4 * vs / (ga * h) / (r if GA_ROT[j] > 0.0 else 1.0)
         for i in range(nv):
             GW[W_AT, i] = GW[W_A, i]
         GW[W_AT, j] += d
-        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q, co)
         for i in range(nv):
             GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
 
@@ -685,7 +700,7 @@ def _ga_newton_direction(GW, nv, trav, A, Q):
 
 
 @inline
-def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
+def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q, co):
     """The Newton step halved (up to 8 times) until the scaled residual falls below n0 (the
     tanh friction is steep over v_st); trial point in GW[W_AT], its residual in GW[W_RT].
     Returns the step fraction."""
@@ -693,7 +708,7 @@ def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
     for _ in range(8):
         for i in range(nv):
             GW[W_AT, i] = GW[W_A, i] + lam * GW[W_D, i]
-        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q)
+        _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_AT, W_RT, L, res, Q, co)
         n1 = 0.0
         for i in range(nv):
             n1 = max(n1, abs(GW[W_RT, i]) * GW[W_S, i])
@@ -704,10 +719,10 @@ def _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q):
 
 
 @inline
-def _ga_accept(Y, GW, h, w, nv, hs):
+def _ga_accept(Y, GW, h, w, nv, hs, co):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
     converged a1 (GW[W_A]); a1 kept in hs[5:] for the next step."""
-    ga, be = GA_GAMMA, GA_BETA
+    ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
         a1 = GW[W_A, i]
@@ -720,6 +735,7 @@ def _ga_accept(Y, GW, h, w, nv, hs):
         hs[5 + i] = a1
     Y[Y_X] += h * w
     hs[1] += 1.0
+    hs[3] = 1.0
 
 
 @njit
@@ -728,32 +744,34 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
     is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
-    (hs[3] = 1 when valid).  Returns False and leaves Y untouched when Newton does not
-    converge.  Yf (like Y), A (NV x NV), GW (NV + 8 x NV) are work arrays."""
+    (hs[3] = 1 when valid; 0: first step or after a fallback, from the forces; -1: the inputs
+    jumped at this communication point, this step with GA_RESTART).  Returns False and leaves
+    Y untouched when Newton does not converge.  Yf (like Y), A (NV x NV), GW (NV + 8 x NV) are
+    work arrays."""
     vs, r = P[P_VST], P[P_R]
     trav = P[P_TRAV] > 0.5
     for i in range(Y.shape[0]):
         Yf[i] = Y[i]
+    co = GA_RESTART if hs[3] < 0.0 else GA_STEP
     if hs[3] == 0.0:   # first step, or after a fallback: accelerations from the forces
         nv = ga_forces(Y, P, theta, w, x0, L, res, Q, GW[W_M])
         for i in range(nv):
             hs[5 + i] = Q[i] / GW[W_M, i]
-        hs[3] = 1.0
     nv = 6 if P[P_BEAR] == 1.0 else 2
-    ga = GA_GAMMA
+    ga = co[2]
     for i in range(nv):
         GW[W_A0, i] = hs[5 + i]
         GW[W_A, i] = hs[5 + i]
-    _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_A, W_R, L, res, Q)
+    _ga_residual(Y, Yf, P, theta, w, x0, h, GW, W_A, W_R, L, res, Q, co)
     for i in range(nv):   # residual -> the velocity change it would cause, against the tolerance
         GW[W_S, i] = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if GA_ROT[i] > 0.0 else 1.0)
     fresh = False
     for it in range(GA_MAXIT):
         if not fresh:
-            _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q)
+            _ga_jacobian(Y, Yf, P, theta, w, x0, h, GW, nv, L, res, Q, co)
             fresh = True
         n0 = _ga_newton_direction(GW, nv, trav, A, Q)
-        lam = _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q)
+        lam = _ga_line_search(Y, Yf, P, theta, w, x0, h, GW, nv, n0, L, res, Q, co)
         conv = True
         for i in range(nv):
             GW[W_A, i] = GW[W_AT, i]
@@ -762,11 +780,27 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
             if dv > GA_NTOL * vs:
                 conv = False
         if conv:
-            _ga_accept(Y, GW, h, w, nv, hs)
+            _ga_accept(Y, GW, h, w, nv, hs, co)
             return True
         if it % 3 == 2 or lam < 1.0:
             fresh = False       # slow convergence: a Jacobian at the current iterate
     return False
+
+
+@njit
+def inputs_jumped(P, hs, jump):
+    """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
+    the slip's amplitude over v_st; a load change alone, 0, moves no slip and restarts
+    nothing): the generalized-alpha step's next step restarts, with
+    GA_RESTART for a small jump (a master's ramp, every step), by the adaptive substeps for a
+    large one (GA_JUMP_RELAX; GA_RESTART leaves about 0.5 % of order 3 at a 1 % speed step at
+    10 Hz, the adaptive substeps the integrator's own 0.02 %).  The other integrators are
+    L-stable one-step methods or BDF2: they land on the new inputs' slip without overshoot.
+    Not with the lumped bearing: after a GA_RESTART step the regular step's Newton fails on the
+    row's stiff modes in about one step in four (its history then belongs to the other
+    coefficients) and the adaptive fallback is slow there; it keeps the regular step."""
+    if P[P_INTEG] == 4.0 and P[P_BEAR] == 0.0 and hs[3] > 0.0 and jump > 0.0:
+        hs[3] = GA_RELAX if jump > GA_JUMP_RELAX else -1.0
 
 
 @njit
@@ -824,6 +858,17 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     extrap = P[P_INTEG] == 1.0
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
+            if hs[3] == GA_RELAX:
+                # a large input jump: its boundary layer (the slip relaxing onto the new
+                # inputs' value) by the error-controlled L-stable extrapolated substeps
+                adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
+                               b, NW, hs)
+                hs[3] = 0.0    # then the accelerations afresh from the forces
+                continue
+            if hs[3] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
+                if ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
+                    continue
+                hs[3] = 1.0    # its Newton did not converge: the regular step
             if not ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
                 # Newton did not converge (a very steep friction law): this step by the
                 # error-controlled extrapolated substeps instead, then start afresh
@@ -862,6 +907,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     out[O_SLIP] = res[13]
     out[O_SPIN] = om
     out[O_FN] = res[9]
+    out[O_X] = Y[Y_X]
 
 
 # the roller's velocity unknowns in Y (ud, om, wd, b1d, b2d, ed) and the positions they move

@@ -16,7 +16,7 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 (Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
 NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
 # --- output vector layout ---
-(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_LEN) = range(9)
+(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_LEN) = range(10)
 # generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own
 (W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
 
@@ -39,6 +39,6 @@ N_F = 11   # floats per needle in the state vector
 OP_NROLL = OP_KEY + 5
 OP_LEN = OP_NROLL + 1
 OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
-                "roller_spin", "Fz_joint", "Fz_2", "Fz_3")
+                "roller_spin", "Fz_joint", "Fz_2", "Fz_3", "whirl_angle")
 N_OUT = len(OUTPUT_NAMES)
 OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))

@@ -316,7 +316,7 @@ class ContactModel:
             return
         from . import kernel
         OP = self._OP
-        kernel.derive_op(self.P, OP)
+        kernel.inputs_jumped(self.P, self._hs, kernel.derive_op(self.P, OP))
         if self.NW is not None and self._x0_for != OP[K.OP_F]:
             self._x0 = self.pressing_offset(OP[K.OP_F])     # the row's static offset (numpy)
             self._x0_for = OP[K.OP_F]
@@ -350,6 +350,9 @@ class ContactModel:
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
                 "hs": self._hs.copy(), "Y2": self._Y2.copy(),   # Y2: BDF2's previous state
                 "ND": None if self.NW is None else self.NW[6].copy(),
+                # the inputs the state was stepped at: a restore followed by other inputs is a
+                # jump (kernel.inputs_jumped), the same inputs are none
+                "inputs": self._OP[K.OP_KEY:K.OP_KEY + 4].copy(),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
     def set_state(self, st: dict) -> None:
@@ -360,7 +363,8 @@ class ContactModel:
         self._hs[:] = st["hs"]
         self._Y2[:] = st["Y2"]
         self.P[K.P_VST] = st["vst"]
-        self._OP[K.OP_KEY] = np.nan   # derive the operating point again at the next step
+        self._OP[K.OP_KEY:K.OP_KEY + 4] = st["inputs"]
+        self._OP[K.OP_KEY + 4] = np.nan   # derive the operating point again at the next step
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 
     def outputs(self, F_press):
@@ -369,7 +373,7 @@ class ContactModel:
         Fz_mod = o[K.O_FZ] * F_press / Fx if Fx > 1e-9 * max(F_press, 1.0) else 0.0
         return {"Fx": Fx, "Fy": o[K.O_FY], "Fz": o[K.O_FZ], "Fz_mod": Fz_mod,
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
-                "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN]}
+                "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X]}
 
 
 # the arrays of fast.step's arguments but OUT, in their order

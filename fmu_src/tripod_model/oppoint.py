@@ -137,11 +137,19 @@ def derive(P, OP):
     was last derived at (OP[OP_KEY:]): OP's pressing load, substep, substep count and pressing
     offset (ideal and lumped bearing; the resolved one's offset is the model's), P's v_st and
     largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
-    [N m] > 0 is given, else F_press (reduced_model/scene.py, pressing_load)."""
+    [N m] > 0 is given, else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
+    the inputs did not move, else how far they moved the driven slip (its amplitude's change
+    over v_st; 0 for a load change alone): kernel.inputs_jumped restarts the integrator."""
     theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
-    if (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
-            and tq == OP[OP_KEY + 3] and dt == OP[OP_KEY + 4]):
-        return
+    same = (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
+            and tq == OP[OP_KEY + 3])
+    if same and dt == OP[OP_KEY + 4]:
+        return -1.0
+    # how far the inputs moved the driven slip: its amplitude's change over the new v_st (-1:
+    # they did not move; the first step, NaN key, is no jump)
+    jump = -1.0
+    if not same and OP[OP_KEY] == OP[OP_KEY]:
+        jump = 0.0
     F = tq / (3.0 * P[P_S]) if tq > 0 else Fp
     vst = v_st(P, theta, omega)
     h = substep(P, theta, omega, F, vst, True)
@@ -153,6 +161,9 @@ def derive(P, OP):
     if P[P_BEAR] == 1.0:
         x0 -= lumped_offset(P, F)
     OP[OP_X0] = x0
+    if jump == 0.0:
+        R0 = _rate_amplitude(P, OP[OP_KEY], OP[OP_KEY + 1])
+        jump = abs(_rate_amplitude(P, theta, omega) - R0) / vst
     P[P_VST] = vst
     P[P_HMAX] = substep(P, theta, omega, F, vst, False)
     OP[OP_KEY] = theta
@@ -160,6 +171,7 @@ def derive(P, OP):
     OP[OP_KEY + 2] = Fp
     OP[OP_KEY + 3] = tq
     OP[OP_KEY + 4] = dt
+    return jump
 
 
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one

@@ -1,0 +1,51 @@
+"""Input steps under a driveline master: how far Fz_joint strays from a converged reference in
+the 20 communication steps after a step of +-1 % or +-10 % in omega, theta or torque
+(harness/transients.py says how the reference is made).  Prints a markdown table.
+
+    python benchmarks/transients.py [--quick] [--md FILE]
+"""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+from pathlib import Path
+
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from harness.transients import DT, INPUTS, SIZES, case, settle  # noqa: E402
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--quick", action="store_true", help="one roller count, ideal bearing")
+    ap.add_argument("--md", help="write the table as markdown to this file")
+    a = ap.parse_args(argv)
+    bearings = [("ideal", {})] + ([] if a.quick else [("lumped", {"bearing": 1})])
+    rollers = (3,) if a.quick else (1, 3)
+    rows = []
+    t0 = time.time()
+    for bname, params in bearings:
+        for nr in rollers:
+            for f in (2, 10, 40):
+                base = settle(params, nr, f)
+                devs = [case(params, nr, f, name, fac, base) for name in INPUTS
+                        for fac in SIZES]
+                rows.append((bname, nr, f, base[1], devs))
+                print(f"{bname:6s} {nr} roller(s) {f:3d} Hz: worst {max(devs):.2f} %",
+                      file=sys.stderr)
+    head = ("| bearing | rollers | whirl [Hz] | order 3 [N] | "
+            + " | ".join(f"{n} {100 * (s - 1):+.0f} %" for n in INPUTS for s in SIZES) + " |")
+    lines = [head, "|" + "---|" * (4 + len(INPUTS) * len(SIZES))]
+    for b, nr, f, a3, devs in rows:
+        lines.append(f"| {b} | {nr} | {f} | {a3:.1f} | " + " | ".join(f"{d:.2f}" for d in devs)
+                     + " |")
+    table = "\n".join(lines)
+    print(table)
+    print(f"(largest deviation of Fz_joint in the 20 steps of {DT:g} s after the step, % of "
+          f"order 3; {time.time() - t0:.0f} s)")
+    if a.md:
+        Path(a.md).write_text(table + "\n")
+
+
+if __name__ == "__main__":
+    main()

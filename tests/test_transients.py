@@ -1,0 +1,57 @@
+"""The contact model under a master that moves the inputs: no spike after an input step, no
+bias along a run-up (docs/integrators.md, "Inputs that move every communication step")."""
+import math
+
+import pytest
+
+from harness import transients as T
+
+
+@pytest.fixture(scope="module")
+def settled_2hz():
+    return T.settle({}, 3, 2)
+
+
+@pytest.mark.parametrize("name,factor", [("omega", 1.01), ("theta", 1.01), ("omega", 1.10),
+                                         ("torque", 0.90)])
+def test_an_input_step_leaves_no_spike(settled_2hz, name, factor):
+    # three rollers settled at 2 Hz, 300 N m, 8 deg (where a +1 % omega step used to move Fz_3
+    # by 99 N for one sample): the 20 samples after the step within 1 % of order 3 of a
+    # reference with a 10x finer substep and communication step from the same state
+    assert T.case({}, 3, 2, name, factor, settled_2hz) < 1.0
+
+
+def test_the_integrator_restarts_where_the_inputs_jumped():
+    # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
+    import sys
+    sys.path.insert(0, str(T.ROOT / "fmu_src"))
+    from tripod_model import kernel as K
+    m = T._model({}, 1)
+    w = 2 * math.pi * 10
+    for _ in range(5):
+        m.step(1e-4, T.THETA, w, 0.0, T.TORQUE)
+    r = m.rollers[0]
+    r.set_inputs(1e-4, T.THETA, w, 0.0, T.TORQUE)
+    assert K.derive_op(r.P, r._OP) == -1.0            # the same inputs: no jump
+    r.set_inputs(1e-4, T.THETA, w * 1.001, 0.0, T.TORQUE)
+    jump = K.derive_op(r.P, r._OP)
+    assert 0.0 < jump < K.GA_JUMP_RELAX                 # a ramp's step: the cheap restart
+    r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE)
+    assert K.derive_op(r.P, r._OP) > K.GA_JUMP_RELAX    # a step input: the adaptive one
+    r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
+    assert K.derive_op(r.P, r._OP) == 0.0               # a load step alone: no slip jump
+    hs3 = r._hs[3]
+    K.inputs_jumped(r.P, r._hs, 0.0)
+    assert r._hs[3] == hs3                               # (so no restart)
+
+
+def test_a_run_up_reads_the_settled_order_3():
+    # 2 -> 40 Hz in 0.5 s, three rollers, 300 N m, 8 deg, the master holding omega over each
+    # 1e-4 s step (a staircase: a jump every step); before the restart order 3 read 10.7 %
+    # low at 7.2 Hz.  Each revolution against the settled order 3 at its mean speed: within 1 %
+    # (the issue's bound; measured 0.02-0.12 %)
+    revs = T.runup({}, 3, 2.0, 40.0, 0.5)
+    assert len(revs) >= 5
+    for f, a in (revs[0], revs[len(revs) // 2], revs[-1]):
+        ref = T.settle({}, 3, f, cycles=4)[1]
+        assert abs(a / ref - 1) < 0.01, (f, a, ref)
