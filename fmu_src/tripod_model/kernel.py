@@ -735,7 +735,10 @@ def _ga_accept(Y, GW, h, w, nv, hs, co):
         hs[5 + i] = a1
     Y[Y_X] += h * w
     hs[1] += 1.0
-    hs[3] = 1.0
+    # after a restart step the next one takes its accelerations from the forces: the slip is
+    # on the new inputs' value by now, and the algorithmic accelerations of one coefficient set
+    # are no history for the other
+    hs[3] = 0.0 if co[1] != GA_STEP[1] else 1.0
 
 
 @njit
@@ -796,10 +799,14 @@ def inputs_jumped(P, hs, jump):
     large one (GA_JUMP_RELAX; GA_RESTART leaves about 0.5 % of order 3 at a 1 % speed step at
     10 Hz, the adaptive substeps the integrator's own 0.02 %).  The other integrators are
     L-stable one-step methods or BDF2: they land on the new inputs' slip without overshoot.
-    Not with the lumped bearing: after a GA_RESTART step the regular step's Newton fails on the
-    row's stiff modes in about one step in four (its history then belongs to the other
-    coefficients) and the adaptive fallback is slow there; it keeps the regular step."""
-    if P[P_INTEG] == 4.0 and P[P_BEAR] == 0.0 and hs[3] > 0.0 and jump > 0.0:
+    The lumped bearing restarts with GA_RESTART at every change, a load change too (the load
+    sets the row's offset: a jump in the row's spring force), never by the adaptive substeps
+    (slow on the row's stiff modes)."""
+    if P[P_INTEG] != 4.0 or P[P_BEAR] > 1.0 or hs[3] <= 0.0 or jump < 0.0:
+        return
+    if P[P_BEAR] == 1.0:
+        hs[3] = -1.0
+    elif jump > 0.0:
         hs[3] = GA_RELAX if jump > GA_JUMP_RELAX else -1.0
 
 
