@@ -268,6 +268,33 @@ def cmd_stress(args) -> int:
     return 1 if bad else 0
 
 
+def cmd_runup(args) -> int:
+    from harness import transients as T
+    sv = dict(T.RUNUP_START, **overrides_from(args, "contact"))
+    if args.input:
+        inputs = T.read_input_csv(args.input)
+        stop = inputs["time"][-1]
+    else:
+        for name in ("from_hz", "to_hz"):
+            if not 0 <= getattr(args, name) <= 500:
+                raise ValueError(f"--{name.replace('_', '-')} = {getattr(args, name)} Hz: allowed [0, 500]")
+        if not args.duration > 0:
+            raise ValueError(f"--duration = {args.duration} s: allowed (0, 600]")
+        inputs, stop = T.ramp_inputs(args.from_hz, args.to_hz, args.duration), args.duration
+    rows = T.runup_fmus(sv, inputs, stop, dt=args.dt)
+    if not rows:
+        raise ValueError("the history holds no whole revolution of the whirl angle")
+    out = T.write_runup(rows, args.out)
+    print(f"{'rev':>4} {'speed [Hz]':>10} {'order 3 contact [N]':>20} {'analytic [N]':>13} "
+          f"{'diff [%]':>9} {'order 1 contact [N]':>20}")
+    for r in rows:
+        print(f"{r['revolution']:4d} {r['speed_hz']:10.2f} {r['contact_order3']:20.3f} "
+              f"{r['analytic_order3']:13.3f} {r['order3_diff_pct']:+9.2f} "
+              f"{r['contact_order1']:20.3f}")
+    print(f"written: {out}/runup.csv, runup.json, runup.png")
+    return 0
+
+
 def cmd_build(args) -> int:
     from harness.fmus import FMU_NAMES, ensure_fmu
     for name in FMU_NAMES:
@@ -332,6 +359,19 @@ def build_parser() -> argparse.ArgumentParser:
                    help="bearing of the section 4.2 friction study: 2 needle-resolved (default, "
                         "about 2 min), 1 lumped (seconds)")
     p.set_defaults(func=cmd_paper)
+    p = add("runup", "order tracking: both FMUs through a run-up or any input history, orders 1 "
+                     "and 3 of Fz_joint per revolution against speed (CSV, JSON, plot); the "
+                     "whole joint at 300 N m and 8 deg unless --set says otherwise")
+    _scene_args(p, "contact")
+    p.add_argument("--from-hz", type=float, default=2.0, help="whirl speed at the start [Hz]")
+    p.add_argument("--to-hz", type=float, default=40.0, help="whirl speed at the end [Hz]")
+    p.add_argument("--duration", type=float, default=0.5, help="length of the ramp [s]")
+    p.add_argument("--input", metavar="FILE.csv",
+                   help="an input history instead of the ramp: FMPy's input CSV (time, then "
+                        "theta, omega, F_press, torque columns by name, SI units)")
+    p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
+    p.add_argument("--out", metavar="DIR", default="out/runup", help="output folder")
+    p.set_defaults(func=cmd_runup)
     p = add("build", "build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)

@@ -104,3 +104,105 @@ def runup(params, n_rollers, f0, f1, T, dt=DT):
     x, y = np.array(x), np.array(y)
     return [((x[i1] - x[i0]) / ((i1 - i0) * dt) / (2 * math.pi), a)
             for (i0, i1), a in order3_per_revolution(x, y)]
+
+
+# --- order tracking of both FMUs along an input history (tripod-thrust runup) -----------------
+RUNUP_START = {"n_rollers": 3, "torque": 300.0, "theta": math.radians(8.0)}
+
+
+def ramp_inputs(f0, f1, duration):
+    """An FMPy input table: omega [rad/s] from f0 to f1 [Hz] over ``duration`` [s]."""
+    return {"time": [0.0, duration], "omega": [2 * math.pi * f0, 2 * math.pi * f1]}
+
+
+def read_input_csv(path):
+    """An input history in FMPy's CSV format (a ``time`` column, then input columns by name,
+    SI units) as {name: list}."""
+    import csv
+    with open(path, newline="") as f:
+        rows = list(csv.reader(f))
+    head = [h.strip().strip('"') for h in rows[0]]
+    if not head or head[0] != "time":
+        raise ValueError(f"{path}: the first column must be 'time' (FMPy's input format)")
+    allowed = ("theta", "omega", "F_press", "torque")
+    for h in head[1:]:
+        if h not in allowed:
+            raise ValueError(f"{path}: column '{h}' is no input; inputs: {', '.join(allowed)}")
+    cols = list(zip(*[[float(v) for v in r] for r in rows[1:] if r]))
+    if len(cols) != len(head) or len(cols[0]) < 2:
+        raise ValueError(f"{path}: need at least two rows of {len(head)} numbers")
+    return {h: list(c) for h, c in zip(head, cols)}
+
+
+def revolution_orders(t, x, y, orders=(1, 3)):
+    """Per whole revolution of the whirl angle x [rad] (from 0): its mean speed [Hz] (angle over
+    time, the window's speed changes within it in a run-up) and the orders' (amplitude [unit of
+    y], phase [deg]) of y resampled uniformly in angle, phase referred to the revolution's start."""
+    out = []
+    k = 1
+    while k * 2 * math.pi <= x[-1]:
+        a, b = (k - 1) * 2 * math.pi, k * 2 * math.pi
+        xs = a + 2 * math.pi * np.arange(720) / 720
+        amp, ph = order_spectrum(np.interp(xs, x, y), 1, orders)
+        ta, tb = np.interp([a, b], x, t)
+        out.append({"revolution": k, "speed_hz": 1.0 / (tb - ta),
+                    **{f"order{o}": float(m) for o, m in zip(orders, amp)},
+                    **{f"order{o}_deg": float(p) for o, p in zip(orders, ph)}})
+        k += 1
+    return out
+
+
+def runup_fmus(start_values, inputs, stop_time, dt=DT):
+    """Both FMUs through FMPy (fresh processes) along the input history ``inputs``; order 1 and
+    3 of Fz_joint per revolution of each FMU's own whirl_angle, and the difference of the
+    analytic FMU's order 3 from the contact FMU's [%]."""
+    from .fmus import ensure_fmu
+    from .runs import run_fmu
+    res = {}
+    for model, name in (("contact", "TripodRoller"), ("analytic", "TripodRollerAnalytic")):
+        r = run_fmu(ensure_fmu(name), start_values, stop_time=stop_time, output_interval=dt,
+                    outputs=["Fz_joint", "whirl_angle"], inputs=inputs)
+        res[model] = revolution_orders(r["time"], r["whirl_angle"], r["Fz_joint"])
+    rows = []
+    for c, a in zip(res["contact"], res["analytic"]):
+        rows.append({"revolution": c["revolution"], "speed_hz": c["speed_hz"],
+                     "contact_order1": c["order1"], "contact_order3": c["order3"],
+                     "analytic_order1": a["order1"], "analytic_order3": a["order3"],
+                     "order3_diff_pct": 100 * (a["order3"] / c["order3"] - 1)
+                     if c["order3"] > 0 else float("nan")})
+    return rows
+
+
+def write_runup(rows, out):
+    """runup.csv, runup.json and runup.png (order cuts against speed) into ``out``."""
+    import csv
+    import json
+    from pathlib import Path
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    with open(out / "runup.csv", "w", newline="") as f:
+        w = csv.DictWriter(f, fieldnames=list(rows[0]))
+        w.writeheader()
+        w.writerows(rows)
+    (out / "runup.json").write_text(json.dumps(rows, indent=1) + "\n")
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    f = [r["speed_hz"] for r in rows]
+    fig, (ax, bx) = plt.subplots(2, 1, figsize=(7, 6), sharex=True,
+                                 gridspec_kw={"height_ratios": [3, 1]})
+    for k, style in ((3, "-"), (1, "--")):
+        ax.plot(f, [r[f"contact_order{k}"] for r in rows], "C0" + style + "o", ms=3,
+                label=f"order {k}, contact FMU")
+        ax.plot(f, [r[f"analytic_order{k}"] for r in rows], "C1" + style + "s", ms=3,
+                label=f"order {k}, analytic FMU")
+    ax.set(ylabel="amplitude of Fz_joint [N]", title="order cuts along the input history")
+    ax.legend()
+    bx.plot(f, [r["order3_diff_pct"] for r in rows], "C2o-", ms=3)
+    bx.axhline(0.0, color="k", lw=0.5)
+    bx.set(xlabel="whirl speed, mean over the revolution [Hz]",
+           ylabel="order 3: analytic - contact [%]")
+    fig.tight_layout()
+    fig.savefig(out / "runup.png", dpi=110)
+    plt.close(fig)
+    return out

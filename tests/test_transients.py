@@ -55,3 +55,28 @@ def test_a_run_up_reads_the_settled_order_3():
     for f, a in (revs[0], revs[len(revs) // 2], revs[-1]):
         ref = T.settle({}, 3, f, cycles=4)[1]
         assert abs(a / ref - 1) < 0.01, (f, a, ref)
+
+
+def test_runup_command_tracks_orders_of_both_fmus(tmp_path):
+    # a short run-up through both FMUs in FMPy: one row per whole revolution, speeds rising,
+    # order 3 of the joint three times a roller's (about 67 N here), the analytic FMU within 3 %
+    # of the contact FMU along the run (the bound), files written
+    import csv
+    import json
+    from harness.cli import main
+    assert main(["runup", "--from-hz", "4", "--to-hz", "12", "--duration", "0.4",
+                 "--out", str(tmp_path)]) == 0
+    rows = json.loads((tmp_path / "runup.json").read_text())
+    assert len(rows) >= 2 and all(b["speed_hz"] > a["speed_hz"] for a, b in zip(rows, rows[1:]))
+    assert all(abs(r["order3_diff_pct"]) < 3.0 for r in rows)
+    assert all(60 < r["contact_order3"] < 75 for r in rows)
+    assert len(list(csv.DictReader(open(tmp_path / "runup.csv")))) == len(rows)
+    assert (tmp_path / "runup.png").stat().st_size > 0
+
+
+def test_runup_refuses_a_bad_input_file(tmp_path, capsys):
+    from harness.cli import main
+    bad = tmp_path / "in.csv"
+    bad.write_text("time,speed\n0,1\n1,2\n")
+    assert main(["runup", "--input", str(bad), "--out", str(tmp_path)]) == 2
+    assert "column 'speed' is no input" in capsys.readouterr().err
