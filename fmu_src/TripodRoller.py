@@ -145,7 +145,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
     def _fast_failed(self, current_time, code):
         """A compiled step failed (2: a non-finite output; else an exception in it)."""
         why = ("non-finite output" if code == 2 else
-               "the compiled step raised (see the process's stderr)")
+               "the compiled step stopped on an arithmetic error (a division by zero or an "
+               "overflow: a parameter at the edge of its range)")
         self.log(f"{why} at t = {current_time:g} s; step rejected", Fmi2Status.error)
 
     def terminate(self):

@@ -72,6 +72,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self._fast_lib = False   # not looked up yet
         self._fast_table = False  # the table whose rows _fast_rows holds
         self._march = None   # per roller [s, p, outputs] once the inputs moved (Traverse.march)
+        self._span = None    # (a state may be taken before initialisation)
 
     def _initialise(self):
         self._scene = validate({p.name: getattr(self, p.name) for p in self._params}, "analytic")

@@ -103,10 +103,19 @@ def drain(queue):
 
 def describe(exc_type, exc, tb):
     """An exception as one log message: the message alone for a reason meant for the user (the
-    slaves raise ValueError for a bad parameter or input), a traceback for anything else."""
+    slaves raise ValueError for a bad parameter or input), else one line with the exception and
+    where it was raised (a host's log is no place for a traceback)."""
     if isinstance(exc, (FmuError, ValueError)):
         return str(exc)
-    return "".join(traceback.format_exception(exc_type, exc, tb)).rstrip()
+    return one_line(exc, tb)
+
+
+def one_line(exc, tb=None):
+    """'ZeroDivisionError: float division by zero (kernel.py:123)'."""
+    frames = traceback.extract_tb(tb if tb is not None else exc.__traceback__)
+    where = f" ({os.path.basename(frames[-1].filename)}:{frames[-1].lineno})" if frames else ""
+    msg = " ".join(str(exc).split())[:300]
+    return f"{type(exc).__name__}: {msg}{where}" if msg else f"{type(exc).__name__}{where}"
 
 
 def flush():

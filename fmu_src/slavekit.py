@@ -3,7 +3,6 @@ contract, and the serialised FMU state (data only).  Bundled into each FMU's res
 import json
 import math
 import struct
-import traceback
 import zlib
 
 import numpy as np
@@ -62,6 +61,11 @@ class Guarded:
             self._initialise()
         except ValueError as e:
             raise ValueError(f"invalid parameter: {e}") from None
+        except ArithmeticError as e:   # a value inside its range the model cannot compute with
+            from fmi2bridge import one_line
+            raise ValueError(f"invalid parameter: the scene cannot be computed ({one_line(e)}): "
+                             "a parameter or start input at the edge of its range (a denormal "
+                             "or near-zero value?)") from None
         self._ready = True
 
     def do_step(self, current_time, step_size):
@@ -73,8 +77,9 @@ class Guarded:
         except ValueError as e:
             self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
             return False
-        except Exception:   # no exception may escape into the host
-            self.log(traceback.format_exc(), Fmi2Status.error)
+        except Exception as e:   # no exception may escape into the host
+            from fmi2bridge import one_line
+            self.log(f"step failed at t = {current_time:g} s: {one_line(e)}", Fmi2Status.error)
             return False
 
 
