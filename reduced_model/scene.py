@@ -27,10 +27,16 @@ class Param:
     hi_open: bool = False       # True: hi itself is excluded
     lo_open: bool = False
     display_unit: str | None = None  # FMI displayUnit, e.g. "deg"
+    # 0 means "automatic"; any other value must be at least this (below it the model would
+    # step for hours: a bound FMI's min/max cannot state, checked here)
+    auto_or_min: float | None = None
 
     def range_text(self) -> str:
         if self.kind == "bool":
             return "true or false"
+        if self.auto_or_min is not None:
+            u = "" if self.unit == "1" else f" {self.unit}"
+            return f"0 (automatic) or [{_fmt(self.auto_or_min, self)}, {_fmt(self.hi, self)}]{u}"
         lo = "-inf" if self.lo is None else _fmt(self.lo, self)
         hi = "inf" if self.hi is None else _fmt(self.hi, self)
         lb = "(" if (self.lo_open or self.lo is None) else "["
@@ -64,7 +70,8 @@ PARAMS: tuple[Param, ...] = (
     Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove "
           "(the analytic traverse model needs it below 1)"),
     Param("v_st", 0.0, "m/s", 0.0, 10.0,
-          "transition velocity of the tanh friction law; 0 = automatic, sqrt(A^2+B^2)/4"),
+          "transition velocity of the tanh friction law; 0 = automatic, sqrt(A^2+B^2)/4",
+          auto_or_min=1e-5),
     Param("pitch", True, "1", None, None, "pitching motion acts, Eq. (1)", kind="bool"),
     Param("yaw", True, "1", None, None, "yawing motion acts, Eq. (3)", kind="bool"),
     Param("roll", True, "1", None, None, "rolling motion acts, Eq. (5)", kind="bool"),
@@ -101,7 +108,7 @@ PARAMS: tuple[Param, ...] = (
           kind="bool", models=_C),
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
-          models=_C),
+          models=_C, auto_or_min=1e-7),
     Param("integrator", 4, "1", 0, 4,
           "4 (default) generalized-alpha (implicit, Newton) with the ideal and lumped "
           "bearings, linearly implicit BDF2 with the roller and the needle row in one "
@@ -113,7 +120,7 @@ PARAMS: tuple[Param, ...] = (
     Param("step_tolerance", 0.0, "1", 0.0, 1.0,
           "integrator 3: largest error of one substep in the roller's slip velocities, as a "
           "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (the split step's "
-          "needle row moves order 3 by about 1 % anyway)", models=_C),
+          "needle row moves order 3 by about 1 % anyway)", models=_C, auto_or_min=1e-6),
     Param("E", 206e9, "Pa", 1e9, 1e12, "Young's modulus of roller and groove", models=_A),
     Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_A),
     Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),
@@ -247,6 +254,8 @@ def check_value(name: str, value) -> None:
         bad = v <= p.lo if p.lo_open else v < p.lo
     if not bad and p.hi is not None:
         bad = v >= p.hi if p.hi_open else v > p.hi
+    if not bad and p.auto_or_min is not None:
+        bad = 0.0 < v < p.auto_or_min
     if bad:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 

@@ -35,3 +35,18 @@ def test_edge_values_run_finite_or_are_refused_in_one_line(name, sv):
         assert r["refused"], p.stderr[-2000:]
         for m in r["refused"]:
             assert "Traceback" not in m and "\n" not in m and "invalid parameter" in m, m
+
+
+@pytest.mark.parametrize("name,sv", [("TripodRoller", {"v_st": 1e-12}),
+                                     ("TripodRoller", {"max_substep": 1e-300}),
+                                     ("TripodRoller", {"integrator": 3, "step_tolerance": 1e-300}),
+                                     ("TripodRollerAnalytic", {"v_st": 1e-12})])
+def test_values_that_would_step_for_hours_are_refused(name, sv):
+    # inside the declared [min, max] (FMI cannot state "0 or at least m") but below what the
+    # integrators can serve: v_st = 1e-12 and step_tolerance = 1e-300 had not finished one
+    # 1e-4 s step after 120 s, max_substep = 1e-300 overflowed the substep count
+    p = subprocess.run([sys.executable, "-c", _RUN, str(ensure_fmu(name)), json.dumps(sv)],
+                       capture_output=True, text=True, timeout=120)
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    (key,) = sv.keys() - {"integrator"}
+    assert any(key in m and "0 (automatic) or [" in m for m in r.get("refused", [])), r
