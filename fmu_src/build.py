@@ -8,7 +8,9 @@ no unit attributes).
 """
 from __future__ import annotations
 
+import hashlib
 import os
+import re
 import shutil
 import subprocess
 import sys
@@ -141,24 +143,52 @@ def package(script, dest, project_files=(), requirements="", patch_xml=None,
         tmp_fmu = Path(tmp) / "patched.fmu"
         with zipfile.ZipFile(raw) as zin, zipfile.ZipFile(tmp_fmu, "w", zipfile.ZIP_DEFLATED) as zout:
             model_id = None
-            for item in zin.infolist():
-                if "__pycache__" in item.filename or item.filename.startswith("binaries/"):
-                    continue        # pythonfmu's binaries are replaced by ours
-                data = zin.read(item.filename)
-                if item.filename == "modelDescription.xml":
+            files = {i.filename: zin.read(i.filename) for i in zin.infolist()
+                     if "__pycache__" not in i.filename and not i.filename.endswith("/")
+                     and not i.filename.startswith("binaries/")}   # pythonfmu's: ours instead
+            files.update((arc, Path(f).read_bytes()) for f, arc in extra)
+            for arc, data in own_package(files).items():
+                if arc == "modelDescription.xml":
                     model_id = ET.fromstring(data).find("CoSimulation").get("modelIdentifier")
                     if patch_xml:
                         data = patch_xml(data)
-                zout.writestr(item, data)
+                zout.writestr(arc, data)
             zout.write(lib, f"binaries/{PLATFORM}/{model_id}.so")
             # the interpreter that built the FMU: a C host's first guess at a Python to start
             zout.writestr("resources/python.txt", sys.executable + "\n")
             zout.writestr("resources/requirements.txt", requirements)
-            for f, arc in extra:
-                zout.write(f, arc)
         dest.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(tmp_fmu), dest)
     return dest
+
+
+def own_package(files: dict) -> dict:
+    """The FMU's files with its Python moved into a package of its own, resources/PKG/, PKG
+    named after the hash of those sources: the slave, the kit, the bridge, the model packages
+    and pythonfmu, their imports of each other made relative, slavemodule.txt naming PKG.Slave.
+    Two FMUs, or two builds of one, in one process then never run each other's modules, and an
+    installed copy of the project is never picked up."""
+    keep = {"resources/slavemodule.txt", "resources/python.txt", "resources/requirements.txt"}
+    own = [a for a in files if a.startswith("resources/") and a not in keep and
+           ("/" in a[len("resources/"):] or a.endswith(".py"))]
+    tops = sorted({a[len("resources/"):].split("/")[0].removesuffix(".py") for a in own})
+    h = hashlib.sha256()
+    for a in sorted(own):
+        h.update(a.encode() + b"\0" + files[a])
+    pkg = "tripod_fmu_" + h.hexdigest()[:12]
+    pattern = re.compile(rb"^(\s*)from (" + "|".join(tops).encode() + rb")\b", re.M)
+    out = {a: d for a, d in files.items() if a not in own}
+    for a in own:
+        rel = a[len("resources/"):]
+        data = files[a]
+        if a.endswith(".py"):
+            dots = b"." * (rel.count("/") + 1)
+            data = pattern.sub(lambda m: m.group(1) + b"from " + dots + m.group(2), data)
+        out[f"resources/{pkg}/{rel}"] = data
+    out[f"resources/{pkg}/__init__.py"] = b'"""This FMU\'s own Python (fmu_src/build.py: own_package)."""\n'
+    slave = files["resources/slavemodule.txt"].decode().strip()
+    out["resources/slavemodule.txt"] = f"{pkg}.{slave}\n".encode()
+    return out
 
 
 def fmu_path(name="TripodRoller") -> Path:

@@ -46,11 +46,29 @@ def _check_guid(resources, guid):
     return m.group(1)
 
 
+def _adopt(module_name, resources):
+    """The FMU's package (PKG of PKG.Slave, named after its sources' hash) loaded earlier from
+    another extraction of the same build (FMPy extracts each run to a new folder and deletes it
+    after): the same code, so keep its modules, but point their search paths here, so modules
+    first imported now load from a folder that exists."""
+    pkg = module_name.rpartition(".")[0]
+    here = os.path.join(resources, pkg)
+    mod = sys.modules.get(pkg)
+    if not pkg or mod is None or list(getattr(mod, "__path__", ())) == [here]:
+        return
+    for name, m in list(sys.modules.items()):
+        if (name == pkg or name.startswith(pkg + ".")) and hasattr(m, "__path__"):
+            sub = name[len(pkg) + 1:].replace(".", os.sep)
+            m.__path__[:] = [os.path.join(here, sub) if sub else here]
+    importlib.invalidate_caches()
+
+
 def _import(module_name, resources, owned):
+    _adopt(module_name, resources)
     try:
         return importlib.import_module(module_name)
     except ModuleNotFoundError as e:
-        pkg = (e.name or "?").split(".")[0]
+        pkg = (e.name or "?").split(".")[0]   # (the FMU's own package is in resources/)
         if os.path.exists(os.path.join(resources, pkg)) or os.path.exists(
                 os.path.join(resources, pkg + ".py")):
             raise   # a bundled module failed: a broken FMU, not a missing dependency

@@ -1,6 +1,7 @@
-"""The compiled kernel's on-disk cache (tripod_model/jit.py): one folder per source version,
-shared by the source tree and every extracted copy of that version (FMPy extracts an FMU to a
-new folder each run), so two versions on one machine never overwrite each other's cache."""
+"""The compiled kernel's on-disk cache (tripod_model/jit.py): one folder per source version and
+import name, shared by every copy of that version under that name (FMPy extracts an FMU to a
+new folder each run; an FMU's package has a name of its own), so two versions on one machine
+never overwrite each other's cache."""
 import shutil
 import subprocess
 import sys

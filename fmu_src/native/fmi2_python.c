@@ -255,12 +255,12 @@ static char *choose_python(const char *resources)
 }
 
 /* Start the interpreter of `exe` in this process: ask it (a child process running the bundled
-   fmi2bridge.py) where its libpython and its sys.path are, load that libpython globally (its
+   fmi2bridge.py in `pkgdir`) where its libpython and its sys.path are, load that libpython globally (its
    extension modules resolve symbols from it), initialise isolated (no signal handlers, no
    environment variables), and set sys.path to exactly what `exe` itself has. */
-static char *start_python(const char *exe, const char *resources, void **lib_out)
+static char *start_python(const char *exe, const char *pkgdir, void **lib_out)
 {
-    char *bridge = format("%s/fmi2bridge.py", resources);
+    char *bridge = format("%s/fmi2bridge.py", pkgdir);
     char *const argv[] = {(char *)exe, "-I", bridge, "--where", NULL};
     int st;
     char *out = run_capture(argv, &st);
@@ -329,7 +329,7 @@ static char *start_python(const char *exe, const char *resources, void **lib_out
 }
 
 /* Join the process's Python or start one; NULL on success, else the reason (malloc'd). */
-static char *ensure_python(const char *resources)
+static char *ensure_python(const char *resources, const char *pkgdir)
 {
     char *err = NULL;
     pthread_mutex_lock(&g_lock);
@@ -364,7 +364,7 @@ static char *ensure_python(const char *resources)
     char *exe = choose_python(resources);
     free(g_origin);
     g_origin = NULL;
-    err = start_python(exe, resources, &lib);
+    err = start_python(exe, pkgdir, &lib);
     free(exe);
     if (!err) g_owned = g_ready = 1;
 done:
@@ -393,7 +393,7 @@ typedef int32_t (*FastStep)(double *, double *, double *, double *, double *, do
                             double *, double *);
 
 typedef struct {
-    char *name, *resources, *module, *guid;
+    char *name, *resources, *module, *guid, *bridge_name;
     int visible;
     fmi2CallbackFunctions cb;
     int logging_on, n_categories;
@@ -854,6 +854,7 @@ static void destroy(Inst *c)
     free(c->resources);
     free(c->module);
     free(c->guid);
+    free(c->bridge_name);
     free(c);
 }
 
@@ -888,7 +889,19 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
         if (!c->module || !*c->module)
             err = format("%s/slavemodule.txt is missing: the FMU is incomplete", c->resources);
     }
-    if (!err) err = ensure_python(c->resources);
+    /* slavemodule.txt names the slave inside the FMU's own package (PKG.Slave, PKG named after
+       the bundled sources' hash: two FMUs, or two builds of one, never share a module); the
+       bridge is PKG.fmi2bridge, in resources/PKG/ */
+    char *pkgdir = NULL;
+    if (!err) {
+        const char *dot = strrchr(c->module, '.');
+        int n = dot ? (int)(dot - c->module) : 0;
+        c->bridge_name = dot ? format("%.*s.fmi2bridge", n, c->module) : dupstr("fmi2bridge");
+        pkgdir = dot ? format("%s/%.*s", c->resources, n, c->module) : dupstr(c->resources);
+        if (!c->bridge_name || !pkgdir) err = dupstr("out of memory");
+    }
+    if (!err) err = ensure_python(c->resources, pkgdir);
+    free(pkgdir);
     if (err) {
         logf_(c, fmi2Error, "fmi2Instantiate: %s", err);
         free(err);
@@ -901,7 +914,7 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     PyObject *res = PyUnicode_DecodeFSDefault(c->resources);
     if (path && res && PySequence_Contains(path, res) == 0) PyList_Insert(path, 0, res);
     xdecref(res);
-    c->bridge = PyImport_ImportModule("fmi2bridge");
+    c->bridge = PyImport_ImportModule(c->bridge_name);
     if (c->bridge) {
         c->m_create = PyObject_GetAttrString(c->bridge, "create");
         c->m_drain = PyObject_GetAttrString(c->bridge, "drain");

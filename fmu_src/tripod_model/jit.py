@@ -4,9 +4,10 @@ Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
 
 numba keys its on-disk cache on the source file's folder, and FMPy extracts an FMU to a new
 temporary folder each run, so the bundled kernel would recompile (about 3 s) on every run.
-A cache locator keyed on the package name and the content hash of the package's sources
-keeps one cache for the source tree and every extracted copy of the same version:
-~/.cache/tripod-thrust/numba-pyXY/tripod_model-<hash>, or under TRIPOD_NUMBA_CACHE.
+A cache locator keyed on the package's import name and the content hash of its sources keeps
+one cache for every copy of the same version under the same name (the source tree, or every
+extraction of one FMU build): ~/.cache/tripod-thrust/numba-pyXY/<name>-<hash>, or under
+TRIPOD_NUMBA_CACHE.
 """
 import os
 import sys
@@ -28,25 +29,41 @@ CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
 
 
+# this package's import name: tripod_model in the source tree, PKG.tripod_model inside an FMU
+# (PKG: the FMU's own package, fmu_src/build.py); its functions, and those of the reduced model
+# it compiles, are ours
+_PKG = __name__.rpartition(".")[0]
+_OURS = tuple(_PKG.rpartition(".")[0] + "." + n if "." in _PKG else n
+              for n in ("tripod_model", "reduced_model"))
+
+
+def _ours(py_func) -> bool:
+    return (getattr(py_func, "__module__", "") or "").startswith(_OURS)
+
+
 def _install_stable_locator():
-    """Put a path-independent cache locator first for this package's functions only."""
+    """Put a path-independent cache locator first for this package's functions, and, last, a
+    per-process temporary cache for any of ours no other locator takes (a read-only FMU folder
+    with an unwritable home, or a source file already deleted: FMPy removes an extraction after
+    its run, while its modules stay loaded): compiled then, not cached across processes."""
     try:
         from numba.core import caching as c
     except ImportError:
         return
-    if any(getattr(k, "_tripod", False) for k in c.CacheImpl._locator_classes):
+    if any(getattr(k, "_tripod", None) == _PKG for k in c.CacheImpl._locator_classes):
         return
 
     class _StableLocator(c._SourceFileBackedLocatorMixin, c._CacheLocator):
-        _tripod = True
+        _tripod = _PKG
 
         def __init__(self, py_func, py_file):
             self._py_file = py_file
             self._lineno = py_func.__code__.co_firstlineno
             # a folder per source version: two versions of the FMU on one machine (a release
             # beside its successor) would otherwise overwrite each other's index and recompile
-            # (about 11 s) on every alternate run
-            self._cache_path = os.path.join(CACHE_DIR, "tripod_model-" + source_hash()[:16])
+            # (about 11 s) on every alternate run; and per import name (the cache refers to
+            # its modules by name: the source tree's and an FMU's package differ)
+            self._cache_path = os.path.join(CACHE_DIR, _PKG + "-" + source_hash()[:16])
 
         def get_cache_path(self):
             return self._cache_path
@@ -58,12 +75,39 @@ def _install_stable_locator():
 
         @classmethod
         def from_function(cls, py_func, py_file):
-            folder = os.path.dirname(os.path.abspath(py_file))
-            if os.path.basename(folder) != "tripod_model":
+            if (getattr(py_func, "__module__", "") or "").rpartition(".")[0] != _PKG:
                 return None
-            return super().from_function(py_func, py_file)
+            self = cls(py_func, py_file)   # (the file itself may be gone: the stamp is ours)
+            try:
+                self.ensure_cache_path()
+            except OSError:
+                return None
+            return self
+
+    class _TempLocator(_StableLocator):
+        _tripod = _PKG + " (temporary)"
+        _dir = None
+
+        def __init__(self, py_func, py_file):
+            super().__init__(py_func, py_file)
+            if _TempLocator._dir is None:
+                import tempfile
+                _TempLocator._dir = tempfile.mkdtemp(prefix="tripod-thrust-numba-")
+            self._cache_path = _TempLocator._dir
+
+        @classmethod
+        def from_function(cls, py_func, py_file):
+            if not _ours(py_func):
+                return None
+            self = cls(py_func, py_file)
+            try:
+                self.ensure_cache_path()
+            except OSError:
+                return None
+            return self
 
     c.CacheImpl._locator_classes.insert(0, _StableLocator)
+    c.CacheImpl._locator_classes.append(_TempLocator)
 
 
 if HAVE_NUMBA:

@@ -7,6 +7,7 @@ by numba as before (TRIPOD_NUMBA=0: plain Python, neither).
 """
 import ctypes
 import hashlib
+import re
 import json
 import os
 
@@ -17,14 +18,17 @@ _STEP = False   # not looked up yet
 
 
 def source_hash() -> str:
-    """Content hash of every .py file of this package (the same in every extracted copy)."""
+    """Content hash of every .py file of this package (the same in every extracted copy, and in
+    the source tree: the FMU's build makes its imports of the other bundled packages relative,
+    so the leading dots of imports are left out)."""
     global _HASH
     if _HASH is None:
         h = hashlib.sha256()
         for name in sorted(os.listdir(_DIR)):
             if name.endswith(".py"):
                 with open(os.path.join(_DIR, name), "rb") as f:
-                    h.update(name.encode() + b"\0" + f.read())
+                    text = re.sub(rb"^(\s*from )\.+", rb"\1", f.read(), flags=re.M)
+                h.update(name.encode() + b"\0" + text)
         _HASH = h.hexdigest()
     return _HASH
 

@@ -1,0 +1,89 @@
+"""Each FMU runs its own code: its Python is a package of its own (resources/PKG/, PKG named
+after its sources' hash, fmu_src/build.py: own_package), so FMUs, and builds of one FMU, in
+one process never run each other's modules or an installed copy of the project."""
+import json
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+from harness.fmus import ensure_fmu
+
+SEQ = [("TripodRoller", {"bearing": 0}), ("TripodRoller", {"bearing": 1}),
+       ("TripodRoller", {"bearing": 2, "n_needles": 12}), ("TripodRollerAnalytic", {}),
+       ("TripodRoller", {"bearing": 0})]
+_RUN = r'''
+import json, sys
+from fmpy import simulate_fmu
+out = []
+for fmu, sv in json.loads(sys.argv[1]):
+    logs = []
+    r = simulate_fmu(fmu, stop_time=0.003, output_interval=1e-4, start_values=sv,
+                     debug_logging=True, logger=lambda c, n, s, cat, m: logs.append(m.decode()))
+    out.append({"Fz": [float(v) for v in r["Fz"]], "log": logs})
+print(json.dumps({"runs": out, "project": [m for m in sys.modules
+                                           if m.split(".")[0] in ("tripod_model", "reduced_model")]}))
+'''
+
+
+def _bare_python(tmp_path):
+    """A virtual environment with numpy, numba and FMPy (this one's site-packages on its path,
+    unprocessed: the project's editable install is not in it)."""
+    venv = tmp_path / "bare"
+    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
+    site = next(venv.glob("lib/python3.*/site-packages"))
+    ours = next(p for p in sys.path if p.endswith("site-packages") and Path(p).is_dir())
+    (site / "deps.pth").write_text(ours + "\n")
+    return venv / "bin" / "python"
+
+
+def _run(python, jobs):
+    p = subprocess.run([str(python), "-c", _RUN, json.dumps(jobs)], capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    return json.loads(p.stdout.strip().splitlines()[-1])
+
+
+def test_any_sequence_of_both_fmus_in_one_process(tmp_path):
+    # in a Python without the project: the contact FMU (bearings 0, 1, 2), the analytic FMU and
+    # the contact FMU again in one process (FMPy deletes each run's extraction folder while its
+    # modules stay loaded), each result bit for bit the run in a process of its own
+    py = _bare_python(tmp_path)
+    jobs = [(str(ensure_fmu(n)), sv) for n, sv in SEQ]
+    together = _run(py, jobs)
+    assert together["project"] == []       # nothing imported under the project's own names
+    for job, run in zip(jobs, together["runs"]):
+        alone = _run(py, [job])["runs"][0]
+        assert run["Fz"] == alone["Fz"], job
+
+
+def _second_build(fmu: Path, dest: Path, marker: str) -> Path:
+    """A copy of the FMU as another build would be: its package renamed (another hash) and
+    its slave logging ``marker`` at initialisation."""
+    with zipfile.ZipFile(fmu) as z:
+        files = {i.filename: z.read(i.filename) for i in z.infolist() if not i.is_dir()}
+    old = files["resources/slavemodule.txt"].decode().strip().rpartition(".")[0]
+    new = "tripod_fmu_000000000000"
+    out = {}
+    for arc, data in files.items():
+        arc = arc.replace(f"resources/{old}/", f"resources/{new}/")
+        if arc.endswith("/TripodRoller.py"):
+            data = data.replace(b"    def _initialise(self):\n",
+                                b"    def _initialise(self):\n        self.log(" +
+                                repr(marker).encode() + b")\n", 1)
+        if arc == "resources/slavemodule.txt":
+            data = data.replace(old.encode(), new.encode())
+        out[arc] = data
+    with zipfile.ZipFile(dest, "w") as z:
+        for arc, data in out.items():
+            z.writestr(arc, data)
+    return dest
+
+
+def test_two_builds_in_one_process_each_run_their_own_code(tmp_path):
+    a = ensure_fmu("TripodRoller")
+    b = _second_build(a, tmp_path / "TripodRoller.fmu", "this is build B")
+    res = _run(sys.executable, [(str(a), {}), (str(b), {}), (str(a), {}), (str(b), {})])
+    said = ["this is build B" in "\n".join(r["log"]) for r in res["runs"]]
+    assert said == [False, True, False, True]
+    assert res["runs"][0]["Fz"] == res["runs"][1]["Fz"]     # the same model otherwise
