@@ -116,3 +116,19 @@ def test_fresh_processes_exit_clean():
     for name in NAMES:
         assert f"| {name} | simulate_fmu | 20 | 0 | 0 |" in p.stdout, p.stdout
         assert f"| {name} | fmpy simulate | 5 | 0 | 0 |" in p.stdout, p.stdout
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_c_host_under_a_non_ascii_folder(c_host, tmp_path, name):
+    # a C host that never calls setlocale runs in the "C" locale; the Python the FMU starts runs
+    # in UTF-8 mode, so a resource folder named 'jürgen x' works (it failed with "'ascii' codec
+    # can't encode character" at fmi2Instantiate)
+    import shutil
+    md, d, vr = _unzipped(name)
+    where = tmp_path / "jürgen x"
+    shutil.copytree(d, where)
+    p = subprocess.run([str(c_host), str(where), md.coSimulation.modelIdentifier, md.guid,
+                        str(vr["Fz"]), "0.01", "1e-4", str(tmp_path / "fz.txt")],
+                       capture_output=True, text=True, timeout=600, env=CLEAN_ENV)
+    assert p.returncode == 0, p.stdout + p.stderr[-3000:]
+    assert "check no_error_logged ok" in p.stdout

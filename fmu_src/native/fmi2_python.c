@@ -50,6 +50,8 @@ typedef struct PyTS PyThreadState;
 #define PY_API(X)                                                                             \
     X(int, Py_IsInitialized, (void))                                                          \
     X(const char *, Py_GetVersion, (void))                                                    \
+    X(void, PyPreConfig_InitIsolatedConfig, (void *))                                         \
+    X(PyStatus, Py_PreInitialize, (const void *))                                             \
     X(void, PyConfig_InitIsolatedConfig, (void *))                                            \
     X(PyStatus, PyConfig_SetBytesArgv, (void *, ssize_t, char *const *))                      \
     X(PyStatus, Py_InitializeFromConfig, (const void *))                                      \
@@ -295,10 +297,19 @@ static char *start_python(const char *exe, const char *pkgdir, void **lib_out)
         free(out);
         return e;
     }
+    /* UTF-8 mode: a C host that never called setlocale runs in the "C" locale, whose ASCII
+       file-system encoding refuses a resource folder named jurgen with an umlaut.  PyPreConfig
+       is public: utf8_mode is its 8th int on POSIX (CPython 3.8-3.13) */
+    int pre[32] = {0};
+    PyPreConfig_InitIsolatedConfig(pre);
+    if (pre[2] == 1 && pre[7] == 0) pre[7] = 1;   /* (isolated = 1 where expected: the layout) */
+    PyStatus s = Py_PreInitialize(pre);
     void *config = calloc(1, 1 << 14);   /* a PyConfig, opaque; larger than any version's */
     char *const pyargv[] = {real_exe, NULL};
-    PyConfig_InitIsolatedConfig(config);
-    PyStatus s = PyConfig_SetBytesArgv(config, 1, pyargv);   /* program name -> its venv */
+    if (s.type == 0) {
+        PyConfig_InitIsolatedConfig(config);
+        s = PyConfig_SetBytesArgv(config, 1, pyargv);   /* program name -> its venv */
+    }
     if (s.type == 0) s = Py_InitializeFromConfig(config);
     PyConfig_Clear(config);
     free(config);
