@@ -132,3 +132,18 @@ def test_c_host_under_a_non_ascii_folder(c_host, tmp_path, name):
                        capture_output=True, text=True, timeout=600, env=CLEAN_ENV)
     assert p.returncode == 0, p.stdout + p.stderr[-3000:]
     assert "check no_error_logged ok" in p.stdout
+
+
+def test_c_host_bounds_the_wait_for_its_python(c_host, tmp_path):
+    # TRIPOD_THRUST_PYTHON naming a program that never exits made fmi2Instantiate wait forever;
+    # now it is killed after TRIPOD_THRUST_PYTHON_TIMEOUT (default 60 s) and the instantiation
+    # fails with that reason
+    import time
+    hang = tmp_path / "hang"
+    hang.write_text("#!/bin/sh\nsleep 1000\n")
+    hang.chmod(0o755)
+    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(hang), TRIPOD_THRUST_PYTHON_TIMEOUT="2")
+    t0 = time.monotonic()
+    p = _host(c_host, "TripodRollerAnalytic", tmp_path / "fz.txt", env=env)
+    assert time.monotonic() - t0 < 30
+    assert "did not answer within 2 s" in p.stdout + p.stderr, p.stdout + p.stderr[-2000:]

@@ -24,7 +24,9 @@
 #include <errno.h>
 #include <float.h>
 #include <math.h>
+#include <poll.h>
 #include <pthread.h>
+#include <signal.h>
 #include <spawn.h>
 #include <stdarg.h>
 #include <stdint.h>
@@ -33,6 +35,7 @@
 #include <string.h>
 #include <sys/types.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "fmi2Functions.h"
@@ -191,6 +194,14 @@ static char *read_first_line(const char *path)
 }
 
 /* Run argv, return its stdout+stderr (at most 1 MiB) and exit status. */
+/* how long the interpreter may take to answer [s]: $TRIPOD_THRUST_PYTHON_TIMEOUT, else 60 */
+static double run_timeout(void)
+{
+    const char *e = getenv("TRIPOD_THRUST_PYTHON_TIMEOUT");
+    double v = e ? atof(e) : 0.0;
+    return v > 0.0 && v < 1e6 ? v : 60.0;
+}
+
 static char *run_capture(char *const argv[], int *status)
 {
     int fd[2];
@@ -201,9 +212,14 @@ static char *run_capture(char *const argv[], int *status)
     posix_spawn_file_actions_adddup2(&fa, fd[1], 1);
     posix_spawn_file_actions_adddup2(&fa, fd[1], 2);
     posix_spawn_file_actions_addclose(&fa, fd[0]);
+    posix_spawnattr_t at;      /* its own process group: a timeout kills what it started too */
+    posix_spawnattr_init(&at);
+    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETPGROUP);
+    posix_spawnattr_setpgroup(&at, 0);
     pid_t pid;
-    int rc = posix_spawnp(&pid, argv[0], &fa, NULL, argv, environ);
+    int rc = posix_spawnp(&pid, argv[0], &fa, &at, argv, environ);
     posix_spawn_file_actions_destroy(&fa);
+    posix_spawnattr_destroy(&at);
     close(fd[1]);
     if (rc != 0) {
         close(fd[0]);
@@ -211,7 +227,25 @@ static char *run_capture(char *const argv[], int *status)
     }
     size_t cap = 4096, len = 0;
     char *buf = malloc(cap), scratch[4096];
+    /* a bounded wait: an interpreter that never answers (a wrong TRIPOD_THRUST_PYTHON) is
+       killed after run_timeout() and the instantiation fails with that reason */
+    struct timespec t0, t1;
+    clock_gettime(CLOCK_MONOTONIC, &t0);
     for (;;) {                 /* read to EOF, so the child never blocks on a full pipe */
+        clock_gettime(CLOCK_MONOTONIC, &t1);
+        double left = run_timeout() - (double)(t1.tv_sec - t0.tv_sec) -
+                      1e-9 * (double)(t1.tv_nsec - t0.tv_nsec);
+        struct pollfd pfd = {fd[0], POLLIN, 0};
+        int pr = left > 0 ? poll(&pfd, 1, (int)(left * 1000.0) + 1) : 0;
+        if (pr == 0) {         /* timed out */
+            kill(-pid, SIGKILL);
+            close(fd[0]);
+            while (waitpid(pid, status, 0) < 0 && errno == EINTR) {}
+            *status = -2;
+            free(buf);
+            return NULL;
+        }
+        if (pr < 0 && errno == EINTR) continue;
         if (buf && cap - len < 2 && cap < (1u << 20)) {
             char *nb = realloc(buf, cap * 2);
             if (nb) buf = nb, cap *= 2;
@@ -267,6 +301,9 @@ static char *start_python(const char *exe, const char *pkgdir, void **lib_out)
     int st;
     char *out = run_capture(argv, &st);
     free(bridge);
+    if (!out && st == -2)
+        return format("the Python interpreter '%s' did not answer within %g s (set "
+                      "TRIPOD_THRUST_PYTHON to a Python 3.11+ with numpy)", exe, run_timeout());
     if (!out) return format("could not run the Python interpreter '%s' (set TRIPOD_THRUST_PYTHON "
                             "to a Python 3.11+ with numpy)", exe);
     if (!WIFEXITED(st) || WEXITSTATUS(st) != 0) {
