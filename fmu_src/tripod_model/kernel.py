@@ -735,10 +735,9 @@ def _ga_accept(Y, GW, h, w, nv, hs, co):
         hs[5 + i] = a1
     Y[Y_X] += h * w
     hs[1] += 1.0
-    # after a restart step the next one takes its accelerations from the forces: the slip is
-    # on the new inputs' value by now, and the algorithmic accelerations of one coefficient set
-    # are no history for the other
-    hs[3] = 0.0 if co[1] != GA_STEP[1] else 1.0
+    # whose history the accelerations are: a restart step's (2) serve a restart at the next
+    # jump, a regular step takes its own from the forces after it (ga_step)
+    hs[3] = 2.0 if co[1] != GA_STEP[1] else 1.0
 
 
 @njit
@@ -747,8 +746,8 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
     is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
-    (hs[3] = 1 when valid; 0: first step or after a fallback, from the forces; -1: the inputs
-    jumped at this communication point, this step with GA_RESTART).  Returns False and leaves
+    (hs[3] = 1 when valid; 2 after a restart step; 0: first step or after a fallback, from the
+    forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).  Returns False and leaves
     Y untouched when Newton does not converge.  Yf (like Y), A (NV x NV), GW (NV + 8 x NV) are
     work arrays."""
     vs, r = P[P_VST], P[P_R]
@@ -756,7 +755,10 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     for i in range(Y.shape[0]):
         Yf[i] = Y[i]
     co = GA_RESTART if hs[3] < 0.0 else GA_STEP
-    if hs[3] == 0.0:   # first step, or after a fallback: accelerations from the forces
+    # accelerations from the forces: at the first step, after a fallback, and for a regular
+    # step after a restart step (hs[3] = 2: the history belongs to the other coefficients; the
+    # slip is on the new inputs' value by now)
+    if hs[3] == 0.0 or (hs[3] == 2.0 and co[1] == GA_STEP[1]):
         nv = ga_forces(Y, P, theta, w, x0, L, res, Q, GW[W_M])
         for i in range(nv):
             hs[5 + i] = Q[i] / GW[W_M, i]
