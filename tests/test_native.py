@@ -147,3 +147,36 @@ def test_c_host_bounds_the_wait_for_its_python(c_host, tmp_path):
     p = _host(c_host, "TripodRollerAnalytic", tmp_path / "fz.txt", env=env)
     assert time.monotonic() - t0 < 30
     assert "did not answer within 2 s" in p.stdout + p.stderr, p.stdout + p.stderr[-2000:]
+
+
+_GET_EARLY = r'''
+import sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu = sys.argv[1]
+md = read_model_description(fmu)
+s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu),
+              modelIdentifier=md.coSimulation.modelIdentifier, instanceName="a")
+s.instantiate()
+vr = [v.valueReference for v in md.modelVariables if v.name == "Fz"]
+try:
+    s.getReal(vr)
+    print("answered")
+except Exception:
+    print("refused")
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.getReal(vr)                      # allowed from initialisation mode on
+print("init ok")
+'''
+
+
+@pytest.mark.parametrize("name", NAMES)
+def test_get_before_initialisation_mode_is_refused(name):
+    # the FMI 2.0 co-simulation state machine (as the Reference-FMUs implement it): fmi2GetReal
+    # right after fmi2Instantiate is an error, from initialisation mode on it answers
+    p = subprocess.run([sys.executable, "-c", _GET_EARLY, str(ensure_fmu(name))],
+                       capture_output=True, text=True, timeout=120)
+    said = [ln for ln in p.stdout.splitlines() if not ln.startswith("[")]
+    assert said == ["refused", "init ok"], p.stdout + p.stderr[-2000:]
+    assert "fmi2GetReal is not allowed in phase 'instantiated'" in p.stdout

@@ -1151,6 +1151,9 @@ static fmi2Status get_values(Inst *c, int kind, const fmi2ValueReference vr[], s
     static const char *const FN[] = {"fmi2GetReal", "fmi2GetInteger", "fmi2GetBoolean",
                                      "fmi2GetString"};
     if (!c) return fmi2Error;
+    /* FMI 2.0 CS: values may be read from initialisation mode on, not right after
+       instantiation (the start values are in modelDescription.xml) */
+    if (!allowed(c, FN[kind], P_ANY & ~P_INST)) return finish(c, fmi2Error);
     if (nvr == 0) return fmi2OK;
     if (!vr || !out) {
         logf_(c, fmi2Error, "%s: NULL array", FN[kind]);
