@@ -185,7 +185,7 @@ def own_package(files: dict) -> dict:
             dots = b"." * (rel.count("/") + 1)
             data = pattern.sub(lambda m: m.group(1) + b"from " + dots + m.group(2), data)
         out[f"resources/{pkg}/{rel}"] = data
-    out[f"resources/{pkg}/__init__.py"] = b'"""This FMU\'s own Python (fmu_src/build.py: own_package)."""\n'
+    out[f"resources/{pkg}/__init__.py"] = b'"""The FMU\'s own Python (build.py: own_package)."""\n'
     slave = files["resources/slavemodule.txt"].decode().strip()
     out["resources/slavemodule.txt"] = f"{pkg}.{slave}\n".encode()
     return out

@@ -147,9 +147,9 @@ def decode_state(data, guid, structural):
         head = json.loads(data[start:start + n].decode("utf-8"))
     except (UnicodeDecodeError, ValueError) as e:
         raise StateError(f"corrupt header ({e.__class__.__name__})") from None
-    if not isinstance(head, dict) or head.get("version") != STATE_VERSION:
-        raise StateError(f"state format version {head.get('version') if isinstance(head, dict) else '?'}"
-                         f" is not {STATE_VERSION}")
+    version = head.get("version") if isinstance(head, dict) else "?"
+    if version != STATE_VERSION:
+        raise StateError(f"state format version {version} is not {STATE_VERSION}")
     if head.get("guid") != guid:
         raise StateError(f"state of another FMU or build (GUID {head.get('guid')!r}, this "
                          f"FMU's {guid!r})")

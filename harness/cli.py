@@ -277,7 +277,8 @@ def cmd_runup(args) -> int:
     else:
         for name in ("from_hz", "to_hz"):
             if not 0 <= getattr(args, name) <= 500:
-                raise ValueError(f"--{name.replace('_', '-')} = {getattr(args, name)} Hz: allowed [0, 500]")
+                raise ValueError(f"--{name.replace('_', '-')} = {getattr(args, name)} Hz: "
+                                 "allowed [0, 500]")
         if not args.duration > 0:
             raise ValueError(f"--duration = {args.duration} s: allowed (0, 600]")
         inputs, stop = T.ramp_inputs(args.from_hz, args.to_hz, args.duration), args.duration

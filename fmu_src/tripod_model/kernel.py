@@ -747,9 +747,9 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
     is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
     (hs[3] = 1 when valid; 2 after a restart step; 0: first step or after a fallback, from the
-    forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).  Returns False and leaves
-    Y untouched when Newton does not converge.  Yf (like Y), A (NV x NV), GW (NV + 8 x NV) are
-    work arrays."""
+    forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).
+    Returns False and leaves Y untouched when Newton does not converge.  Yf (like Y), A
+    (NV x NV), GW (NV + 8 x NV) are work arrays."""
     vs, r = P[P_VST], P[P_R]
     trav = P[P_TRAV] > 0.5
     for i in range(Y.shape[0]):
