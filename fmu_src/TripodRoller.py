@@ -75,8 +75,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         lumped bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off,
         for comparison)."""
         arrays = self.model.fast_arrays()
-        if arrays is None or os.environ.get("TRIPOD_FAST", "1") == "0":
-            return None
+        if arrays is None or os.environ.get("TRIPOD_FAST", "1") == "0" or self.drive_by_angle:
+            return None     # (driven by angle: omega is derived each step, in Python)
         fn = native.step_function()
         if fn is not None:
             address = native.address(fn)
@@ -181,6 +181,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
     def _advance(self, current_time, step_size):
         self._fast = None
         self._steps[1] += 1
+        if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
+            self.omega = (self.shaft_angle - self.model.rollers[0].whirl_angle) / step_size
         key = (self.theta, self.omega, self.F_press, self.torque)
         if key != self._checked:       # validate inputs only when they change
             for name, value in zip(_INPUTS, key):

@@ -230,6 +230,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
     def _advance(self, current_time, step_size):
         self._fast = None
         self._steps[1] += 1
+        if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
+            self.omega = (self.shaft_angle - self._x[0]) / step_size
         self._prepare()
         # a step that differs from the last one by the rounding of the master's times is
         # that step, as on the compiled path
@@ -251,8 +253,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         at these inputs and this step size, with its arrays (the native layer's _fast)."""
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
-        if self._fast_lib is None or len(self._x) > 3:
-            return
+        if self._fast_lib is None or len(self._x) > 3 or self.drive_by_angle:
+            return          # (driven by angle: omega is derived each step, in Python)
         if self._march is not None:
             self._offer_march()
             return

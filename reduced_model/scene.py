@@ -65,6 +65,13 @@ PARAMS: tuple[Param, ...] = (
     Param("torque", 0.0, "N.m", 0.0, 1.0e5,
           "transmitted torque; when > 0 it sets the pressing load per roller, torque/(3 s), "
           "instead of F_press", causality="input"),
+    Param("shaft_angle", 0.0, "rad", 0.0, 1.0e9,
+          "with drive_by_angle: the whirl (shaft) angle the master wants at the end of this "
+          "step; omega over the step is then (shaft_angle - whirl_angle) / dt",
+          causality="input"),
+    Param("drive_by_angle", False, "1", None, None,
+          "drive the whirl by the input shaft_angle instead of omega (a master that "
+          "integrates the shaft angle itself)", kind="bool"),
     Param("n_rollers", 1, "1", 1, 3, "rollers simulated: 1, or 3 at whirl phases 0/120/240 deg",
           kind="int"),
     Param("mu_groove", 0.055, "1", 0.0, 1.0, "sliding friction coefficient roller-groove "

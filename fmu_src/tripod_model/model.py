@@ -280,6 +280,11 @@ class ContactModel:
             theta, omega, F_press, torque, dt)
 
     @property
+    def whirl_angle(self):
+        """This roller's whirl angle now [rad] (its phase included)."""
+        return float(self.Y[K.Y_X]) - self.phase
+
+    @property
     def step_dt(self):
         """The communication step [s] the operating point is set for."""
         return float(self._OP[K.OP_DT])
