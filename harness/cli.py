@@ -369,7 +369,7 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--duration", type=float, default=0.5, help="length of the ramp [s]")
     p.add_argument("--input", metavar="FILE.csv",
                    help="an input history instead of the ramp: FMPy's input CSV (time, then "
-                        "theta, omega, F_press, torque columns by name, SI units)")
+                        "any input columns by name, SI units)")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
     p.add_argument("--out", metavar="DIR", default="out/runup", help="output folder")
     p.set_defaults(func=cmd_runup)

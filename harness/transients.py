@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from reduced_model.orders import order_spectrum
-from reduced_model.scene import defaults, validate
+from reduced_model.scene import PARAMS, defaults, validate
 
 from .fmus import ROOT
 
@@ -66,7 +66,7 @@ def reference(params, n_rollers, state, inputs, steps, h):
 def case(params, n_rollers, f, name, factor, base):
     m, a3 = base
     st = m.get_state()
-    h = m.rollers[0].substep(THETA, 2 * math.pi * f, TORQUE / (3 * m.p["s"]),
+    h = m.rollers[0].substep(THETA, 2 * math.pi * f, m.pressing(0.0, TORQUE),
                              m.rollers[0].v_st(THETA, 2 * math.pi * f))
     inputs = {"theta": THETA, "omega": 2 * math.pi * f, "torque": TORQUE}
     inputs[name] *= factor
@@ -74,20 +74,6 @@ def case(params, n_rollers, f, name, factor, base):
     m.set_state(st)
     ref = reference(params, n_rollers, st, inputs, 20, h)
     return 100 * np.abs(y - ref).max() / a3
-
-
-
-def order3_per_revolution(x, y):
-    """[(mean whirl speed index range, order 3 amplitude)] per whole revolution of whirl angle x
-    [rad] (samples y, x rising): each revolution resampled uniformly in angle."""
-    out = []
-    k = 1
-    while k * 2 * math.pi <= x[-1]:
-        xs = (k - 1) * 2 * math.pi + 2 * math.pi * np.arange(720) / 720
-        i0, i1 = np.searchsorted(x, (k - 1) * 2 * math.pi), np.searchsorted(x, k * 2 * math.pi)
-        out.append(((i0, i1), order_spectrum(np.interp(xs, x, y), 1, (3,))[0][0]))
-        k += 1
-    return out
 
 
 def runup(params, n_rollers, f0, f1, T, dt=DT):
@@ -101,9 +87,8 @@ def runup(params, n_rollers, f0, f1, T, dt=DT):
         o = m.step(dt, THETA, w, 0.0, TORQUE)
         x.append(o["whirl_angle"])
         y.append(o["Fz_joint"])
-    x, y = np.array(x), np.array(y)
-    return [((x[i1] - x[i0]) / ((i1 - i0) * dt) / (2 * math.pi), a)
-            for (i0, i1), a in order3_per_revolution(x, y)]
+    revs = revolution_orders(dt * np.arange(n + 1), np.array(x), np.array(y))
+    return [(r["speed_hz"], r["order3"]) for r in revs]
 
 
 # --- order tracking of both FMUs along an input history (tripod-thrust runup) -----------------
@@ -119,16 +104,19 @@ def read_input_csv(path):
     """An input history in FMPy's CSV format (a ``time`` column, then input columns by name,
     SI units) as {name: list}."""
     import csv
-    with open(path, newline="") as f:
-        rows = list(csv.reader(f))
-    head = [h.strip().strip('"') for h in rows[0]]
-    if not head or head[0] != "time":
+    allowed = [p.name for p in PARAMS if p.causality == "input"]
+    try:
+        with open(path, newline="") as f:
+            rows = [r for r in csv.reader(f) if r]
+        head = [h.strip().strip('"') for h in rows[0]]
+        cols = list(zip(*[[float(v) for v in r] for r in rows[1:]]))
+    except (OSError, IndexError, ValueError) as e:
+        raise ValueError(f"{path}: not an input CSV ({e.__class__.__name__}: {e})") from None
+    if head[0] != "time":
         raise ValueError(f"{path}: the first column must be 'time' (FMPy's input format)")
-    allowed = ("theta", "omega", "F_press", "torque")
     for h in head[1:]:
         if h not in allowed:
             raise ValueError(f"{path}: column '{h}' is no input; inputs: {', '.join(allowed)}")
-    cols = list(zip(*[[float(v) for v in r] for r in rows[1:] if r]))
     if len(cols) != len(head) or len(cols[0]) < 2:
         raise ValueError(f"{path}: need at least two rows of {len(head)} numbers")
     return {h: list(c) for h, c in zip(head, cols)}
