@@ -162,25 +162,48 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
                 "model": None if self.model is None else self.model.get_state()}
 
     def _check_state(self, state):
-        """A state fits this instance: its layout, its parameters, inputs in range."""
-        if self.model is None:
-            raise StateError("a state can be restored only after initialisation")
-        same_layout(state, self._get_fmu_state())
+        """A state fits this instance: its layout, its parameters, inputs in range.  Into an
+        instance not initialised yet, a state taken after initialisation brings the model its
+        parameters build (FMI allows fmi2SetFMUstate from fmi2Instantiate on)."""
+        if not isinstance(state, dict) or set(state) != {"vars", "model"}:
+            raise StateError("expected the keys ['model', 'vars']")
+        same_layout(state["vars"], super()._get_fmu_state(), "vars")
         for n in self.STRUCTURAL:
             if state["vars"][n] != getattr(self, n):
                 raise StateError(f"state taken with {n} = {state['vars'][n]}, this instance "
                                  f"has {getattr(self, n)}")
+        if state["model"] is None:      # taken before initialisation
+            return
         for n in _INPUTS:
             check_value(n, state["vars"][n])
+        if self.model is not None:
+            model = self.model.get_state()
+        else:   # the model this instance's parameters and the state's inputs build
+            try:
+                values = self._param_values()
+                values.update({n: state["vars"][n] for n in _INPUTS})
+                model = JointModel(values).get_state()
+            except (ValueError, ArithmeticError) as e:
+                raise StateError(f"this instance's parameters cannot take the state: {e}") from None
+        same_layout(state["model"], model, "model")
 
     def _set_fmu_state(self, state):
         self._check_state(state)       # before anything changes
+        if state["model"] is None:     # taken before initialisation: back there
+            super()._set_fmu_state(state["vars"])
+            self.model, self._fast, self._ready = None, None, False
+            return
+        if self.model is None:         # restored before initialisation: initialise first,
+            super()._set_fmu_state(state["vars"])   # at the state's inputs
+            self._initialise()
+            self._ready = True
         super()._set_fmu_state(state["vars"])
         self.model.set_state(copy.deepcopy(state["model"]))
 
     def _advance(self, current_time, step_size):
         self._fast = None
         self._steps[1] += 1
+        check_value("shaft_angle", self.shaft_angle)   # an input even when unused
         if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
             self.omega = (self.shaft_angle - self.model.rollers[0].whirl_angle) / step_size
         key = (self.theta, self.omega, self.F_press, self.torque)

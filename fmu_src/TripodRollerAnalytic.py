@@ -164,22 +164,40 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
 
     def _check_state(self, st):
         """A state fits this instance: its layout, its parameters, one whirl angle (and one
-        march row of five outputs) a roller, every number finite, inputs in range."""
-        if self._scene is None:
-            raise StateError("a state can be restored only after initialisation")
-        want = self._get_fmu_state()
-        if not isinstance(st, dict) or set(st) != set(want):
-            raise StateError(f"expected the keys {sorted(want)}")
-        same_layout(st["vars"], want["vars"], "vars")
-        same_layout(st["scene"], want["scene"], "scene")
+        march row of five outputs) a roller, every number finite, inputs in range.  Into an
+        instance not initialised yet, a state taken after initialisation is checked against
+        the scene this instance's parameters make (FMI allows fmi2SetFMUstate from
+        fmi2Instantiate on)."""
+        keys = {"vars", "x", "dt", "scene", "march", "span"}
+        if not isinstance(st, dict) or set(st) != keys:
+            raise StateError(f"expected the keys {sorted(keys)}")
+        vars_now = super()._get_fmu_state()
+        same_layout(st["vars"], vars_now, "vars")
         for n in self.STRUCTURAL:
-            if st["vars"][n] != getattr(self, n) or st["scene"].get(n, want["scene"].get(n)) \
-                    != want["scene"].get(n):
+            if st["vars"][n] != getattr(self, n):
                 raise StateError(f"state taken with another {n} than this instance's")
+        if st["scene"] is None:        # taken before initialisation
+            same_layout(st, {"vars": vars_now, "x": [0.0], "dt": None, "scene": None,
+                             "march": None, "span": None})
+            return
         for n in _INPUTS:
             check_value(n, st["vars"][n])
+        scene = self._scene
+        if scene is None:   # the scene this instance's parameters and the state's inputs make
+            try:
+                values = {p.name: getattr(self, p.name) for p in self._params}
+                values.update({n: st["vars"][n] for n in _INPUTS})
+                scene = validate(values, "analytic")
+            except ValueError as e:
+                raise StateError(f"this instance's parameters cannot take the state: {e}") \
+                    from None
+        same_layout(st["scene"], scene, "scene")
+        for n in self.STRUCTURAL:
+            if st["scene"].get(n, scene.get(n)) != scene.get(n):
+                raise StateError(f"state taken with another {n} than this instance's")
+        for n in _INPUTS:
             check_value(n, st["scene"][n])
-        n = len(self._x)
+        n = scene["n_rollers"]
         same_layout(st["x"], [0.0] * n, "x")
         if st["dt"] is not None:
             same_layout(st["dt"], 1.0, "dt")
@@ -199,6 +217,15 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
 
     def _set_fmu_state(self, state):
         self._check_state(state)       # before anything changes
+        if state["scene"] is None:     # taken before initialisation: back there
+            super()._set_fmu_state(state["vars"])
+            self._scene, self._x, self._dt, self._march, self._span = None, [0.0], None, None, None
+            self._fast, self._ready = None, False
+            return
+        if self._scene is None:        # restored before initialisation: initialise first,
+            super()._set_fmu_state(state["vars"])   # at the state's inputs
+            self._initialise()
+            self._ready = True
         super()._set_fmu_state(state["vars"])
         self._x = list(state["x"])
         self._dt = state["dt"]
@@ -230,6 +257,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
     def _advance(self, current_time, step_size):
         self._fast = None
         self._steps[1] += 1
+        check_value("shaft_angle", self.shaft_angle)   # an input even when unused
         if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
             self.omega = (self.shaft_angle - self._x[0]) / step_size
         self._prepare()

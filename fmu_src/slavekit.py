@@ -153,9 +153,14 @@ def decode_state(data, guid, structural):
     if head.get("guid") != guid:
         raise StateError(f"state of another FMU or build (GUID {head.get('guid')!r}, this "
                          f"FMU's {guid!r})")
-    if head.get("structural") != structural:
-        raise StateError(f"state taken with other structural parameters ({head.get('structural')}"
-                         f"; this instance: {structural})")
+    theirs = head.get("structural")
+    if theirs != structural:
+        if not isinstance(theirs, dict):
+            raise StateError("corrupt header (no structural parameters)")
+        diff = [f"{k} = {str(theirs.get(k, '(none)'))[:20]} (this instance: {v})"
+                for k, v in structural.items() if theirs.get(k, "(none)") != v][:4]
+        raise StateError("state taken with other structural parameters: " +
+                         ("; ".join(diff) or "other names"))
     body = memoryview(data)[start + n:]
 
     def dec(v, depth=0):

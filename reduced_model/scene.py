@@ -60,9 +60,11 @@ PARAMS: tuple[Param, ...] = (
           hi_open=True, display_unit="deg"),
     Param("omega", 20 * math.pi, "rad/s", 0.0, 1.0e4, "whirl angular speed of the output shaft",
           causality="input"),
-    Param("F_press", 1000.0, "N", 0.0, 1.0e6, "pressing load of the roller on the groove",
+    # (upper bounds: twice a launch's 50 kN per roller; above, the lumped bearing's stiff
+    # contact needs ever smaller substeps: 0.45 s a 1e-4 s step at 1 MN with three rollers)
+    Param("F_press", 1000.0, "N", 0.0, 1.0e5, "pressing load of the roller on the groove",
           causality="input"),
-    Param("torque", 0.0, "N.m", 0.0, 1.0e5,
+    Param("torque", 0.0, "N.m", 0.0, 6.0e3,
           "transmitted torque; when > 0 it sets the pressing load per roller, torque/(3 s), "
           "instead of F_press", causality="input"),
     Param("shaft_angle", 0.0, "rad", 0.0, 1.0e9,

@@ -135,6 +135,9 @@ rng = random.Random(spec.get("seed", 1))
 for k in range(spec.get("truncations", 0)):
     n = rng.randrange(0, len(good))
     cases[f"truncated-{n}"] = good[:n]
+if spec.get("every_truncation"):
+    for n in range(len(good)):
+        cases[f"truncated-{n}"] = good[:n]
 for k in range(spec.get("flips", 0)):
     b = bytearray(good)
     i = rng.randrange(HEADER, len(b))
@@ -142,10 +145,24 @@ for k in range(spec.get("flips", 0)):
     cases[f"flip-{i}"] = bytes(b)
 for k in range(spec.get("random", 0)):
     cases[f"random-{k}"] = good[:HEADER + 8] + rng.randbytes(rng.randrange(0, 2000))
+for k in range(spec.get("resealed", 0)):
+    # a byte of the body changed and the checksum made valid again: what gets past the CRC
+    # reaches the decoder's own checks (lengths, dtypes, shapes, names, values)
+    b = bytearray(good)
+    i = rng.randrange(HEADER + 8, len(b) - 4)
+    b[i] = rng.randrange(256)
+    data = bytes(b[HEADER:-4])
+    cases[f"resealed-{k}-{i}"] = bytes(b[:HEADER]) + data + struct.pack("<I", zlib.crc32(data))
 for name in spec.get("crafted", ()):
     cases[name] = reseal(good, CRAFTED[name])
 for name, blob in cases.items():
     res["cases"][name] = try_state(target, blob)
+    if res["cases"][name] != "refused":   # it stepped: a fresh target for the next case
+        target.freeInstance()
+        target = make(spec.get("target_ints", ints), "b")
+        steps(target, 10, 0.0)
+# after every refusal the instance is as it was: the good state still restores and runs
+res["good_after"] = try_state(target, good)
 for name, value in spec.get("inputs", ()):
     # a master sets a bad input during the run: the step is refused (fmi2Discard), outputs
     # stay the last good ones

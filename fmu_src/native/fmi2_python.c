@@ -632,6 +632,16 @@ static fmi2Status fail(Inst *c, const char *fn)
     return fmi2Error;
 }
 
+/* A state refused (corrupt, foreign, inconsistent): log why; the instance is unchanged, its
+   phase included, so the run goes on (or another state is tried).  With the GIL. */
+static fmi2Status refuse(Inst *c, const char *fn)
+{
+    char *why = take_exception(c);
+    logf_(c, fmi2Error, "%s: %s", fn, why);
+    free(why);
+    return fmi2Error;
+}
+
 static void release_slave(Inst *c)
 {
     PyObject **objs[] = {&c->slave, &c->log_queue, &c->var_names, &c->m_setup, &c->m_enter, &c->m_exit,
@@ -1353,7 +1363,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
         c->last_ok_time = s->last_ok_time;
         c->wants_to_terminate = 0;
     } else {
-        st = fail(c, "fmi2SetFMUstate");
+        st = refuse(c, "fmi2SetFMUstate");
     }
     xdecref(r);
     GIL_END
@@ -1471,7 +1481,7 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
         *FMUstate = s;
     } else {
         free(s);
-        st = fail(c, "fmi2DeSerializeFMUstate");
+        st = refuse(c, "fmi2DeSerializeFMUstate");
     }
     GIL_END
     return finish(c, st);

@@ -117,10 +117,17 @@ if HAVE_NUMBA:
         pass
 
 
+def _compiled(fn, **options):
+    try:
+        return _nb.njit(cache=True, nogil=True, **options)(fn)
+    except RuntimeError:   # "cannot cache function ...: no locator available": nowhere to
+        return _nb.njit(nogil=True, **options)(fn)   # write (read-only everywhere): no cache
+
+
 def njit(fn):
     """numba.njit(cache=True) if available, else the function unchanged."""
     if HAVE_NUMBA:
-        return _nb.njit(cache=True, nogil=True)(fn)
+        return _compiled(fn)
     return fn
 
 
@@ -129,5 +136,5 @@ def inline(fn):
     hot kernels (a real call passing arrays costs reference counting on every argument; the
     needle contacts run 1000 times a substep)."""
     if HAVE_NUMBA:
-        return _nb.njit(cache=True, nogil=True, inline="always")(fn)
+        return _compiled(fn, inline="always")
     return fn
