@@ -99,7 +99,7 @@ def format_analytic(r: dict) -> str:
         "tripod-thrust analytic: reduced model, Eqs. (18)-(27) and the traverse (one roller "
         "unless stated)",
         f"scene: theta = {math.degrees(sc['theta']):.3f} deg, omega = {sc['omega']:.4g} rad/s "
-        f"({sc['omega'] / (2 * math.pi):.4g} Hz), F_press = {sc['F_press']:.6g} N, "
+        f"({sc['omega'] / (2 * math.pi):.4g} Hz), {scene_mod.load_text(sc)}, "
         f"mu_groove = {sc['mu_groove']:g}",
         "",
         f"  A      = {r['A'] * 1e3:9.4f} mm/s   (pitching, Eq. 19)",

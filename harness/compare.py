@@ -141,7 +141,7 @@ def format_table(r: dict) -> str:
     lines = [
         f"tripod-thrust compare: {r['kind']} scene (traverse = {str(sc['traverse']).lower()}, "
         f"bearing = {sc['bearing']}), theta = {math.degrees(sc['theta']):.2f} deg, "
-        f"{sc['omega'] / (2 * math.pi):.3g} Hz, F_press = {sc['F_press']:.6g} N",
+        f"{sc['omega'] / (2 * math.pi):.3g} Hz, {scene_mod.load_text(sc)}",
         f"regime (reduced traverse model): {r['regime']}; contact FMU: "
         + settle_line({"cycles": r["cycles"], "settled": r["settled"], "worst": r["cycle_change"],
                        "rel_tol": r["_runs"]["settle"]["rel_tol"],

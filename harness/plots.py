@@ -42,7 +42,7 @@ def compare_plots(r: dict, out: str | Path) -> list[Path]:
     ra, rc, w = r["_runs"]["analytic"], r["_runs"]["contact"], r["_runs"]["omega"]
     sc = r["scene"]
     title = (f"theta = {math.degrees(sc['theta']):.1f} deg, {w / (2 * math.pi):.3g} Hz, "
-             f"F_press = {sc['F_press']:.0f} N, traverse = {str(sc['traverse']).lower()}, "
+             f"{scene_mod.load_text(sc)}, traverse = {str(sc['traverse']).lower()}, "
              f"bearing = {sc['bearing']}")
     paths = []
     ma, xa = last_cycle(ra, w)

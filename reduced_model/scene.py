@@ -195,6 +195,16 @@ def pressing_load(F_press: float, torque: float, s: float) -> float:
     return torque / (3.0 * s) if torque > 0 else F_press
 
 
+def load_text(scene: dict) -> str:
+    """The pressing load in use, for headers and titles: from the torque when one is given
+    (F_press is then unused), else F_press."""
+    tq = scene.get("torque", 0.0)
+    if tq > 0:
+        F = pressing_load(scene["F_press"], tq, scene["s"])
+        return f"pressing load = {F:.6g} N per roller (torque {tq:.6g} N m / (3 s); F_press unused)"
+    return f"F_press = {scene['F_press']:.6g} N"
+
+
 STEP_ROUNDING = 64 * sys.float_info.epsilon
 
 

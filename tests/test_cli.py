@@ -32,6 +32,15 @@ def test_analytic_text_runs():
     assert "three rollers order 3" in p.stdout and "beta" in p.stdout
 
 
+def test_header_reports_the_load_in_use():
+    # a torque sets the pressing load: torque / (3 s) = 1500 / (3 x 0.022) = 22727 N per
+    # roller (was: the header printed the unused F_press = 1000 N)
+    p = run("analytic", "--set", "torque=1500")
+    assert p.returncode == 0, p.stderr
+    head = p.stdout.splitlines()[1]
+    assert "pressing load = 22727.3 N per roller" in head and "F_press = 1000" not in head
+
+
 @pytest.mark.parametrize("args,needle", [
     (["--set", "nope=1"], "nope"),
     (["--theta-deg", "45"], "theta"),
