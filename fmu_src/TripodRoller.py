@@ -17,7 +17,7 @@ from slavekit import DataState, Guarded, StateError, register_table, same_layout
 from tripod_model import native
 from tripod_model.model import JointModel
 
-_INPUTS = ("theta", "omega", "F_press", "torque")
+_INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
 
 
 def _have_numba():
@@ -95,7 +95,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         # its allowed range, for the native layer to take a master's new values without Python
         # (a joint's: its header row, whose inputs every roller takes)
         OP = arrays[2].reshape(-1, L.OP_LEN)[0]
-        slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ}
+        slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ,
+                 "plunge_speed": L.OP_VP}
         in_slots = []
         for name in _INPUTS:
             p = BY_NAME[name]
@@ -206,13 +207,13 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         check_value("shaft_angle", self.shaft_angle)   # an input even when unused
         if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
             self.omega = (self.shaft_angle - self.model.rollers[0].whirl_angle) / step_size
-        key = (self.theta, self.omega, self.F_press, self.torque)
+        key = (self.theta, self.omega, self.F_press, self.torque, self.plunge_speed)
         if key != self._checked:       # validate inputs only when they change
             for name, value in zip(_INPUTS, key):
                 check_value(name, value)
             self._checked = key
         out = self.model.step(step_size, float(self.theta), float(self.omega),
-                              float(self.F_press), float(self.torque))
+                              float(self.F_press), float(self.torque), float(self.plunge_speed))
         if not math.isfinite(sum(out.values())):   # one test for every output
             self.log(f"non-finite output at t = {current_time:g} s; step rejected",
                      Fmi2Status.error)

@@ -21,16 +21,18 @@ import os
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import (BY_NAME, REGIME_CODES, check_value, params_for, pressing_load,
-                                 same_step, same_value, validate)
+from reduced_model.housing import housing_forces
+from reduced_model.scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS, REGIME_CODES,
+                                 check_value, params_for, pressing_load, same_step, same_value,
+                                 validate)
 from reduced_model.thrust import Thrust
-from reduced_model.traverse import Traverse, outside_checked, outside_span
+from reduced_model.traverse import (CHECKED, Traverse, inertia_ratio, outside_checked,
+                                    outside_span)
 from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
-_INPUTS = ("theta", "omega", "F_press", "torque")
+_INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
 # outputs the reduced model defines (no contact point, no roller spin state)
-_OUT = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "slip_speed", "Fz_joint", "Fz_2", "Fz_3",
-        "whirl_angle")
+_OUT = tuple(n for n, _, _ in OUTPUTS if n not in CONTACT_ONLY_OUTPUTS)
 FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
 
 
@@ -95,7 +97,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         """Check the inputs and, when the operating point changed, re-derive the constants:
         at initialisation the traverse model's settled table (about 0.05 s at the paper's
         scene), on an input change the operating point its slide is stepped at."""
-        key = (self.theta, self.omega, self.F_press, self.torque)
+        key = (self.theta, self.omega, self.F_press, self.torque, self.plunge_speed)
         # inputs moved only in their last bits (a master interpolating an input table) keep
         # the operating point, the table and the compiled steps
         if self._key is not None and all(map(same_value, key, self._key)):
@@ -240,9 +242,13 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
     def terminate(self):
         if self._march is not None and self._scene["traverse"]:
             (t0, w0, f0), (t1, w1, f1) = self._span
+            # the roller's inertia at its worst: the highest whirl on the lowest load
+            sc = dict(self._scene, omega=w1, F_press=f0, torque=0.0)
+            worst = inertia_ratio(sc)
             outside = [p for p in (outside_span("theta", math.degrees(t0), math.degrees(t1)),
                                    outside_span("whirl", w0 / (2 * math.pi), w1 / (2 * math.pi)),
-                                   outside_span("pressing load", f0, f1)) if p]
+                                   outside_span("pressing load", f0, f1),
+                                   outside_span(CHECKED[5][0], worst, worst)) if p]
             if outside:
                 self.log("during the run the inputs left the range the traverse model was "
                          "checked against the contact model in (docs/validation.md): "
@@ -272,6 +278,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             w = self._scene["omega"] * self._dt
             for i in range(len(self._x)):
                 self._x[i] += w
+        self.plunge = self.plunge + self._scene["plunge_speed"] * self._dt   # held speed
         self._write_outputs()
         self._offer_fast()
         return True
@@ -298,7 +305,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
               "table": float(self._table is not None),
               "scale": self._table._scale if self._table is not None else 0.0,
               "n": self._table.n if self._table is not None else 0,
-              "A": th.A, "B": th.B, "muF": th.muF, "k": th.k, "th": th.th, "kspin": th.kspin}
+              "A": th.A, "B": th.B, "muF": th.muF, "k": th.k, "th": th.th, "kspin": th.kspin,
+              "s": sc["s"], "vp": th.vp, "vpdt": sc["plunge_speed"] * self._dt}
         self._fast_op = np.array([op[n] for n in op_names], dtype=float)
         self._offer(address, self._fast_rows, out_names, ())
 
@@ -387,12 +395,14 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
     def _write_outputs(self):
         """Every output at the rollers' present whirl angles self._x [rad]."""
         F = pressing_load(self._scene["F_press"], self._scene["torque"], self._scene["s"])
-        fz = []
+        fz, fx, fy = [], [], []
         if self._march is not None and self._march[0][2] is not None:
             for i, m in enumerate(self._march):
                 if i == 0:
                     Fz, Fz_mod, Fx, Fy, slip = m[2]
                 fz.append(m[2][0])
+                fx.append(m[2][2])
+                fy.append(m[2][3])
             self.Fz, self.Fz_mod, self.Fx, self.Fy = Fz, Fz_mod, Fx, Fy
             self.dFx = Fx - F
             self.slip_speed = slip
@@ -403,6 +413,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 if i == 0:
                     Fz, Fz_mod, Fx, Fy, slip = r
                 fz.append(r[0])
+                fx.append(r[2])
+                fy.append(r[3])
             self.Fz, self.Fz_mod, self.Fx, self.Fy = Fz, Fz_mod, Fx, Fy
             self.dFx = Fx - F
             self.slip_speed = slip
@@ -413,6 +425,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 if i == 0:
                     _, _, ft, V, phi, _ = r
                 fz.append(r[0])
+                fx.append(F)
+                fy.append(r[2] * math.cos(r[4]))
             self.Fz = fz[0]
             self.Fy = ft * math.cos(phi)
             self.Fx = F
@@ -425,4 +439,13 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self.Fz_joint = total
         self.Fz_2 = fz[1] if len(fz) > 1 else 0.0
         self.Fz_3 = fz[2] if len(fz) > 2 else 0.0
+        # the other rollers and the joint on the housing (rollers at the pitch radius s: the
+        # reduced model has no contact point)
+        fx += [0.0] * (3 - len(fx))
+        fy += [0.0] * (3 - len(fy))
+        self.Fx_2, self.Fy_2, self.Fx_3, self.Fy_3 = fx[1], fy[1], fx[2], fy[2]
+        sp = self._scene["s"]
+        self.F_housing_x, self.F_housing_y, self.T_housing = housing_forces(
+            fx[0], fy[0], sp, fx[1], fy[1], sp, fx[2], fy[2], sp)
+        self.F_roller = F
         self.whirl_angle = self._x[0]

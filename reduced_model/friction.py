@@ -13,6 +13,10 @@ def mu_tanh(v, mu_s, v_st):
     return mu_s * np.tanh(3.0 * v / v_st)
 
 
-def v_st_auto(A, B):
-    """Automatic transition velocity [m/s]: a quarter of the peak sliding speed sqrt(A^2+B^2)."""
-    return float(np.hypot(A, B)) / 4.0
+def v_st_auto(A, B, Vp=0.0):
+    """Automatic transition velocity [m/s]: a quarter of the peak sliding speed sqrt(A^2+B^2),
+    with the plunge's sliding Vp [m/s] (sliding.amplitude_plunge) added in quadrature."""
+    h = np.hypot(A, B)
+    if Vp != 0.0:
+        h = np.hypot(h, Vp)
+    return float(h) / 4.0

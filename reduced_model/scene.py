@@ -67,6 +67,10 @@ PARAMS: tuple[Param, ...] = (
     Param("torque", 0.0, "N.m", 0.0, 6.0e3,
           "transmitted torque; when > 0 it sets the pressing load per roller, torque/(3 s), "
           "instead of F_press", causality="input"),
+    Param("plunge_speed", 0.0, "m/s", -1.0, 1.0,
+          "speed of the spider along the housing axis (the groove direction z; > 0 along +z): "
+          "the trunnions' travel along the groove gets it, so the thrust includes the "
+          "plunging resistance", causality="input"),
     Param("shaft_angle", 0.0, "rad", 0.0, 1.0e9,
           "with drive_by_angle: the whirl (shaft) angle the master wants at the end of this "
           "step; omega over the step is then (shaft_angle - whirl_angle) / dt",
@@ -169,7 +173,28 @@ OUTPUTS = (
     ("Fz_3", "N", "thrust of roller 3 (whirl phase 240 deg; 0 with n_rollers = 1)"),
     ("whirl_angle", "rad", "whirl angle of roller 1 the trunnion motions use: the integral of "
      "omega as held over each communication step, 0 at the start (for order tracking)"),
+    # the other rollers and the joint on the housing (housing.py gives the housing frame)
+    ("Fx_2", "N", "pressing force of roller 2 on its groove (0 with n_rollers = 1)"),
+    ("Fy_2", "N", "lateral force of roller 2 on its groove, along its trunnion axis"),
+    ("contact_y_2", "m", "contact point of roller 2 across its groove"),
+    ("contact_z_2", "m", "contact point of roller 2 along its groove"),
+    ("Fx_3", "N", "pressing force of roller 3 on its groove (0 with n_rollers = 1)"),
+    ("Fy_3", "N", "lateral force of roller 3 on its groove, along its trunnion axis"),
+    ("contact_y_3", "m", "contact point of roller 3 across its groove"),
+    ("contact_z_3", "m", "contact point of roller 3 along its groove"),
+    ("F_housing_x", "N", "radial force of the joint on the housing along X, the housing frame's "
+     "axis through groove 1 (fixed to the housing; grooves 2, 3 at 120, 240 deg)"),
+    ("F_housing_y", "N", "radial force of the joint on the housing along Y = Z x X"),
+    ("T_housing", "N.m", "torque of the rollers on the housing about the shaft axis, positive "
+     "in the drive sense: sum of each roller's pressing force times its contact radius"),
+    ("F_roller", "N", "pressing load per roller in use: torque / (3 s) when torque > 0, else "
+     "F_press"),
+    ("plunge", "m", "the spider's travel along the housing axis: the integral of plunge_speed "
+     "as held over each communication step, 0 at the start"),
 )
+# the outputs the contact model has and the analytic model does not (no contact point there)
+CONTACT_ONLY_OUTPUTS = ("contact_y", "contact_z", "roller_spin", "contact_y_2", "contact_z_2",
+                        "contact_y_3", "contact_z_3")
 
 
 # Integer outputs: name, description, the FMU that has it.

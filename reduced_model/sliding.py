@@ -18,6 +18,13 @@ def amplitude_B(r, omega, theta, roll=True):
     return -r * omega * (1.0 - c) / c
 
 
+def amplitude_plunge(vp, theta, pitch=True):
+    """|v_p| sin(theta) [m/s]: the largest sliding from plunging.  The spider's plunge speed v_p
+    adds to the roller's travel along the groove, so Eq. (19) becomes v1 = (dz/dt + v_p) sin phi
+    and the plunge slides the roller by v_p sin phi, phi up to theta (0 without pitch)."""
+    return abs(vp) * math.sin(theta) if pitch else 0.0
+
+
 def groove_travel(x, s, theta):
     """Roller travel along the groove z = s theta sin wt [m], Eq. (18) (small angle)."""
     return s * theta * np.sin(x)

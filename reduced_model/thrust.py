@@ -29,8 +29,13 @@ def amplitudes(scene):
 
 
 def transition_velocity(scene):
-    """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2+B^2)/4 when it is 0."""
-    return scene["v_st"] if scene["v_st"] > 0 else v_st_auto(*amplitudes(scene))
+    """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2+B^2+Vp^2)/4 when it is 0 (Vp
+    the plunge's sliding, sliding.amplitude_plunge)."""
+    if scene["v_st"] > 0:
+        return scene["v_st"]
+    Vp = sliding.amplitude_plunge(scene.get("plunge_speed", 0.0), scene["theta"],
+                                  scene["pitch"])
+    return v_st_auto(*amplitudes(scene), Vp)
 
 
 def second_order_amplitude(F, mu_s, R, v_st):
@@ -64,6 +69,8 @@ class Thrust:
         self.muF = scene["mu_groove"] * _load(scene)      # Eq. (11): ft = mu(V) F
         self.th = scene["theta"] if scene["pitch"] else 0.0
         self.zamp = scene["s"] * self.th                   # Eq. (18): z = s theta sin wt
+        # the plunge speed [m/s] adds to dz/dt in v1 (sliding.amplitude_plunge)
+        self.vp = scene.get("plunge_speed", 0.0) if scene["pitch"] else 0.0
         self.kspin = 0.0
         if scene["spin_inertia"] and scene["pitch"]:
             I = spin_inertia(scene["m_roller"], scene["r_roller"], scene["r_bore"])
@@ -74,8 +81,10 @@ class Thrust:
         """(Fz, ftz, ft, V, phi, F_spin) at whirl angle x; N, N, N, m/s, rad, N."""
         sx = m.sin(x)
         V = self.A * m.sin(2.0 * x) + self.B * m.cos(2.0 * x)   # Eq. (24)
-        ft = self.muF * m.tanh(self.k * V)                      # Eqs. (11), (25), Fig. 8
         phi = self.th * sx                                      # Eq. (2)
+        if self.vp != 0.0:                                      # plunging: v_p sin(phi)
+            V = V + self.vp * m.sin(phi)
+        ft = self.muF * m.tanh(self.k * V)                      # Eqs. (11), (25), Fig. 8
         ftz = ft * m.sin(phi)                                   # Eq. (26)
         fs = self.kspin * sx
         return ftz + fs, ftz, ft, V, phi, fs

@@ -65,9 +65,12 @@ def rows():
 
 
 def test_traverse_model_against_the_contact_model(rows):
+    # inside the checked range (the roller's inertia ratio up to 0.1) within 5 %; beyond it
+    # the quasi-static balance misses the inertia (the grid's 32 Hz, 470 N scene: -19 %)
     s = validation.summary(rows)
-    assert s["n"] >= 20
-    assert s["median_rel"] < 0.05 and s["worst_rel"] < 0.20, s
+    assert s["n"] >= 30 and s["n_beyond"] >= 2
+    assert s["median_rel"] < 0.02 and s["worst_rel"] < 0.05 and s["worst_dphase"] < 3.0, s
+    assert s["beyond_worst_rel"] < 0.25, s
     paper = rows[0]
     assert paper["scene"].startswith("paper")
     assert abs(paper["traverse_rel"]) < 0.02 and abs(paper["traverse_dphase"]) < 3.0
@@ -155,13 +158,18 @@ def test_march_without_load_slips_by_the_drive():
 
 
 def test_the_checked_range_is_where_the_model_was_checked():
-    """traverse.CHECKED is the range docs/validation.md's scenes were drawn over: every one of
-    them inside, and the grid reaching within an eighth of each end (linear, or logarithmic for
-    the log-spaced whirl, load and clearance), so the range claims no more than was checked."""
-    from reduced_model.traverse import CHECKED, outside_checked
+    """traverse.GRID_RANGES is the range docs/validation.md's scenes were drawn over: every one
+    of them inside, and the grid reaching within an eighth of each end (linear, or logarithmic
+    for the log-spaced whirl, load and clearance), so the range claims no more than was checked;
+    the roller-inertia bound of CHECKED lies inside what the grid covered."""
+    from reduced_model.traverse import CHECKED, GRID_RANGES, INERTIA_LIMIT, inertia_ratio
+    from reduced_model.traverse import outside_span
     scenes = [sc.validate(ov, "analytic") for ov in validation.grid().values()]
-    assert [outside_checked(s) for s in scenes] == [[]] * len(scenes)
-    for name, _, lo, hi, value in CHECKED:
+    for name, _, lo, hi, value in GRID_RANGES:
+        assert all(outside_span(name, value(s), value(s)) is None for s in scenes), name
+    ratios = [inertia_ratio(s) for s in scenes]
+    assert CHECKED[5][3] == INERTIA_LIMIT and max(ratios) > 3 * INERTIA_LIMIT
+    for name, _, lo, hi, value in GRID_RANGES:
         f = math.log if name in ("whirl", "pressing load", "groove clearance") else float
         u = [(f(value(s)) - f(lo)) / (f(hi) - f(lo)) for s in scenes]
         assert min(u) < 0.125 and max(u) > 0.875, (name, min(u), max(u))
@@ -173,7 +181,9 @@ def test_a_scene_outside_the_checked_range_says_so():
     from reduced_model.traverse import outside_checked
     # 500 rad/s is 79.58 Hz; a torque of 13.2 N m on s = 22 mm gives 13.2 / 0.066 = 200 N
     out = outside_checked(sc.validate({"omega": 500.0, "torque": 13.2}, "analytic"))
-    assert out == ["whirl 79.58 Hz (checked 2-40 Hz)", "pressing load 200 N (checked 300-5000 N)"]
+    # and the roller's inertia 0.06 x 0.019 x 1000^2 N / 200 N = 5.7 against the checked 0.1
+    assert out == ["whirl 79.58 Hz (checked 0.5-50 Hz)", "pressing load 200 N (checked 300-50000 N)",
+                   "roller inertia m r (2 omega)^2 / load 5.7 (checked 0-0.1)"]
     assert outside_checked(sc.validate({"r_roller": 0.0185, "r_groove": 0.0188}, "analytic")) \
         == ["r_roller = 0.0185 m (checked at 0.019 m only)"]
     assert "OUTSIDE the range" in format_analytic(analysis.analytic_report({"omega": 500.0}))

@@ -20,14 +20,16 @@
 
 #define PI 3.141592653589793   /* math.pi */
 
-enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, OP_LEN };
-enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, WHIRL, OUT_LEN };
+enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, S_PITCH, VP, VP_DT, OP_LEN };
+enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, WHIRL, FX_2, FY_2, FX_3, FY_3,
+       F_HOUSING_X, F_HOUSING_Y, T_HOUSING, F_ROLLER, PLUNGE, OUT_LEN };
+#define N_IN 5   /* the march's inputs: theta, omega, F_press, torque, plunge speed */
 
 /* the march's operating point (tripod_analytic_march): the inputs where the native layer
    writes a master's new values, the inputs the operating point was derived for (key), the step,
    and the scene's constants */
-enum { M_THETA, M_OMEGA, M_F_PRESS, M_TORQUE, M_KEY_THETA, M_KEY_OMEGA, M_KEY_F_PRESS,
-       M_KEY_TORQUE, M_DT, M_N_ROLLERS, M_N, M_MU, M_V_ST, M_K, M_A1, M_CLEAR, M_R, M_S, M_I,
+enum { M_THETA, M_OMEGA, M_F_PRESS, M_TORQUE, M_PLUNGE, M_KEY_THETA, M_KEY_OMEGA,
+       M_KEY_F_PRESS, M_KEY_TORQUE, M_KEY_PLUNGE, M_DT, M_N_ROLLERS, M_N, M_MU, M_V_ST, M_K, M_A1, M_CLEAR, M_R, M_S, M_I,
        M_PITCH, M_ROLL, M_SPIN_MOMENT, M_THETA_LO, M_THETA_HI, M_OMEGA_LO, M_OMEGA_HI, M_LOAD_LO,
        M_LOAD_HI, MOP_LEN };
 enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state per roller */
@@ -35,9 +37,11 @@ enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state p
 /* "OP names | output names | march OP names | march state names", each in its array's order */
 const char *tripod_analytic_layout(void)
 {
-    return "w n_rollers F table scale n A B muF k th kspin"
+    return "w n_rollers F table scale n A B muF k th kspin s vp vpdt"
            "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3 whirl_angle"
-           "|theta omega F_press torque key_theta key_omega key_F_press key_torque dt n_rollers"
+           " Fx_2 Fy_2 Fx_3 Fy_3 F_housing_x F_housing_y T_housing F_roller plunge"
+           "|theta omega F_press torque plunge_speed key_theta key_omega key_F_press key_torque"
+           " key_plunge_speed dt n_rollers"
            " n mu v_st K a1 clear r s I pitch roll spin_moment"
            " theta_lo theta_hi omega_lo omega_hi load_lo load_hi"
            "|s p Fz Fz_mod Fx Fy slip";
@@ -56,7 +60,30 @@ static double wrap(double x)
     return m;
 }
 
-/* X: whirl angles [rad] (advanced in place), T: the table's rows (Fz, Fz_mod, Fx, Fy, slip
+/* The joint on the housing: reduced_model/housing.py's housing_forces, the same sums in the
+   same order (rollers not simulated pass zeros), and the other rollers' forces. */
+static void housing_into(double *o, const double fx[3], const double fy[3], double radius,
+                         double F)
+{
+    static const double C[3] = {1.0, -0.4999999999999998, -0.5000000000000004};
+    static const double S[3] = {0.0, 0.8660254037844387, -0.8660254037844384};
+    double X = 0.0, Y = 0.0, T = 0.0;
+    for (int i = 0; i < 3; ++i) {
+        X += fx[i] * S[i] + fy[i] * C[i];
+        Y += -fx[i] * C[i] + fy[i] * S[i];
+        T += radius * fx[i];
+    }
+    o[FX_2] = fx[1];
+    o[FY_2] = fy[1];
+    o[FX_3] = fx[2];
+    o[FY_3] = fy[2];
+    o[F_HOUSING_X] = X;
+    o[F_HOUSING_Y] = Y;
+    o[T_HOUSING] = T;
+    o[F_ROLLER] = F;
+}
+
+/* X: whirl angles [rad] (advanced in place)/* X: whirl angles [rad] (advanced in place), T: the table's rows (Fz, Fz_mod, Fx, Fy, slip
    speed) at n + 1 equally spaced angles over a cycle, OP: the operating point (above), OUT: the
    outputs (N, m/s).  1: outputs written; 2: a non-finite output (nothing written); 3: a bad roller count. */
 int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, double *u4,
@@ -66,7 +93,7 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
     (void)u4; (void)u5; (void)u6; (void)u7; (void)u8; (void)u9; (void)u10; (void)u11;
     (void)u12; (void)u13;
     int nr = (int)OP[N_ROLLERS];
-    double fz[3] = {0.0, 0.0, 0.0}, o[OUT_LEN];
+    double fz[3] = {0.0, 0.0, 0.0}, fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0}, o[OUT_LEN];
     if (nr < 1 || nr > 3) return 3;                   /* the slave offers 1 to 3 rollers */
     for (int i = 0; i < nr; ++i) X[i] += OP[W];
     if (OP[TABLE] != 0.0) {                           /* Traverse.at */
@@ -86,16 +113,21 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
                 o[SLIP] = r[4];
             }
             fz[i] = r[0];
+            fx[i] = r[2];
+            fy[i] = r[3];
         }
         o[DFX] = o[FX] - OP[F];
     } else {                                           /* Thrust.at, Eqs. (18)-(27) */
         for (int i = 0; i < nr; ++i) {
             double x = X[i], sx = sin(x);
             double V = OP[A] * sin(2.0 * x) + OP[B] * cos(2.0 * x);
-            double ft = OP[MU_F] * tanh(OP[K] * V);
             double phi = OP[TH] * sx;
+            if (OP[VP] != 0.0) V = V + OP[VP] * sin(phi);            /* plunging */
+            double ft = OP[MU_F] * tanh(OP[K] * V);
             double ftz = ft * sin(phi);
             fz[i] = ftz + OP[K_SPIN] * sx;
+            fx[i] = OP[F];
+            fy[i] = ft * cos(phi);
             if (i == 0) {
                 o[FZ] = fz[0];
                 o[FY] = ft * cos(phi);
@@ -110,6 +142,8 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
     o[FZ_2] = fz[1];
     o[FZ_3] = fz[2];
     o[WHIRL] = X[0];
+    o[PLUNGE] = OUT[PLUNGE] + OP[VP_DT];
+    housing_into(o, fx, fy, OP[S_PITCH], OP[F]);
     for (int q = 0; q < OUT_LEN; ++q)
         if (!isfinite(o[q])) return 2;
     for (int q = 0; q < OUT_LEN; ++q) OUT[q] = o[q];
@@ -120,7 +154,7 @@ int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, doub
 /* ---- the march (Traverse.march) ------------------------------------------------------- */
 
 typedef struct {
-    double w, F, mu, vst, K, a1, clear, rho, r, s, I, T, k;
+    double w, F, mu, vst, K, a1, clear, rho, r, s, I, T, k, vp;
     int held, sm;
 } Op;
 
@@ -139,6 +173,7 @@ static void operating_point(const double *M, Op *o)
 {
     double th = M[M_KEY_THETA], w = M[M_KEY_OMEGA], fp = M[M_KEY_F_PRESS], tq = M[M_KEY_TORQUE];
     o->w = w;
+    o->vp = M[M_KEY_PLUNGE];
     o->s = M[M_S];
     o->r = M[M_R];
     o->F = tq > 0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
@@ -152,7 +187,10 @@ static void operating_point(const double *M, Op *o)
             double c = cos(th);
             B = -o->r * w * (1.0 - c) / c;
         }
-        o->vst = hypot(A, B) / 4.0;                                /* friction.v_st_auto */
+        double h = hypot(A, B);                                    /* friction.v_st_auto */
+        double Vp = M[M_PITCH] != 0.0 ? fabs(o->vp) * sin(th) : 0.0; /* amplitude_plunge */
+        if (Vp != 0.0) h = hypot(h, Vp);
+        o->vst = h / 4.0;
     }
     o->K = M[M_K];
     o->a1 = M[M_A1];
@@ -178,6 +216,7 @@ static void drive_on(const Op *o, double x, Drive *d)
     d->xi = asin(q);
     double dxi = 2.0 * w * k * cos(2.0 * x) / sqrt(1.0 - q * q);
     double zd = o->s * T * w * cos(x);
+    if (o->vp != 0.0) zd = zd + o->vp;                              /* the plunge */
     double zdd = -o->s * T * w * w * sin(x);
     double v1 = zd * sin(d->phi);
     double v2 = -r * dxi;
@@ -283,12 +322,12 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     (void)u12; (void)u13;
     int nr = (int)M[M_N_ROLLERS];
     if (nr < 1 || nr > 3) return 3;
-    double key[4];
+    double key[N_IN];
     int moved = 0;
-    for (int q = 0; q < 4; ++q) moved |= !same_value(M[M_THETA + q], M[M_KEY_THETA + q]);
-    for (int q = 0; q < 4; ++q) key[q] = moved ? M[M_THETA + q] : M[M_KEY_THETA + q];
-    double saved[4];
-    for (int q = 0; q < 4; ++q) {
+    for (int q = 0; q < N_IN; ++q) moved |= !same_value(M[M_THETA + q], M[M_KEY_THETA + q]);
+    for (int q = 0; q < N_IN; ++q) key[q] = moved ? M[M_THETA + q] : M[M_KEY_THETA + q];
+    double saved[N_IN];
+    for (int q = 0; q < N_IN; ++q) {
         saved[q] = M[M_KEY_THETA + q];
         M[M_KEY_THETA + q] = key[q];
     }
@@ -307,6 +346,7 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     long n = nd > 1.0 ? (long)nd : 1;
     double h = dt / (double)n, wh = o.w * h;
     double x1[3], st[3][S_LEN], o_[OUT_LEN], fz[3] = {0.0, 0.0, 0.0};
+    double fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0};
     for (int i = 0; i < nr; ++i) {
         double x = X[i], s = S[S_LEN * i + S_S], p = S[S_LEN * i + S_P];
         Drive d0, d1;
@@ -340,6 +380,8 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
         st[i][S_FY] = Fy;
         st[i][S_SLIP] = fabs(s);
         fz[i] = Fz;
+        fx[i] = Fx;
+        fy[i] = Fy;
     }
     /* TripodRollerAnalytic._write_outputs */
     o_[FZ] = st[0][S_FZ];
@@ -352,12 +394,14 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     o_[FZ_2] = fz[1];
     o_[FZ_3] = fz[2];
     o_[WHIRL] = x1[0];
+    o_[PLUNGE] = OUT[PLUNGE] + o.vp * M[M_DT];
+    housing_into(o_, fx, fy, o.s, o.F);
     int ok = 1;
     for (int q = 0; q < OUT_LEN; ++q) ok = ok && isfinite(o_[q]);
     for (int i = 0; i < nr; ++i)
         for (int q = 0; q < S_LEN; ++q) ok = ok && isfinite(st[i][q]);
     if (!ok) {
-        for (int q = 0; q < 4; ++q) M[M_KEY_THETA + q] = saved[q];
+        for (int q = 0; q < N_IN; ++q) M[M_KEY_THETA + q] = saved[q];
         return 2;
     }
     for (int i = 0; i < nr; ++i) {

@@ -16,8 +16,11 @@ from . import kernel as K
 from .jit import njit
 
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL,  # noqa: F401
-                     OP_THETA, OP_TQ, OP_W, OP_X0, N_OUT, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT,
-                     OUTPUT_NAMES)
+                     OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2,
+                     OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE, OUTPUT_NAMES)
+from reduced_model.housing import housing_forces
+
+_housing = njit(housing_forces)
 
 _d = types.CPointer(types.float64)
 SIGNATURE = types.int32(*([_d] * 14))
@@ -35,8 +38,37 @@ def outputs_into(o, F_press, dst):
     for v in vals:
         if not math.isfinite(v):
             return False
-    for i in range(N_OUT):
+    if not math.isfinite(o[K.O_PL]):
+        return False
+    for i in range(len(vals)):
         dst[i] = vals[i]
+    dst[OUT_PLUNGE] = o[K.O_PL]
+    return True
+
+
+@njit
+def joint_into(out, n, s, F, dst):
+    """The joint's outputs after roller 1's (JointModel.step, model._joint_outputs): the other
+    rollers' forces and contact points (0 where absent), the joint on the housing at the
+    contact radii s + contact_y [m], the pressing load per roller F [N].  Returns whether all
+    are finite (nothing is written otherwise)."""
+    two, three = n > 1, n > 2
+    fx2 = out[1, K.O_FX] if two else 0.0
+    fy2 = out[1, K.O_FY] if two else 0.0
+    cy2 = out[1, K.O_CY] if two else 0.0
+    cz2 = out[1, K.O_CZ] if two else 0.0
+    fx3 = out[2, K.O_FX] if three else 0.0
+    fy3 = out[2, K.O_FY] if three else 0.0
+    cy3 = out[2, K.O_CY] if three else 0.0
+    cz3 = out[2, K.O_CZ] if three else 0.0
+    X, Y, T = _housing(out[0, K.O_FX], out[0, K.O_FY], s + out[0, K.O_CY], fx2, fy2, s + cy2,
+                       fx3, fy3, s + cy3)
+    vals = (fx2, fy2, cy2, cz2, fx3, fy3, cy3, cz3, X, Y, T, F)
+    for v in vals:
+        if not math.isfinite(v):
+            return False
+    for i in range(len(vals)):
+        dst[OUT_FX_2 + i] = vals[i]
     return True
 
 
@@ -64,14 +96,19 @@ def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
     dst = carray(pOUT, (N_OUT,))
     if n == 0:
         out = carray(pout, (K.O_LEN,))
-        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, carray(pL, (17,)),
+        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, carray(pL, (K.L_LEN,)),
                 carray(pres, (19,)), carray(pY1, (K.Y_LEN,)), carray(pY2, (K.Y_LEN,)),
                 carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)), carray(pb, (K.NV,)),
                 carray(phs, (5 + K.NV,)), carray(pGW, (K.NV + 8, K.NV)), out)
-        return 1 if outputs_into(out, head[OP_F], dst) else 2
+        if not outputs_into(out, head[OP_F], dst):
+            return 2
+        # (the same output array seen as one row: no reshape, whose helper the prebuilt
+        # library does not carry)
+        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, carray(pP, (K.P_LEN,))[K.P_S],
+                               head[OP_F], dst) else 2
     OP = carray(pOP, (n + 1, OP_LEN))
     Y, P = carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN))
-    L, res = carray(pL, (n, 17)), carray(pres, (n, 19))
+    L, res = carray(pL, (n, K.L_LEN)), carray(pres, (n, 19))
     Y1, Y2 = carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN))
     G, A = carray(pG, (n, K.NV, 3)), carray(pA, (n, K.NV, K.NV))
     b, hs = carray(pb, (n, K.NV)), carray(phs, (n, 5 + K.NV))
@@ -79,12 +116,14 @@ def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
     total = 0.0   # left to right, as JointModel.step
     for i in range(n):
         row = OP[i + 1]
-        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT):
+        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
             row[j] = head[j]
         _roller(Y[i], P[i], row, L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i],
                 out[i])
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
+        return 2
+    if not joint_into(out, n, P[0, K.P_S], OP[1, OP_F], dst):
         return 2
     dst[OUT_FZ_JOINT] = total
     dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0

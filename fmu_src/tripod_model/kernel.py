@@ -14,9 +14,9 @@ from . import needles as NDL
 from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
     P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
     P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
-    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_LEN,
-    Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN, NV,
-    O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_LEN,
+    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VP, P_LEN,
+    Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_PL, Y_LEN, NV,
+    O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN, L_LEN,
     W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
 
 from . import oppoint
@@ -77,16 +77,19 @@ def trunnion_yaw(x, theta, yaw):
 def line_kinematics(x, w, theta, P, out):
     """Q, a and their first and second time derivatives at whirl angle x, whirl rate w.
 
-    out[0:3] a, [3:6] da/dt, [6:9] d2a/dt2, [9] Qz, [10] dQz/dt, [11] d2Qz/dt2,
+    out[0:3] a, [3:6] da/dt, [6:9] d2a/dt2, [9] Qz, [10] dQz/dt (with the plunge speed
+    P[P_VP]: the spider's travel along the groove), [11] d2Qz/dt2,
     [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a,
-    [14:17] the (x, w, theta) they were computed for (a one-entry cache; NaN = empty).
-    Central differences in x (step HX), chain rule with constant w within a substep.
+    [14:18] the (x, w, theta, plunge speed) they were computed for (a one-entry cache; NaN =
+    empty).  Central differences in x (step HX), chain rule with constant w within a substep.
     """
-    if out[14] == x and out[15] == w and out[16] == theta:
+    vp = P[P_VP]
+    if out[14] == x and out[15] == w and out[16] == theta and out[17] == vp:
         return   # same whirl angle as the last call (the extrapolated step visits x + h twice)
     out[14] = x
     out[15] = w
     out[16] = theta
+    out[17] = vp
     s = P[P_S]
     pitch = P[P_PITCH] > 0.5
     roll = P[P_ROLL] > 0.5
@@ -106,6 +109,8 @@ def line_kinematics(x, w, theta, P, out):
     out[8] = (apz - 2.0 * a0z + amz) * i2
     out[9] = q0
     out[10] = (qp - qm) * i1
+    if vp != 0.0:
+        out[10] += vp
     out[11] = (qp - 2.0 * q0 + qm) * i2
     if P[P_BEAR] > 0.5:   # the trunnion's own slide and spin matter only to the needles
         ax = P[P_AXIAL] > 0.5
@@ -861,10 +866,11 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     work array GW), hs[3] and hs[5:11] its accelerations, hs[4] counts steps handed to the
     extrapolated substeps; with the needle-resolved bearing n BDF2 substeps (bdf2_steps), Y2
     the previous state, hs[0] the previous substep, hs[3] whether they are valid.
-    L (17), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
+    L (L_LEN), res (19), Y1, Y2 (like Y), G (NV x 3), A (NV x NV), b (NV) are work arrays;
     NW the needle work arrays (model.ContactModel) with the resolved bearing, else None.
     """
     extrap = P[P_INTEG] == 1.0
+    Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
             if hs[3] == GA_RELAX:
@@ -917,6 +923,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     out[O_SPIN] = om
     out[O_FN] = res[9]
     out[O_X] = Y[Y_X]
+    out[O_PL] = Y[Y_PL]
 
 
 # the roller's velocity unknowns in Y (ud, om, wd, b1d, b2d, ed) and the positions they move

@@ -5,18 +5,22 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_LEN) = range(34)
+ P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_VP, P_LEN) = range(35)
 # P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
-# what the operating point derived from them (oppoint.py)
+# what the operating point derived from them (oppoint.py); P_VP: the plunge speed [m/s] of the
+# step (an input, there for the line kinematics)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
 # radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
 # lumped bearing only: radial offset w along e2 = a x e1 and tilts b1, b2 about e1, e2
 # (e1 = the pressing direction normal to the trunnion axis), with their rates
-(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_LEN) = range(13)
+# Y_PL: the plunge [m], the spider's travel along the groove (the integral of the plunge speed)
+(Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_PL, Y_LEN) = range(14)
 NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
 # --- output vector layout ---
-(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_LEN) = range(10)
+(O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN) = range(11)
+# line kinematics L (kernel.line_kinematics): 14 values and the key (x, w, theta, plunge speed)
+L_LEN = 18
 # generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own
 (W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
 
@@ -31,14 +35,21 @@ N_F = 11   # floats per needle in the state vector
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
 # --- the communication step as a C function (fast.py) ---
-# the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque and the
-# step dt; what they set (pressing load per roller, pressing offset, substep and count); the
-# inputs it was derived at (OP_KEY: five slots); OP_NOSTEP > 0: outputs only, no substep;
+# the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque, the
+# plunge speed OP_VP and the step dt; what they set (pressing load per roller, pressing offset,
+# substep and count); the inputs it was derived at (OP_KEY: six slots, theta, omega, F_press,
+# torque, dt, plunge speed); OP_NOSTEP > 0: outputs only, no substep;
 # OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (fast.step)
-(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_KEY) = range(11)
-OP_NROLL = OP_KEY + 5
+(OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_VP,
+ OP_KEY) = range(12)
+OP_NROLL = OP_KEY + 6
 OP_LEN = OP_NROLL + 1
 OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
-                "roller_spin", "Fz_joint", "Fz_2", "Fz_3", "whirl_angle")
+                "roller_spin", "Fz_joint", "Fz_2", "Fz_3", "whirl_angle",
+                "Fx_2", "Fy_2", "contact_y_2", "contact_z_2",
+                "Fx_3", "Fy_3", "contact_y_3", "contact_z_3",
+                "F_housing_x", "F_housing_y", "T_housing", "F_roller", "plunge")
 N_OUT = len(OUTPUT_NAMES)
 OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))
+OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (fast.joint_into)
+OUT_PLUNGE = OUTPUT_NAMES.index("plunge")

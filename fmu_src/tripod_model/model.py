@@ -14,6 +14,7 @@ from reduced_model import scene as scene_mod
 from . import hertz, layout as K, layout as NDL, native, oppoint   # numba only when needed
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
+from reduced_model.housing import housing_forces
 from reduced_model.scene import same_step
 
 
@@ -73,7 +74,7 @@ class ContactModel:
         self.NW = self._needle_work(C_line) if self.n_needle_bodies else None
         self.Y = np.zeros(K.Y_LEN + NDL.N_F * self.n_needle_bodies)
         self.out = np.zeros(K.O_LEN)
-        self._L = np.full(17, np.nan)   # line kinematics + its cache key
+        self._L = np.full(K.L_LEN, np.nan)   # line kinematics + its cache key
         self._res = np.zeros(19)
         self._Y1 = np.zeros_like(self.Y)
         self._Y2 = np.zeros_like(self.Y)
@@ -253,22 +254,23 @@ class ContactModel:
         q = K.Y_LEN + NDL.N_F * np.arange(self.n_needle_bodies)
         return np.stack([self.Y[q], self.Y[q + 1], self.Y[q + 2]], axis=1)
 
-    def step(self, dt, theta, omega, F_press, torque=0.0):
+    def step(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """Advance by one communication step dt [s] at the given inputs; returns the outputs.
 
         theta [rad], omega [rad/s], F_press [N], torque [N m] (> 0: the pressing load is
-        torque / (3 s)) are held over the step (continuous inputs).
+        torque / (3 s)), plunge_speed [m/s] (the spider along the groove) are held over the
+        step (continuous inputs).
         """
         if not self._started:
             self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
-        self.set_inputs(dt, theta, omega, F_press, torque)
+        self.set_inputs(dt, theta, omega, F_press, torque, plunge_speed)
         acc = self._hs[1]
         self._run()
         self.substeps += int(self._hs[1] - acc)
         self.time += dt
         return self.outputs(self._OP[K.OP_F])
 
-    def set_inputs(self, dt, theta, omega, F_press, torque=0.0):
+    def set_inputs(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """The inputs and step dt [s] of the next step into OP; the compiled step derives their
         operating point (oppoint.derive) when they changed.  A dt within the rounding of the
         master's times of the last one is that step (same_step), as on the native layer's
@@ -276,8 +278,8 @@ class ContactModel:
         OP = self._OP
         if OP[K.OP_DT] > 0 and same_step(dt, OP[K.OP_DT], self.time):
             dt = OP[K.OP_DT]
-        OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_FP], OP[K.OP_TQ], OP[K.OP_DT] = (
-            theta, omega, F_press, torque, dt)
+        OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_FP], OP[K.OP_TQ], OP[K.OP_DT], OP[K.OP_VP] = (
+            theta, omega, F_press, torque, dt, plunge_speed)
 
     @property
     def whirl_angle(self):
@@ -357,7 +359,7 @@ class ContactModel:
                 "ND": None if self.NW is None else self.NW[6].copy(),
                 # the inputs the state was stepped at: a restore followed by other inputs is a
                 # jump (kernel.inputs_jumped), the same inputs are none
-                "inputs": self._OP[K.OP_KEY:K.OP_KEY + 4].copy(),
+                "inputs": np.append(self._OP[K.OP_KEY:K.OP_KEY + 4], self._OP[K.OP_KEY + 5]),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
     def set_state(self, st: dict) -> None:
@@ -368,7 +370,8 @@ class ContactModel:
         self._hs[:] = st["hs"]
         self._Y2[:] = st["Y2"]
         self.P[K.P_VST] = st["vst"]
-        self._OP[K.OP_KEY:K.OP_KEY + 4] = st["inputs"]
+        self._OP[K.OP_KEY:K.OP_KEY + 4] = st["inputs"][:4]
+        self._OP[K.OP_KEY + 5] = st["inputs"][4]
         self._OP[K.OP_KEY + 4] = np.nan   # derive the operating point again at the next step
         self.time, self.substeps, self._started = st["time"], st["substeps"], st["started"]
 
@@ -378,7 +381,8 @@ class ContactModel:
         Fz_mod = o[K.O_FZ] * F_press / Fx if Fx > 1e-9 * max(F_press, 1.0) else 0.0
         return {"Fx": Fx, "Fy": o[K.O_FY], "Fz": o[K.O_FZ], "Fz_mod": Fz_mod,
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
-                "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X]}
+                "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X],
+                "plunge": o[K.O_PL]}
 
 
 # the arrays of fast.step's arguments but OUT, in their order
@@ -414,16 +418,27 @@ def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1
     return rec
 
 
-def _joint_outputs(outs):
+def _joint_outputs(outs, s, F):
     """Roller 1's outputs plus the joint's: Fz_joint (the housing thrust, the sum of the
-    rollers' Fz [N]), Fz_2, Fz_3 (0 with one roller)."""
+    rollers' Fz [N]), the other rollers' forces and contact points (0 where absent), the joint's
+    force and torque on the housing (reduced_model/housing.py, at the contact radius s +
+    contact_y [m]) and the pressing load per roller F [N]."""
     o = dict(outs[0])
     total = 0.0   # left to right, as fast.step (sum() compensates from Python 3.12 on)
     for x in outs:
         total += x["Fz"]
     o["Fz_joint"] = total
-    o["Fz_2"] = outs[1]["Fz"] if len(outs) > 1 else 0.0
-    o["Fz_3"] = outs[2]["Fz"] if len(outs) > 2 else 0.0
+    zero = dict.fromkeys(("Fx", "Fy", "Fz", "contact_y", "contact_z"), 0.0)
+    r2 = outs[1] if len(outs) > 1 else zero
+    r3 = outs[2] if len(outs) > 2 else zero
+    for k, r in (("2", r2), ("3", r3)):
+        for name in ("Fz", "Fx", "Fy", "contact_y", "contact_z"):
+            o[f"{name}_{k}"] = r[name]
+    o1 = outs[0]
+    o["F_housing_x"], o["F_housing_y"], o["T_housing"] = housing_forces(
+        o1["Fx"], o1["Fy"], s + o1["contact_y"], r2["Fx"], r2["Fy"], s + r2["contact_y"],
+        r3["Fx"], r3["Fy"], s + r3["contact_y"])
+    o["F_roller"] = F
     return o
 
 
@@ -470,19 +485,20 @@ class JointModel:
         """Pressing load per roller [N]: torque / (3 s) when torque > 0, else F_press."""
         return scene_mod.pressing_load(F_press, torque, self.p["s"])
 
-    def step(self, dt, theta, omega, F_press, torque=0.0):
-        """Advance every roller by dt [s]; returns roller 1's outputs plus Fz_joint, Fz_2, Fz_3."""
-        out = _joint_outputs([r.step(dt, theta, omega, F_press, torque) for r in self.rollers])
+    def step(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
+        """Advance every roller by dt [s]; returns roller 1's outputs plus the joint's."""
+        out = _joint_outputs([r.step(dt, theta, omega, F_press, torque, plunge_speed)
+                              for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
         if self._stacks is not None:   # the inputs and step a joint's fast.step takes next
             head, op = self._stacks["_OP"][0], self.rollers[0]._OP
-            for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT):
+            for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
                 head[j] = op[j]
         return out
 
     def initial_outputs(self, theta, omega, F_press, torque=0.0):
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
         return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque)
-                               for r in self.rollers])
+                               for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
 
     def get_state(self) -> list:
         return [r.get_state() for r in self.rollers]

@@ -17,18 +17,36 @@ _HASH = None
 _STEP = False   # not looked up yet
 
 
+# modules of the reduced model the compiled kernel takes in (fast.py: the housing frame)
+_ELSEWHERE = ("reduced_model.housing",)
+
+
+def _compiled_elsewhere():
+    """Source files of _ELSEWHERE under this package's import name (reduced_model in the
+    source tree, PKG.reduced_model in an FMU), without importing them."""
+    import importlib.util
+    base = __name__.rpartition(".")[0].rpartition(".")[0]
+    paths = []
+    for mod in _ELSEWHERE:
+        spec = importlib.util.find_spec((base + "." if base else "") + mod)
+        if spec is not None and spec.origin:
+            paths.append(spec.origin)
+    return paths
+
+
 def source_hash() -> str:
-    """Content hash of every .py file of this package (the same in every extracted copy, and in
-    the source tree: the FMU's build makes its imports of the other bundled packages relative,
-    so the leading dots of imports are left out)."""
+    """Content hash of every .py file of this package and of _ELSEWHERE (the same in every
+    extracted copy, and in the source tree: the FMU's build makes its imports of the other
+    bundled packages relative, so the leading dots of imports are left out)."""
     global _HASH
     if _HASH is None:
         h = hashlib.sha256()
-        for name in sorted(os.listdir(_DIR)):
-            if name.endswith(".py"):
-                with open(os.path.join(_DIR, name), "rb") as f:
-                    text = re.sub(rb"^(\s*from )\.+", rb"\1", f.read(), flags=re.M)
-                h.update(name.encode() + b"\0" + text)
+        files = [os.path.join(_DIR, n) for n in sorted(os.listdir(_DIR)) if n.endswith(".py")]
+        files += _compiled_elsewhere()
+        for path in files:
+            with open(path, "rb") as f:
+                text = re.sub(rb"^(\s*from )\.+", rb"\1", f.read(), flags=re.M)
+            h.update(os.path.basename(path).encode() + b"\0" + text)
         _HASH = h.hexdigest()
     return _HASH
 

@@ -11,12 +11,12 @@ implementation for both.
 import math
 
 from reduced_model.friction import v_st_auto
-from reduced_model.sliding import amplitude_A, amplitude_B
+from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 
-from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_W, OP_X0,
+from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0,
                      P_BEAR, P_CLR, P_FRIC, P_FRICN, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU,
                      P_MUN, P_PITCH, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VST, P_VST0,
-                     P_HMAX)
+                     P_HMAX, P_VP)
 
 
 def amplitudes(P, theta, omega):
@@ -24,13 +24,14 @@ def amplitudes(P, theta, omega):
     return amplitude_A(P[P_S], omega, theta, True), amplitude_B(P[P_R], omega, theta, True)
 
 
-def v_st(P, theta, omega):
-    """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2)/4 (model.md),
-    floored: a joint at rest or straight still needs one."""
+def v_st(P, theta, omega, vp=0.0):
+    """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2+Vp^2)/4 (model.md;
+    Vp the plunge's sliding at the plunge speed vp [m/s]), floored: a joint at rest or
+    straight still needs one."""
     if P[P_VST0] > 0.0:
         return P[P_VST0]
     A, B = amplitudes(P, theta, omega)
-    return max(v_st_auto(A, B), 1e-6)
+    return max(v_st_auto(A, B, amplitude_plunge(vp, theta, P[P_PITCH] > 0.5)), 1e-6)
 
 
 def _rate_amplitude(P, theta, omega):
@@ -141,8 +142,9 @@ def derive(P, OP):
     the inputs did not move, else how far they moved the driven slip (its amplitude's change
     over v_st; 0 for a load change alone): kernel.inputs_jumped restarts the integrator."""
     theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
+    vp = OP[OP_VP]
     same = (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
-            and tq == OP[OP_KEY + 3])
+            and tq == OP[OP_KEY + 3] and vp == OP[OP_KEY + 5])
     if same and dt == OP[OP_KEY + 4]:
         return -1.0
     # how far the inputs moved the driven slip: its amplitude's change over the new v_st (-1:
@@ -151,7 +153,7 @@ def derive(P, OP):
     if not same and OP[OP_KEY] == OP[OP_KEY]:
         jump = 0.0
     F = tq / (3.0 * P[P_S]) if tq > 0 else Fp
-    vst = v_st(P, theta, omega)
+    vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
     n = max(1, int(math.ceil(dt / h - 1e-9)))
     OP[OP_F] = F
@@ -164,18 +166,22 @@ def derive(P, OP):
     if jump == 0.0:
         R0 = _rate_amplitude(P, OP[OP_KEY], OP[OP_KEY + 1])
         jump = abs(_rate_amplitude(P, theta, omega) - R0) / vst
+        # and the plunge's sliding
+        jump += amplitude_plunge(vp - OP[OP_KEY + 5], theta, P[P_PITCH] > 0.5) / vst
     P[P_VST] = vst
+    P[P_VP] = vp
     P[P_HMAX] = substep(P, theta, omega, F, vst, False)
     OP[OP_KEY] = theta
     OP[OP_KEY + 1] = omega
     OP[OP_KEY + 2] = Fp
     OP[OP_KEY + 3] = tq
     OP[OP_KEY + 4] = dt
+    OP[OP_KEY + 5] = vp
     return jump
 
 
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
-FUNCTIONS = ("row_substep", "amplitude_A", "amplitude_B", "v_st_auto", "amplitudes", "v_st",
+FUNCTIONS = ("row_substep", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
              "_rate_amplitude", "ga_step_size", "substep", "groove_offset", "lumped_offset",
              "derive")

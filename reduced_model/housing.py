@@ -1,0 +1,34 @@
+"""The joint's forces on the housing in the housing frame, from the rollers' groove-frame forces.
+
+Housing frame (rotates with the housing, model.md): Z the shaft axis (every groove's z), X along
+roller 1's trunnion axis, Y = Z x X.  Roller i (i = 0, 1, 2) sits in the groove at housing angle
+a_i = 2 pi i / 3 (its whirl phase, model.md "Three rollers"); its groove frame is right-handed:
+y_i (trunnion axis, radial) = (cos a_i, sin a_i), x_i (pressing) = y_i x Z = (sin a_i, -cos a_i).
+
+Plain Python on scalars: the contact FMU's compiled step takes it through numba
+(tripod_model/fast.py), the analytic FMU's Python path as it is; fmu_src/native/analytic_step.c
+carries the same lines in C for its compiled step.
+"""
+import math
+
+_C = (1.0, math.cos(2.0 * math.pi / 3.0), math.cos(4.0 * math.pi / 3.0))
+_S = (0.0, math.sin(2.0 * math.pi / 3.0), math.sin(4.0 * math.pi / 3.0))
+
+
+def housing_forces(fx1, fy1, r1, fx2, fy2, r2, fx3, fy3, r3):
+    """(F_housing_x, F_housing_y [N], T_housing [N m]): the rollers' forces on the grooves
+    (pressing fx_i, lateral fy_i along the trunnion axis [N]) summed in the housing frame, and
+    their torque about the shaft axis at the contact radius r_i [m], positive in the sense the
+    transmitted torque drives (sum of r_i fx_i; the torque about +Z is its negative).  A
+    roller that is not simulated passes zeros."""
+    fx = (fx1, fx2, fx3)
+    fy = (fy1, fy2, fy3)
+    r = (r1, r2, r3)
+    X = 0.0
+    Y = 0.0
+    T = 0.0
+    for i in range(3):   # left to right, the same sums on every path
+        X += fx[i] * _S[i] + fy[i] * _C[i]
+        Y += -fx[i] * _C[i] + fy[i] * _S[i]
+        T += r[i] * fx[i]
+    return X, Y, T
