@@ -22,9 +22,9 @@ from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model.housing import housing_forces
-from reduced_model.scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS, REGIME_CODES,
-                                 check_value, params_for, pressing_load, same_step, same_value,
-                                 validate)
+from reduced_model.scene import (ANALYTIC_LOWER, BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS,
+                                 REGIME_CODES, check_analytic_drive, check_value, params_for,
+                                 pressing_load, same_step, same_value, validate)
 from reduced_model.thrust import Thrust
 from reduced_model.traverse import (CHECKED, Traverse, inertia_ratio, outside_checked,
                                     outside_span)
@@ -144,6 +144,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         """Check the inputs key (_INPUTS order) and make them the scene's."""
         for name, value in zip(_INPUTS, key):
             check_value(name, value)
+        check_analytic_drive(dict(zip(_INPUTS, key)))     # before anything changes
+        for name, value in zip(_INPUTS, key):
             self._scene[name] = float(value)
         self._thrust = Thrust(self._scene)
         sc = self._scene
@@ -199,6 +201,10 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 raise StateError(f"state taken with another {n} than this instance's")
         for n in _INPUTS:
             check_value(n, st["scene"][n])
+        try:
+            check_analytic_drive(st["scene"])
+        except ValueError as e:
+            raise StateError(str(e)) from None
         n = scene["n_rollers"]
         same_layout(st["x"], [0.0] * n, "x")
         if st["dt"] is not None:
@@ -350,8 +356,9 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         slots = []
         for name in _INPUTS:
             p = BY_NAME[name]
+            lo = ANALYTIC_LOWER.get(name, p.lo)    # drive and forward whirl only
             slots.append((self._fast_op.ctypes.data + 8 * mop_names.index(name),
-                          -math.inf if p.lo is None else float(p.lo),
+                          -math.inf if lo is None else float(lo),
                           math.inf if p.hi is None else float(p.hi),
                           int(p.lo_open), int(p.hi_open)))
         self._offer(address, self._fast_state, out_names, slots)

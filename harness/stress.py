@@ -54,11 +54,11 @@ def _bound(sv, Fx):
     d = scene_mod.defaults("contact")
     p = {**d, **sv}
     I = 0.5 * p["m_roller"] * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
-    th = p["theta"] if np.isscalar(p["theta"]) else max(p["theta"])
-    w = p["omega"] if np.isscalar(p["omega"]) else max(p["omega"])
+    th = abs(p["theta"]) if np.isscalar(p["theta"]) else max(map(abs, p["theta"]))
+    w = abs(p["omega"]) if np.isscalar(p["omega"]) else max(map(abs, p["omega"]))
     spin = I / p["r_roller"] ** 2 * p["s"] * math.tan(th) * w ** 2
     mu = p["mu_groove"] + (p["mu_needle"] if p["bearing"] >= 1 else 0.0)
-    return 1.05 * (mu * Fx + spin) + 1e-6
+    return 1.05 * (mu * np.abs(Fx) + spin) + 1e-6   # (coast: Fx < 0)
 
 
 def cases(quick=False):
@@ -69,8 +69,26 @@ def cases(quick=False):
         add(f"joint angle {deg} deg", {"theta": deg * DEG}, None, 0.2, 1e-4, True)
     for hz in (0, 1, 50):
         add(f"whirl {hz} Hz", {"omega": hz * HZ}, None, 0.2 if hz else 0.05, 1e-4, True)
-    for F in (0.0, 5000.0, 20000.0):
+    for F in (0.0, 5000.0, 20000.0, 50000.0):
         add(f"load {F:g} N", {"F_press": F}, None, 0.2, 1e-4, True)
+    # the driveline envelope: coast, reverse whirl, a launch, torque through zero, plunging
+    add("coast -1000 N", {"F_press": -1000.0}, None, 0.2, 1e-4, True)
+    add("reverse whirl -10 Hz", {"omega": -10 * HZ}, None, 0.2, 1e-4, True)
+    add("coast in reverse, -20 kN, -5 Hz, lumped bearing",
+        {"F_press": -20000.0, "omega": -5 * HZ, "bearing": 1}, None, 0.4, 1e-4, True)
+    add("launch 3000 N m, 25 deg, three rollers",
+        {"torque": 3000.0, "theta": 25 * DEG, "n_rollers": 3}, None, 0.2, 1e-4, True)
+    add("launch from standstill: 0 -> 5 Hz and 0 -> 3000 N m in 1 s, 20 deg",
+        {"theta": 20 * DEG, "n_rollers": 3},
+        {"time": [0.0, 1.0], "omega": [0.0, 5 * HZ], "torque": [0.0, 3000.0]}, 1.0, 1e-4, True)
+    add("torque reversal 300 -> -300 N m over 0.2 s", {"n_rollers": 3},
+        {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.3, 1e-4,
+        True)
+    add("torque reversal 300 -> -300 N m over 0.2 s, lumped bearing", {"bearing": 1},
+        {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.3, 1e-4,
+        True)
+    for vp in (0.1, 0.5):
+        add(f"plunge {vp:g} m/s", {"plunge_speed": vp}, None, 0.2, 1e-4, True)
     for mu in (0.0, 0.3):
         add(f"friction {mu:g}", {"mu_groove": mu}, None, 0.2, 1e-4, True)
     for vst in (1e-5, 1e-3, 1.0):
@@ -87,12 +105,13 @@ def cases(quick=False):
     add("joint angle 5 -> 15 deg during the run", {},
         {"time": [0.0, 0.1, 0.3], "theta": [5 * DEG, 5 * DEG, 15 * DEG]}, 0.3, 1e-4, True)
     add("invalid parameter theta = 2 rad", {"theta": 2.0}, None, 0.01, 1e-4, False)
-    add("invalid input F_press < 0 during the run", {},
-        {"time": [0.0, 0.01, 0.02], "F_press": [1000.0, 1000.0, -500.0]}, 0.03, 1e-4, False)
+    add("invalid input F_press > 1e5 N during the run", {},
+        {"time": [0.0, 0.01, 0.02], "F_press": [1000.0, 1000.0, 2e5]}, 0.03, 1e-4, False)
     if quick:
         keep = {"joint angle 25 deg", "whirl 0 Hz", "load 0 N", "v_st 1e-05 m/s",
                 "communication step 0.01 s", "torque step 0 -> 200 N m at 0.1 s",
-                "invalid parameter theta = 2 rad", "invalid input F_press < 0 during the run"}
+                "invalid parameter theta = 2 rad", "invalid input F_press > 1e5 N during the run",
+                "torque reversal 300 -> -300 N m over 0.2 s"}
         c = [x for x in c if x[0] in keep]
     else:
         add("1000 whirl cycles (drift of order 3)", {}, None, 100.0, 1e-3, True)
@@ -132,15 +151,15 @@ def run_case(name, sv, inputs, stop, dt, expect_ok):
     if inputs:
         for k, v in inputs.items():
             if k != "time":
-                svb[k] = max(v)
-    if svb.get("torque", 0) > 0:
+                svb[k] = max(v, key=abs)
+    if svb.get("torque", 0) != 0:
         s = svb.get("s", scene_mod.BY_NAME["s"].default)
         svb["F_press"] = scene_mod.pressing_load(svb.get("F_press", 0.0), svb["torque"], s)
     row["bound"] = bool(np.all(np.abs(r["Fz"]) <= _bound(svb, r["Fx"])))
-    omega = sv.get("omega", scene_mod.BY_NAME["omega"].default)
+    omega = abs(sv.get("omega", scene_mod.BY_NAME["omega"].default))   # (reverse: the same)
     whirl = None
     if inputs and "omega" in inputs:   # the whirl angle integrates the speed input
-        w_t = np.interp(r["time"], inputs["time"], inputs["omega"])
+        w_t = np.abs(np.interp(r["time"], inputs["time"], inputs["omega"]))
         whirl = np.concatenate([[0.0], np.cumsum(0.5 * (w_t[1:] + w_t[:-1]) * np.diff(r["time"]))])
     share = chatter_share(r["time"], r["Fz_mod"], omega, whirl)
     row["chatter"] = share > CHATTER_SHARE

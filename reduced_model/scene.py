@@ -58,20 +58,21 @@ PARAMS: tuple[Param, ...] = (
     # --- scene: the paper's test conditions (section 3.1) ---
     Param("theta", 10 * DEG, "rad", 0.0, 45 * DEG, "joint angle", causality="input",
           hi_open=True, display_unit="deg"),
-    Param("omega", 20 * math.pi, "rad/s", 0.0, 1.0e4, "whirl angular speed of the output shaft",
-          causality="input"),
+    Param("omega", 20 * math.pi, "rad/s", -1.0e4, 1.0e4,
+          "whirl angular speed of the output shaft (< 0: reverse)", causality="input"),
     # (upper bounds: twice a launch's 50 kN per roller; above, the lumped bearing's stiff
     # contact needs ever smaller substeps: 0.45 s a 1e-4 s step at 1 MN with three rollers)
-    Param("F_press", 1000.0, "N", 0.0, 1.0e5, "pressing load of the roller on the groove",
+    Param("F_press", 1000.0, "N", -1.0e5, 1.0e5,
+          "pressing load of the roller on the groove (< 0: coast, on the other flank)",
           causality="input"),
-    Param("torque", 0.0, "N.m", 0.0, 6.0e3,
-          "transmitted torque; when > 0 it sets the pressing load per roller, torque/(3 s), "
-          "instead of F_press", causality="input"),
+    Param("torque", 0.0, "N.m", -6.0e3, 6.0e3,
+          "transmitted torque (< 0: coast); when not 0 it sets the pressing load per roller, "
+          "torque/(3 s), instead of F_press", causality="input"),
     Param("plunge_speed", 0.0, "m/s", -1.0, 1.0,
           "speed of the spider along the housing axis (the groove direction z; > 0 along +z): "
           "the trunnions' travel along the groove gets it, so the thrust includes the "
           "plunging resistance", causality="input"),
-    Param("shaft_angle", 0.0, "rad", 0.0, 1.0e9,
+    Param("shaft_angle", 0.0, "rad", -1.0e9, 1.0e9,
           "with drive_by_angle: the whirl (shaft) angle the master wants at the end of this "
           "step; omega over the step is then (shaft_angle - whirl_angle) / dt",
           causality="input"),
@@ -187,7 +188,7 @@ OUTPUTS = (
     ("F_housing_y", "N", "radial force of the joint on the housing along Y = Z x X"),
     ("T_housing", "N.m", "torque of the rollers on the housing about the shaft axis, positive "
      "in the drive sense: sum of each roller's pressing force times its contact radius"),
-    ("F_roller", "N", "pressing load per roller in use: torque / (3 s) when torque > 0, else "
+    ("F_roller", "N", "pressing load per roller in use: torque / (3 s) when torque is not 0, else "
      "F_press"),
     ("plunge", "m", "the spider's travel along the housing axis: the integral of plunge_speed "
      "as held over each communication step, 0 at the start"),
@@ -215,16 +216,16 @@ def defaults(model: str = "analytic") -> dict:
 
 
 def pressing_load(F_press: float, torque: float, s: float) -> float:
-    """Pressing load per roller [N]: torque / (3 s) when a torque [N m] > 0 is given (it wins),
-    else F_press.  s [m] is the pitch-circle radius."""
-    return torque / (3.0 * s) if torque > 0 else F_press
+    """Pressing load per roller [N]: torque / (3 s) when a torque [N m] is given (not 0: it
+    wins; < 0 coast), else F_press (< 0 coast).  s [m] is the pitch-circle radius."""
+    return torque / (3.0 * s) if torque != 0 else F_press
 
 
 def load_text(scene: dict) -> str:
     """The pressing load in use, for headers and titles: from the torque when one is given
     (F_press is then unused), else F_press."""
     tq = scene.get("torque", 0.0)
-    if tq > 0:
+    if tq != 0:
         F = pressing_load(scene["F_press"], tq, scene["s"])
         return f"pressing load = {F:.6g} N per roller (torque {tq:.6g} N m / (3 s); F_press unused)"
     return f"F_press = {scene['F_press']:.6g} N"
@@ -304,6 +305,22 @@ def check_value(name: str, value) -> None:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 
 
+# the analytic model covers drive with forward whirl: its inputs' lower bounds (coast and
+# reverse whirl are the contact model's, TripodRoller.fmu)
+ANALYTIC_LOWER = {"omega": 0.0, "F_press": 0.0, "torque": 0.0}
+
+
+def check_analytic_drive(scene: dict) -> None:
+    """Raise ValueError naming the input when a scene asks the analytic model for coast (a
+    negative torque or F_press) or reverse whirl (a negative omega)."""
+    for name, lo in ANALYTIC_LOWER.items():
+        if scene.get(name, 0.0) < lo:
+            p = BY_NAME[name]
+            raise ValueError(f"{name} = {scene[name]:g}: the analytic model covers drive and "
+                             f"forward whirl only, allowed [0, {p.hi:g}] {p.unit}; coast and "
+                             "reverse whirl are the contact model's (TripodRoller.fmu)")
+
+
 def check_traverse_mu(mu: float) -> None:
     """The reduced traverse model needs mu_groove < 1: the friction it balances tilts the
     contact normal by asin(mu_groove), 90 deg at 1.  Raise ValueError naming the range."""
@@ -333,6 +350,8 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
     if scene.get("n_rollers", 1) not in (1, 3):
         raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
+    if model == "analytic":
+        check_analytic_drive(scene)
     if model == "analytic" and scene["traverse"]:
         check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:

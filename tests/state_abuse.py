@@ -80,7 +80,7 @@ def _deep(h):
 CRAFTED = {   # name: an edit of the decoded header (then re-sealed with a valid checksum)
     "nan-output": lambda h: h["state"]["vars"].update(Fz={"@float": "nan"}),
     "inf-input": lambda h: h["state"]["vars"].update(theta={"@float": "inf"}),
-    "input-out-of-range": lambda h: h["state"]["vars"].update(omega=-1.0),
+    "input-out-of-range": lambda h: h["state"]["vars"].update(omega=1e5),
     "extra-variable": lambda h: h["state"]["vars"].update(__class__=1.0),
     "missing-variable": lambda h: h["state"]["vars"].pop("Fz"),
     "other-guid": lambda h: h.update(guid="{00000000-0000-0000-0000-000000000000}"),

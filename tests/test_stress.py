@@ -14,8 +14,8 @@ def test_stress_quick_subset(tmp_path):
     p = subprocess.run([sys.executable, "-m", "harness.cli", "stress", "--quick", "--out",
                         str(tmp_path)], capture_output=True, text=True, timeout=900)
     assert p.returncode == 0, p.stdout + p.stderr[-2000:]
-    assert "8 passed, 0 failed" in p.stdout
-    assert (tmp_path / "stress.md").read_text().count("| PASS |") == 8
+    assert "9 passed, 0 failed" in p.stdout
+    assert (tmp_path / "stress.md").read_text().count("| PASS |") == 9
 
 
 def test_chatter_share_separates_physics_from_sampling_noise():

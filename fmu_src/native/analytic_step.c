@@ -176,7 +176,7 @@ static void operating_point(const double *M, Op *o)
     o->vp = M[M_KEY_PLUNGE];
     o->s = M[M_S];
     o->r = M[M_R];
-    o->F = tq > 0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
+    o->F = tq != 0.0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
     o->mu = M[M_MU];
     if (M[M_V_ST] > 0) {                                           /* thrust.transition_velocity */
         o->vst = M[M_V_ST];

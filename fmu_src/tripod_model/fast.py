@@ -32,7 +32,8 @@ def outputs_into(o, F_press, dst):
     ContactModel.outputs and JointModel.step compute them.  Returns whether all are finite
     (nothing is written otherwise)."""
     Fx = o[K.O_FX]
-    Fz_mod = o[K.O_FZ] * F_press / Fx if Fx > 1e-9 * max(F_press, 1.0) else 0.0
+    Fz_mod = o[K.O_FZ] * F_press / Fx if Fx * F_press > 1e-9 * max(F_press * F_press, 1.0) \
+        else 0.0   # (coast: F_press and Fx both negative)
     vals = (Fx, o[K.O_FY], o[K.O_FZ], Fz_mod, Fx - F_press, o[K.O_CY], o[K.O_CZ], o[K.O_SLIP],
             o[K.O_SPIN], o[K.O_FZ], 0.0, 0.0, o[K.O_X])
     for v in vals:

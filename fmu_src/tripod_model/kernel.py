@@ -264,14 +264,15 @@ def tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z):
 
 @njit
 def row_load(P, e):
-    """Lumped needle row: radial load F_r [N] and its tangent stiffness [N/m] at the roller's
-    radial offset e [m].  Eq. (17) summed over the loaded needles: F_r = K_row g^(10/9), g the
-    radial approach beyond the row's clearance (roller pushed back onto the trunnion)."""
-    g = -e - P[P_CLR]
+    """Lumped needle row: the row's radial force on the roller F_r [N] along x and its tangent
+    stiffness [N/m] at the roller's radial offset e [m].  Eq. (17) summed over the loaded
+    needles: |F_r| = K_row g^(10/9), g the radial approach beyond the row's clearance; it
+    pushes the roller back onto the trunnion axis (+x in drive, e < 0; -x in coast)."""
+    g = abs(e) - P[P_CLR]
     if g <= 0.0:
         return 0.0, 0.0
     Fr = P[P_KN] * g ** (10.0 / 9.0)
-    return Fr, 10.0 / 9.0 * Fr / g
+    return (Fr if e < 0.0 else -Fr), 10.0 / 9.0 * Fr / g
 
 
 @njit
@@ -371,7 +372,7 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     m = P[P_M]
     ud, om = Y[Y_UD], Y[Y_OM]
     Fr, kr = row_load(P, Y[Y_E])
-    q = P[P_QSUM] * Fr            # sum of the needle loads (> F_r: they fan out)
+    q = P[P_QSUM] * abs(Fr)       # sum of the needle loads (> F_r: they fan out)
     if P[P_FRICN] > 0.5 and q > 0.0:
         # axial sliding of the roller on the needles, mu_needle, tanh law
         gn = math.tanh(3.0 * (ud - L[12]) / P[P_VST])
@@ -622,7 +623,7 @@ def ga_forces(Y, P, theta, w, x0, L, res, Q, M):
         It = P[P_IT]
         drag1, drag2 = tilt_drag(It, L, e1x, e1y, e1z, e2x, e2y, e2z)
         Fr, kr = row_load(P, Y[Y_E])
-        q = P[P_QSUM] * Fr
+        q = P[P_QSUM] * abs(Fr)
         if P[P_FRICN] > 0.5 and q > 0.0:
             Q[0] -= P[P_MUN] * q * math.tanh(3.0 * (Y[Y_UD] - L[12]) / P[P_VST])
         if P[P_ROLLR] > 0.5 and q > 0.0:

@@ -191,8 +191,8 @@ class ContactModel:
         lo, hi = 0.0, p["needle_clearance"] + 1e-3
         for _ in range(100):   # bisection: load(g) is monotonic
             mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if load(mid) < F else (lo, mid)
-        return -0.5 * (lo + hi)
+            lo, hi = (mid, hi) if load(mid) < abs(F) else (lo, mid)
+        return 0.5 * (lo + hi) if F < 0 else -0.5 * (lo + hi)   # against the load
 
     def bearing_load(self):
         """Radial load carried by the needle row now [N]: along the pressing direction, the sum
@@ -201,7 +201,7 @@ class ContactModel:
             return float(np.sum(self.NW[6][:, NDL.D_R1]))
         if self.p["bearing"] != 1:
             return 0.0
-        g = -self.Y[K.Y_E] - self.p["needle_clearance"]
+        g = abs(self.Y[K.Y_E]) - self.p["needle_clearance"]
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
 
     def start(self, theta, omega, F_press=0.0):
@@ -215,6 +215,8 @@ class ContactModel:
         c = math.cos(self.phase)
         sec2 = 1.0 + (T * math.sin(self.phase)) ** 2
         self.Y[K.Y_OM] = p["s"] * T * c * omega / p["r_roller"] / math.sqrt(sec2)
+        if F_press < 0:   # coast: the contact on the other side of the roller rolls it back
+            self.Y[K.Y_OM] = -self.Y[K.Y_OM]
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
         if self.n_needle_bodies:
             self._start_needles(theta)
@@ -378,7 +380,8 @@ class ContactModel:
     def outputs(self, F_press):
         o = self.out
         Fx = o[K.O_FX]
-        Fz_mod = o[K.O_FZ] * F_press / Fx if Fx > 1e-9 * max(F_press, 1.0) else 0.0
+        Fz_mod = o[K.O_FZ] * F_press / Fx if Fx * F_press > 1e-9 * max(F_press * F_press, 1.0) \
+            else 0.0   # (coast: F_press and Fx both negative)
         return {"Fx": Fx, "Fy": o[K.O_FY], "Fz": o[K.O_FZ], "Fz_mod": Fz_mod,
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X],
@@ -482,7 +485,7 @@ class JointModel:
         return tuple(self._stacks[name] for name in _FAST_ARRAYS)
 
     def pressing(self, F_press, torque):
-        """Pressing load per roller [N]: torque / (3 s) when torque > 0, else F_press."""
+        """Pressing load per roller [N]: torque / (3 s) when torque is not 0, else F_press."""
         return scene_mod.pressing_load(F_press, torque, self.p["s"])
 
     def step(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):

@@ -47,18 +47,22 @@ def ga_step_size(P, theta, omega, F, vst):
     - the roller rocking across the groove (sliding along the trunnion, restored by the
       groove's curvature, undamped while the slip saturates the tanh): omega_g^2 =
       F / (m rho), rho the roller centre's distance from the groove axis; omega_g h <= 0.5
-      (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %);
+      (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %; in steady
+      running the bound could stay at 1 kN's above it at no cost in order 3, docs/
+      integrators.md, but the ring an input step excites then strays 1.2 % from a fine
+      reference, tests/test_transients.py);
     - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
     - at least 2000 steps a whirl cycle, and at most 1e-4 s.
     The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
     step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
     """
     h = 1e-4
-    if omega > 0:
-        h = min(h, 2 * math.pi / omega / 2000.0)
-        R = _rate_amplitude(P, theta, omega)
+    w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
+    if w > 0:
+        h = min(h, 2 * math.pi / w / 2000.0)
+        R = _rate_amplitude(P, theta, w)
         if R > 0:
-            h = min(h, vst / (2 * omega * R) / 20.0)
+            h = min(h, vst / (2 * w * R) / 20.0)
     if F > 0:
         rho = P[P_RG] - P[P_R] + (F / P[P_K]) ** (2.0 / 3.0)
         w_g = math.sqrt(F / (P[P_M] * rho))
@@ -87,11 +91,12 @@ def substep(P, theta, omega, F, vst, stiff):
     if stiff and P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         return ga_step_size(P, theta, omega, F, vst)
     h = 1e-4
-    if omega > 0:
-        h = min(h, 2 * math.pi / omega / 2000.0)
-        R = _rate_amplitude(P, theta, omega) if stiff else 0.0
+    w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
+    if w > 0:
+        h = min(h, 2 * math.pi / w / 2000.0)
+        R = _rate_amplitude(P, theta, w) if stiff else 0.0
         if R > 0:
-            h = min(h, vst / (2 * omega * R) / 80.0)
+            h = min(h, vst / (2 * w * R) / 80.0)
     if stiff and P[P_INTEG] == 4.0 and P[P_BEAR] == 2.0:
         return max(min(h, row_substep(P, F)), 1e-7)
     if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
@@ -115,7 +120,7 @@ def row_substep(P, F):
     grows as F^(1/10)).  In that scene order 3 is within 0.2 % of 1 us at 3 us, 0.5 % at
     3.3 us, 1.5 % at 4 us; at 10 us runs change regime, at 20 us the roller is lost.  At 5 kN
     3 us is within 0.05 % of 0.6 us: the friction's stick rate (substep) does not set it."""
-    Fe = max(F, 100.0)
+    Fe = max(abs(F), 100.0)
     g = (Fe / P[P_KN]) ** 0.9           # the row's approach beyond its clearance [m]
     kr = 10.0 / 9.0 * Fe / g
     return 0.55 / math.sqrt(kr / P[P_M])
@@ -123,14 +128,18 @@ def row_substep(P, F):
 
 def groove_offset(P, F):
     """x position of the trunnion axis [m] that presses the roller at the groove bottom with F
-    [N] (Hertz approach): the pressing offset of the ideal bearing."""
-    return P[P_RG] - P[P_R] + (max(F, 0.0) / P[P_K]) ** (2.0 / 3.0)
+    [N] (Hertz approach): the pressing offset of the ideal bearing.  F < 0 (coast) presses it
+    on the other flank, at -x; F = 0 leaves it touching the drive flank."""
+    x = P[P_RG] - P[P_R] + (abs(F) / P[P_K]) ** (2.0 / 3.0)
+    return -x if F < 0.0 else x
 
 
 def lumped_offset(P, F):
     """Static x offset of the roller from the trunnion axis [m] under a radial load F [N],
-    lumped bearing: the clearance plus the row's approach (F/K_row)^0.9, negative."""
-    return -(P[P_CLR] + (max(F, 0.0) / P[P_KN]) ** 0.9)
+    lumped bearing: the clearance plus the row's approach (|F|/K_row)^0.9, against the load
+    (negative in drive, positive in coast)."""
+    e = P[P_CLR] + (abs(F) / P[P_KN]) ** 0.9
+    return e if F < 0.0 else -e
 
 
 def derive(P, OP):
@@ -138,7 +147,7 @@ def derive(P, OP):
     was last derived at (OP[OP_KEY:]): OP's pressing load, substep, substep count and pressing
     offset (ideal and lumped bearing; the resolved one's offset is the model's), P's v_st and
     largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
-    [N m] > 0 is given, else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
+    [N m] is given (not 0; < 0 coast), else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
     the inputs did not move, else how far they moved the driven slip (its amplitude's change
     over v_st; 0 for a load change alone): kernel.inputs_jumped restarts the integrator."""
     theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
@@ -152,7 +161,7 @@ def derive(P, OP):
     jump = -1.0
     if not same and OP[OP_KEY] == OP[OP_KEY]:
         jump = 0.0
-    F = tq / (3.0 * P[P_S]) if tq > 0 else Fp
+    F = tq / (3.0 * P[P_S]) if tq != 0.0 else Fp
     vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
     n = max(1, int(math.ceil(dt / h - 1e-9)))
