@@ -23,7 +23,7 @@ from pythonfmu.enums import Fmi2Status
 
 from reduced_model.housing import housing_forces
 from reduced_model.scene import (ANALYTIC_LOWER, BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS,
-                                 REGIME_CODES, check_analytic_drive, check_value, params_for,
+                                 REGIME_CODES, check_value, params_for,
                                  pressing_load, same_step, same_value, validate)
 from reduced_model.thrust import Thrust
 from reduced_model.traverse import (CHECKED, Traverse, inertia_ratio, outside_checked,
@@ -103,11 +103,17 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         if self._key is not None and all(map(same_value, key, self._key)):
             return
         self._take_inputs(key)
-        sc = self._scene
-        applies = sc["traverse"] and sc["omega"] > 0 and sc["mu_groove"] > 0 and \
-            pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0
+        sc = self._inner()
+        loaded = sc["mu_groove"] > 0 and pressing_load(sc["F_press"], sc["torque"], sc["s"]) > 0
+        applies = sc["traverse"] and sc["omega"] > 0 and loaded
         if not sc["traverse"]:
             self._table, self.regime = None, 0
+        elif self._key is None and self._march is None and sc["omega"] < 0 and loaded:
+            # reverse whirl (or coast at forward whirl) from the start: no periodic table in
+            # that sense; the slide is stepped in time from rest
+            self._table, self.regime = None, 0
+            self._march = [[None, 0.0, None] for _ in self._x]
+            self._op = Traverse(sc, periodic=False)
         elif self._key is None and self._march is None:
             # the start (or a restored state from before the inputs moved): the settled table
             self._table = None
@@ -130,7 +136,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         else:
             # the inputs moved: the slide is stepped in time from where the table had it
             if self._march is None:
-                self._march = [list(self._table.state_at(x)) + [None]
+                self._march = [list(self._table.state_at(self._at(x))) + [None]
                                if self._table is not None else [None, 0.0, None]
                                for x in self._x]
                 self.log("the inputs moved: from here on the traverse model steps the "
@@ -144,13 +150,41 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         """Check the inputs key (_INPUTS order) and make them the scene's."""
         for name, value in zip(_INPUTS, key):
             check_value(name, value)
-        check_analytic_drive(dict(zip(_INPUTS, key)))     # before anything changes
         for name, value in zip(_INPUTS, key):
             self._scene[name] = float(value)
-        self._thrust = Thrust(self._scene)
+        self._thrust = Thrust(self._inner())
         sc = self._scene
-        now = (sc["theta"], sc["omega"], pressing_load(sc["F_press"], sc["torque"], sc["s"]))
+        now = (sc["theta"], abs(sc["omega"]),
+               abs(pressing_load(sc["F_press"], sc["torque"], sc["s"])))
         self._widen_span(now, now)
+
+    # --- coast: drive at the opposite whirl, turned 180 deg about the trunnion axis ------------
+    # (docs/model.md, "Coast and reverse whirl": x -> -x, z -> -z; Fx, Fz, Fz_mod, the whirl
+    # angle and the plunge speed flip, Fy and the slip do not)
+    @property
+    def _mirror(self):
+        sc = self._scene
+        return sc is not None and pressing_load(sc["F_press"], sc["torque"], sc["s"]) < 0
+
+    def _inner(self):
+        """The scene the reduced model runs: the inputs, or for coast the drive scene whose
+        turn it is."""
+        sc = self._scene
+        if not self._mirror:
+            return sc
+        return dict(sc, omega=-sc["omega"], F_press=-sc["F_press"], torque=-sc["torque"],
+                    plunge_speed=-sc["plunge_speed"])
+
+    def _at(self, x):
+        """The reduced model's whirl angle for the roller's angle x [rad]."""
+        return -x if self._mirror else x
+
+    def _outer(self, Fz, Fz_mod, Fx, Fy, slip):
+        """The reduced model's outputs (Fz, Fz_mod, Fx, Fy [N], slip speed [m/s]) as the
+        joint's: turned back for coast."""
+        if self._mirror:
+            return -Fz, -Fz_mod, -Fx, Fy, slip
+        return Fz, Fz_mod, Fx, Fy, slip
 
     def _widen_span(self, lows, highs):
         """The span of the inputs over the run (theta [rad], omega [rad/s], pressing load [N]):
@@ -201,10 +235,6 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 raise StateError(f"state taken with another {n} than this instance's")
         for n in _INPUTS:
             check_value(n, st["scene"][n])
-        try:
-            check_analytic_drive(st["scene"])
-        except ValueError as e:
-            raise StateError(str(e)) from None
         n = scene["n_rollers"]
         same_layout(st["x"], [0.0] * n, "x")
         if st["dt"] is not None:
@@ -279,7 +309,9 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             self._dt = step_size
         if self._march is not None and self._op is not None:
             for i, m in enumerate(self._march):
-                m[0], m[1], self._x[i], m[2] = self._op.march(m[0], m[1], self._x[i], self._dt)
+                m[0], m[1], x, m[2] = self._op.march(m[0], m[1], self._at(self._x[i]),
+                                                     self._dt)
+                self._x[i] = self._at(x)
         else:
             w = self._scene["omega"] * self._dt
             for i in range(len(self._x)):
@@ -294,8 +326,10 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         at these inputs and this step size, with its arrays (the native layer's _fast)."""
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
-        if self._fast_lib is None or len(self._x) > 3 or self.drive_by_angle:
-            return          # (driven by angle: omega is derived each step, in Python)
+        if self._fast_lib is None or len(self._x) > 3 or self.drive_by_angle or \
+                self._mirror or self._scene["omega"] < 0:
+            return          # (driven by angle: omega is derived each step, in Python; the
+            #                  compiled steps do drive at forward whirl)
         if self._march is not None:
             self._offer_march()
             return
@@ -405,18 +439,19 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         fz, fx, fy = [], [], []
         if self._march is not None and self._march[0][2] is not None:
             for i, m in enumerate(self._march):
+                r = self._outer(*m[2])
                 if i == 0:
-                    Fz, Fz_mod, Fx, Fy, slip = m[2]
-                fz.append(m[2][0])
-                fx.append(m[2][2])
-                fy.append(m[2][3])
+                    Fz, Fz_mod, Fx, Fy, slip = r
+                fz.append(r[0])
+                fx.append(r[2])
+                fy.append(r[3])
             self.Fz, self.Fz_mod, self.Fx, self.Fy = Fz, Fz_mod, Fx, Fy
             self.dFx = Fx - F
             self.slip_speed = slip
         elif self._table is not None:
             at = self._table.at
             for i, x in enumerate(self._x):
-                r = at(x)
+                r = self._outer(*at(self._at(x)))
                 if i == 0:
                     Fz, Fz_mod, Fx, Fy, slip = r
                 fz.append(r[0])
@@ -427,11 +462,12 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             self.slip_speed = slip
         else:
             at = self._thrust.at
+            sign = -1.0 if self._mirror else 1.0
             for i, x in enumerate(self._x):
-                r = at(x)
+                r = at(self._at(x))
                 if i == 0:
                     _, _, ft, V, phi, _ = r
-                fz.append(r[0])
+                fz.append(sign * r[0])
                 fx.append(F)
                 fy.append(r[2] * math.cos(r[4]))
             self.Fz = fz[0]

@@ -32,6 +32,7 @@ ORDERS = (1, 3)
 def split_scene(overrides: dict) -> tuple[dict, dict]:
     """Validated contact scene and the analytic scene it implies (shared names only)."""
     contact = scene_mod.validate(overrides, "contact")
+    scene_mod.check_drive(contact, "tripod-thrust compare")
     analytic = {k: v for k, v in contact.items() if "analytic" in scene_mod.BY_NAME[k].models}
     return contact, scene_mod.validate(analytic, "analytic")
 

@@ -39,6 +39,7 @@ def analytic_report(overrides=None, n=N_PER_CYCLE):
     where it applies, so the regime is known); "model": which one the analytic FMU uses.
     """
     sc = scene_mod.validate(overrides, "analytic")
+    scene_mod.check_drive(sc, "tripod-thrust analytic")
     x = 2.0 * np.pi * np.arange(n) / n
     ts = time_series(sc, x)
     cf = closed_form(sc)

@@ -305,20 +305,22 @@ def check_value(name: str, value) -> None:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 
 
-# the analytic model covers drive with forward whirl: its inputs' lower bounds (coast and
-# reverse whirl are the contact model's, TripodRoller.fmu)
+# the analytic FMU's compiled steps run drive at forward whirl: the lower bounds of the inputs
+# it takes there (coast and reverse whirl step through Python)
 ANALYTIC_LOWER = {"omega": 0.0, "F_press": 0.0, "torque": 0.0}
 
 
-def check_analytic_drive(scene: dict) -> None:
-    """Raise ValueError naming the input when a scene asks the analytic model for coast (a
-    negative torque or F_press) or reverse whirl (a negative omega)."""
-    for name, lo in ANALYTIC_LOWER.items():
-        if scene.get(name, 0.0) < lo:
-            p = BY_NAME[name]
-            raise ValueError(f"{name} = {scene[name]:g}: the analytic model covers drive and "
-                             f"forward whirl only, allowed [0, {p.hi:g}] {p.unit}; coast and "
-                             "reverse whirl are the contact model's (TripodRoller.fmu)")
+def check_drive(scene: dict, what: str) -> None:
+    """Raise ValueError naming the input when ``what`` (a report of the closed forms over
+    whirl cycles) is asked for coast (a negative pressing load) or reverse whirl (a negative
+    omega): both FMUs take those, the reports cover drive at forward whirl."""
+    F = pressing_load(scene["F_press"], scene.get("torque", 0.0), scene["s"])
+    for name, bad in (("omega", scene["omega"] < 0), ("torque", scene.get("torque", 0.0) < 0),
+                      ("F_press", F < 0)):
+        if bad:
+            raise ValueError(f"{name} = {scene[name]:g}: {what} covers drive at forward whirl "
+                             "(omega, torque, F_press >= 0); coast and reverse whirl: run the "
+                             "FMUs, both take them")
 
 
 def check_traverse_mu(mu: float) -> None:
@@ -350,8 +352,6 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
     if scene.get("n_rollers", 1) not in (1, 3):
         raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
-    if model == "analytic":
-        check_analytic_drive(scene)
     if model == "analytic" and scene["traverse"]:
         check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:

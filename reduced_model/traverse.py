@@ -61,16 +61,16 @@ INERTIA_LIMIT = 0.1
 def inertia_ratio(sc: dict) -> float:
     """The roller's inertia force over the pressing load, m_roller r_roller (2 omega)^2 / F
     (the traverse slide runs at twice the whirl); inf without load."""
-    F = pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"])
+    F = abs(pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"]))
     a = sc["m_roller"] * sc["r_roller"] * (2.0 * sc["omega"]) ** 2
     return a / F if F > 0 else (math.inf if a > 0 else 0.0)
 
 
 CHECKED = (
     ("theta", "deg", 2.0, 25.0, lambda sc: math.degrees(sc["theta"])),
-    ("whirl", "Hz", 0.5, 50.0, lambda sc: sc["omega"] / (2.0 * math.pi)),
+    ("whirl", "Hz", 0.5, 50.0, lambda sc: abs(sc["omega"]) / (2.0 * math.pi)),
     ("pressing load", "N", 300.0, 50000.0,
-     lambda sc: pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"])),
+     lambda sc: abs(pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"]))),
     ("mu_groove", "", 0.03, 0.12, lambda sc: sc["mu_groove"]),
     ("groove clearance", "mm", 0.05, 0.8, lambda sc: 1e3 * (sc["r_groove"] - sc["r_roller"])),
     ("roller inertia m r (2 omega)^2 / load", "", 0.0, INERTIA_LIMIT, inertia_ratio),
@@ -386,7 +386,7 @@ class Traverse:
         ``at`` gives them).  Scalar libm math throughout: the analytic FMU's compiled march
         (fmu_src/native/analytic_step.c) is this, bit for bit (tests/test_fast.py)."""
         w = self.scene["omega"]
-        n = max(1, math.ceil(w * dt * self.n / (2.0 * math.pi) - 1e-9))
+        n = max(1, math.ceil(abs(w) * dt * self.n / (2.0 * math.pi) - 1e-9))
         h = dt / n
         wh = w * h
         _, _, V0, _, _, _ = self._drive_on(x, SCALAR)

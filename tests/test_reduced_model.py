@@ -148,8 +148,8 @@ def test_small_angle_kinematics_error_orders():
     ({"bogus": 1.0}, "bogus"),
     ({"theta": 45 * DEG}, "theta"),
     ({"theta": -0.1}, "theta"),
-    ({"F_press": -1.0}, "F_press"),
-    ({"omega": -1.0}, "omega"),
+    ({"F_press": -2e5}, "F_press"),     # (negative: coast, allowed down to -1e5 N)
+    ({"omega": -2e4}, "omega"),         # (negative: reverse whirl, allowed down to -1e4)
     ({"omega": float("nan")}, "omega"),
     ({"mu_groove": float("inf")}, "mu_groove"),
     ({"r_groove": 0.0185}, "r_groove"),

@@ -342,7 +342,7 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
     M[M_LOAD_LO] = fmin(M[M_LOAD_LO], o.F);
     M[M_LOAD_HI] = fmax(M[M_LOAD_HI], o.F);
     double dt = M[M_DT], table_n = M[M_N];
-    double nd = ceil(o.w * dt * table_n / (2.0 * PI) - 1e-9);
+    double nd = ceil(fabs(o.w) * dt * table_n / (2.0 * PI) - 1e-9);
     long n = nd > 1.0 ? (long)nd : 1;
     double h = dt / (double)n, wh = o.w * h;
     double x1[3], st[3][S_LEN], o_[OUT_LEN], fz[3] = {0.0, 0.0, 0.0};
