@@ -282,6 +282,14 @@ def cmd_runup(args) -> int:
         if not args.duration > 0:
             raise ValueError(f"--duration = {args.duration} s: allowed (0, 600]")
         inputs, stop = T.ramp_inputs(args.from_hz, args.to_hz, args.duration), args.duration
+    if args.plunge_amplitude:
+        if not (0 < args.plunge_amplitude <= 0.05 and 0 < args.plunge_hz <= 500):
+            raise ValueError(f"--plunge-amplitude = {args.plunge_amplitude} m, --plunge-hz = "
+                             f"{args.plunge_hz} Hz: allowed (0, 0.05] m and (0, 500] Hz")
+        if "plunge_speed" in inputs:
+            raise ValueError("--plunge-amplitude and an input history with plunge_speed: "
+                             "give one")
+        inputs = T.with_plunge(inputs, stop, args.plunge_amplitude, args.plunge_hz, args.dt)
     rows = T.runup_fmus(sv, inputs, stop, dt=args.dt)
     if not rows:
         raise ValueError("the history holds no whole revolution of the whirl angle")
@@ -370,6 +378,11 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--input", metavar="FILE.csv",
                    help="an input history instead of the ramp: FMPy's input CSV (time, then "
                         "any input columns by name, SI units)")
+    p.add_argument("--plunge-amplitude", type=float, default=0.0, metavar="M",
+                   help="a harmonic plunge on top [m] (the spider at M sin(2 pi f t); a "
+                        "constant plunge speed: --set plunge_speed=V)")
+    p.add_argument("--plunge-hz", type=float, default=25.0,
+                   help="frequency of that plunge [Hz]")
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
     p.add_argument("--out", metavar="DIR", default="out/runup", help="output folder")
     p.set_defaults(func=cmd_runup)

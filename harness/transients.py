@@ -100,6 +100,21 @@ def ramp_inputs(f0, f1, duration):
     return {"time": [0.0, duration], "omega": [2 * math.pi * f0, 2 * math.pi * f1]}
 
 
+def with_plunge(inputs, stop, amplitude, hz, dt=DT):
+    """``inputs`` (an FMPy input table, {name: list} with "time") with a harmonic plunge added:
+    the spider at amplitude [m] sin(2 pi hz t), as the input plunge_speed [m/s] = 2 pi hz
+    amplitude cos(2 pi hz t), every input given on a grid of dt [s] up to stop [s]."""
+    import numpy as np
+    t = np.arange(0.0, stop + 0.5 * dt, dt)
+    out = {"time": t.tolist()}
+    for k, v in inputs.items():
+        if k != "time":
+            out[k] = np.interp(t, inputs["time"], v).tolist()
+    w = 2 * math.pi * hz
+    out["plunge_speed"] = (w * amplitude * np.cos(w * t)).tolist()
+    return out
+
+
 def read_input_csv(path):
     """An input history in FMPy's CSV format (a ``time`` column, then input columns by name,
     SI units) as {name: list}."""
