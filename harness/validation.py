@@ -15,7 +15,8 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 from reduced_model.steady import MAX_CYCLES, MIN_CYCLES, REL_TOL, cycle_change, settled
 from reduced_model.thrust import closed_form
-from reduced_model.traverse import GRID_RANGES, INERTIA_LIMIT, Traverse, inertia_ratio
+from reduced_model.traverse import (GRID_RANGES, INERTIA_LIMIT, PLUNGE_RANGE, Traverse,
+                                    inertia_ratio)
 
 from .fmus import ROOT
 
@@ -31,6 +32,7 @@ NAMED = {
                                 "mu_groove": 0.10, "r_groove": 0.0197},
 }
 GRID_N = 40
+PLUNGE_N = 12     # more scenes over the same ranges with a plunge speed in PLUNGE_RANGE
 
 
 def grid() -> dict:
@@ -48,6 +50,15 @@ def grid() -> dict:
               "F_press": p0 * (p1 / p0) ** u[2], "mu_groove": mu0 + (mu1 - mu0) * u[3],
               "r_groove": r + 1e-3 * c0 * (c1 / c0) ** u[4]}
         out[f"grid {i + 1}"] = ov
+    # the same ranges with the spider plunging (a 6-dimensional sequence of its own)
+    v0, v1 = PLUNGE_RANGE
+    for i, u in enumerate(qmc.Halton(6, scramble=False).random(PLUNGE_N + 1)[1:]):
+        ov = {"theta": (th0 + (th1 - th0) * u[0]) * DEG,
+              "omega": 2 * math.pi * f0 * (f1 / f0) ** u[1],
+              "F_press": p0 * (p1 / p0) ** u[2], "mu_groove": mu0 + (mu1 - mu0) * u[3],
+              "r_groove": r + 1e-3 * c0 * (c1 / c0) ** u[4],
+              "plunge_speed": v0 + (v1 - v0) * u[5]}
+        out[f"plunge {i + 1}"] = ov
     return out
 
 
@@ -57,13 +68,13 @@ def contact_orders(overrides: dict, per_cycle: int = 2000, max_cycles: int = 3 *
     sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model.model import JointModel
     sc = scene_mod.validate(dict(overrides, bearing=0, traverse=True), "contact")
-    th, w, F = sc["theta"], sc["omega"], sc["F_press"]
+    th, w, F, vp = sc["theta"], sc["omega"], sc["F_press"], sc["plunge_speed"]
     m = JointModel(sc)
     dt = 2 * math.pi / w / per_cycle
     y = []
     ok = False
     for c in range(1, max_cycles + 1):
-        y += [m.step(dt, th, w, F)["Fz_mod"] for _ in range(per_cycle)]
+        y += [m.step(dt, th, w, F, 0.0, vp)["Fz_mod"] for _ in range(per_cycle)]
         if c >= MIN_CYCLES:
             t = dt * np.arange(1, len(y) + 1)
             ok = settled(cycle_change(t, np.array(y), w * t), REL_TOL)
@@ -86,6 +97,7 @@ def grid_rows(scenes: dict | None = None) -> list[dict]:
                      "whirl_hz": sc["omega"] / (2 * math.pi), "F_press": sc["F_press"],
                      "mu_groove": sc["mu_groove"],
                      "clearance_mm": 1e3 * (sc["r_groove"] - sc["r_roller"]),
+                     "plunge_speed": sc["plunge_speed"],
                      "regime": tr.regime(), "cycles": cycles, "settled": ok,
                      "contact": oc[3], "eq27": e27, "traverse": o3,
                      "eq27_rel": e27[0] / oc[3][0] - 1, "traverse_rel": o3[0] / oc[3][0] - 1,
@@ -102,7 +114,8 @@ def _dphase(a, b):
 def summary(rows) -> dict:
     """Errors of the traverse model over the scenes inside the checked range (the roller's
     inertia ratio at most traverse.INERTIA_LIMIT), and the worst of those beyond it."""
-    inside = [r for r in rows if r["inertia"] <= INERTIA_LIMIT]
+    inside = [r for r in rows if r["inertia"] <= INERTIA_LIMIT and r["plunge_speed"] == 0]
+    plunging = [r for r in rows if r["inertia"] <= INERTIA_LIMIT and r["plunge_speed"] != 0]
     beyond = [r for r in rows if r["inertia"] > INERTIA_LIMIT]
     a = np.abs([r["traverse_rel"] for r in inside])
     b = np.abs([r["eq27_rel"] for r in inside])
@@ -112,30 +125,41 @@ def summary(rows) -> dict:
             "eq27_worst_rel": float(b.max()), "n": len(inside), "n_beyond": len(beyond),
             "beyond_worst_rel": max((abs(r["traverse_rel"]) for r in beyond), default=0.0),
             "beyond_worst_dphase": max((abs(r["traverse_dphase"]) for r in beyond),
-                                       default=0.0)}
+                                       default=0.0),
+            "n_plunging": len(plunging),
+            "plunging_median_rel": float(np.median([abs(r["traverse_rel"]) for r in plunging]))
+            if plunging else 0.0,
+            "plunging_worst_rel": max((abs(r["traverse_rel"]) for r in plunging), default=0.0),
+            "plunging_worst_dphase": max((abs(r["traverse_dphase"]) for r in plunging),
+                                         default=0.0)}
 
 
 def markdown(rows) -> str:
     s = summary(rows)
     out = ["| scene | theta [deg] | whirl [Hz] | F_press [N] | mu_groove | clearance [mm] "
-           "| inertia ratio | regime | cycles | contact order 3 [N, deg] | Eqs. 18-27 "
-           "| traverse model |",
-           "|---|---|---|---|---|---|---|---|---|---|---|---|"]
+           "| plunge [m/s] | inertia ratio | regime | cycles | contact order 3 [N, deg] "
+           "| Eqs. 18-27 | traverse model |",
+           "|---|---|---|---|---|---|---|---|---|---|---|---|---|"]
     for r in rows:
         beyond = " (beyond)" if r["inertia"] > INERTIA_LIMIT else ""
         out.append(
             f"| {r['scene']} | {r['theta_deg']:.1f} | {r['whirl_hz']:.1f} | {r['F_press']:.0f} "
-            f"| {r['mu_groove']:.3f} | {r['clearance_mm']:.3f} | {r['inertia']:.3g}{beyond} "
+            f"| {r['mu_groove']:.3f} | {r['clearance_mm']:.3f} | {r['plunge_speed']:+.3f} "
+            f"| {r['inertia']:.3g}{beyond} "
             f"| {r['regime']} "
             f"| {r['cycles']}{'' if r['settled'] else ' (cap)'} "
             f"| {r['contact'][0]:.3f} at {r['contact'][1]:.1f} "
             f"| {100 * r['eq27_rel']:+.1f} %, {r['eq27_dphase']:+.1f} deg "
             f"| {100 * r['traverse_rel']:+.1f} %, {r['traverse_dphase']:+.1f} deg |")
-    out += ["", f"Traverse model, order 3 amplitude over the {s['n']} scenes inside the checked "
-            f"range (inertia ratio m r (2 omega)^2 / load up to {INERTIA_LIMIT:g}): median error "
+    out += ["", f"Traverse model, order 3 amplitude over the {s['n']} scenes without plunge "
+            f"inside the checked range (inertia ratio m r (2 omega)^2 / load up to "
+            f"{INERTIA_LIMIT:g}): median error "
             f"{100 * s['median_rel']:.1f} %, worst {100 * s['worst_rel']:.1f} %; phase within "
             f"{s['worst_dphase']:.1f} deg. Eqs. (18)-(27): median {100 * s['eq27_median_rel']:.1f} %, "
-            f"worst {100 * s['eq27_worst_rel']:.0f} %. The {s['n_beyond']} scenes beyond that "
+            f"worst {100 * s['eq27_worst_rel']:.0f} %. The {s['n_plunging']} plunging scenes "
+            f"inside it: median {100 * s['plunging_median_rel']:.1f} %, worst "
+            f"{100 * s['plunging_worst_rel']:.1f} %, phase within "
+            f"{s['plunging_worst_dphase']:.1f} deg. The {s['n_beyond']} scenes beyond that "
             f"ratio: worst {100 * s['beyond_worst_rel']:.1f} %, phase within "
             f"{s['beyond_worst_dphase']:.1f} deg."]
     return "\n".join(out)

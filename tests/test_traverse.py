@@ -71,6 +71,10 @@ def test_traverse_model_against_the_contact_model(rows):
     assert s["n"] >= 30 and s["n_beyond"] >= 2
     assert s["median_rel"] < 0.02 and s["worst_rel"] < 0.05 and s["worst_dphase"] < 3.0, s
     assert s["beyond_worst_rel"] < 0.25, s
+    # the spider plunging at up to 0.1 m/s: within 10 % and 6 deg (measured 7.6 %, 5.1 deg:
+    # where the plunge's sliding dwarfs the whirl's, order 3 is a few tenths of a newton)
+    assert s["n_plunging"] >= 10
+    assert s["plunging_worst_rel"] < 0.10 and s["plunging_worst_dphase"] < 6.0, s
     paper = rows[0]
     assert paper["scene"].startswith("paper")
     assert abs(paper["traverse_rel"]) < 0.02 and abs(paper["traverse_dphase"]) < 3.0
