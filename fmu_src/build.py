@@ -195,13 +195,27 @@ def fmu_path(name="TripodRoller") -> Path:
     return BUILD / f"{name}.fmu"
 
 
+def sources_hash(name="TripodRoller") -> str:
+    """Content hash of the FMU's sources (their paths and bytes)."""
+    h = hashlib.sha256()
+    for s in sorted(_sources(name)):
+        h.update(str(s).encode() + b"\0" + s.read_bytes())
+    return h.hexdigest()
+
+
+def _stamp(name) -> Path:
+    """build/<name>.fmu.sources: the sources' hash the FMU was built from."""
+    return BUILD / f"{name}.fmu.sources"
+
+
 def is_stale(name="TripodRoller") -> bool:
-    """True when the FMU is missing or older than any of its sources."""
-    f = fmu_path(name)
-    if not f.exists():
+    """True when the FMU is missing or was built from other sources than today's (by content:
+    a source edited while a build ran, after it was read, leaves the FMU stale, which the
+    files' times could not tell)."""
+    f, stamp = fmu_path(name), _stamp(name)
+    if not f.exists() or not stamp.exists():
         return True
-    t = f.stat().st_mtime
-    return any(s.stat().st_mtime > t for s in _sources(name))
+    return stamp.read_text().strip() != sources_hash(name)
 
 
 def _units_and_ranges(xml: bytes) -> bytes:
@@ -257,6 +271,7 @@ def build(name="TripodRoller", force=False) -> Path:
     dest = fmu_path(name)
     if not force and not is_stale(name):
         return dest
+    built_from = sources_hash(name)    # before anything is read
     if force:
         native_library(force=True)
     extra = ()
@@ -264,8 +279,10 @@ def build(name="TripodRoller", force=False) -> Path:
         extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
     else:
         extra = [(analytic_step_library(force), "resources/_analytic_step.so")]
-    return package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
-                   _units_and_ranges, extra)
+    out = package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
+                  _units_and_ranges, extra)
+    _stamp(name).write_text(built_from + "\n")
+    return out
 
 
 if __name__ == "__main__":
