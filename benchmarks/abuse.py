@@ -94,6 +94,7 @@ def main():
     ap.add_argument("--random", type=int, default=500)
     ap.add_argument("--no-valgrind", action="store_true")
     ap.add_argument("--no-docs", action="store_true")
+    ap.add_argument("--scenes", help="comma-separated indexes into SCENES (default: all)")
     ap.add_argument("--out", default=str(ROOT / "out" / "abuse"))
     args = ap.parse_args()
     if not args.no_valgrind and not shutil.which("valgrind"):
@@ -107,7 +108,8 @@ def main():
         valgrind([sys.executable, "-c", BASELINE], log, dict(os.environ, PYTHONMALLOC="malloc"))
         base = {signature(f) for _, f in errors(log.read_text())}
     rows = []
-    for name, ints, kind in SCENES:
+    pick = SCENES if not args.scenes else [SCENES[int(i)] for i in args.scenes.split(",")]
+    for name, ints, kind in pick:
         fmu = ensure_fmu(name)
         label = f"{name} " + ", ".join(f"{k} {v}" for k, v in ints.items())
         t0 = time.perf_counter()
