@@ -26,7 +26,7 @@ from reduced_model.scene import (ANALYTIC_LOWER, BY_NAME, CONTACT_ONLY_OUTPUTS, 
                                  REGIME_CODES, check_value, params_for,
                                  pressing_load, same_step, same_value, validate)
 from reduced_model.thrust import Thrust
-from reduced_model.traverse import (CHECKED, Traverse, inertia_ratio, outside_checked,
+from reduced_model.traverse import (INERTIA, Traverse, inertia_ratio, outside_checked,
                                     outside_span)
 from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
@@ -284,7 +284,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             outside = [p for p in (outside_span("theta", math.degrees(t0), math.degrees(t1)),
                                    outside_span("whirl", w0 / (2 * math.pi), w1 / (2 * math.pi)),
                                    outside_span("pressing load", f0, f1),
-                                   outside_span(CHECKED[5][0], worst, worst)) if p]
+                                   outside_span(INERTIA, worst, worst)) if p]
             if outside:
                 self.log("during the run the inputs left the range the traverse model was "
                          "checked against the contact model in (docs/validation.md): "

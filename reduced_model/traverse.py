@@ -56,6 +56,7 @@ MAX_CYCLES = 60            # cycles of the cycle map the secant may run
 # 32 Hz and 470 N), so the checked range also bounds that ratio, where the grid stayed within
 # 5 %.  Outside, the CLI and the analytic FMU say so.
 INERTIA_LIMIT = 0.1
+INERTIA = "roller inertia m r (2 omega)^2 / load"   # its CHECKED name
 
 
 def inertia_ratio(sc: dict) -> float:
@@ -73,7 +74,7 @@ CHECKED = (
      lambda sc: abs(pressing_load(sc["F_press"], sc.get("torque", 0.0), sc["s"]))),
     ("mu_groove", "", 0.03, 0.12, lambda sc: sc["mu_groove"]),
     ("groove clearance", "mm", 0.05, 0.8, lambda sc: 1e3 * (sc["r_groove"] - sc["r_roller"])),
-    ("roller inertia m r (2 omega)^2 / load", "", 0.0, INERTIA_LIMIT, inertia_ratio),
+    (INERTIA, "", 0.0, INERTIA_LIMIT, inertia_ratio),
     ("plunge speed", "m/s", -0.1, 0.1, lambda sc: sc.get("plunge_speed", 0.0)),
 )
 PLUNGE_RANGE = (-0.1, 0.1)   # [m/s] the plunge speeds of the grid's plunging scenes
