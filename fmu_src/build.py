@@ -25,14 +25,17 @@ BUILD = ROOT / "build"
 # what goes into resources/: the model packages (numpy/scipy/numba come from the host)
 PACKAGES = (FMU_SRC / "tripod_model", ROOT / "reduced_model")
 SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
-          "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py"}
+          "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py",
+          "Powertrain": FMU_SRC / "Powertrain.py"}     # the driveline example's (driveline/)
 # the analytic FMU needs the reduced model only
 KIT = FMU_SRC / "slavekit.py"      # what both slaves share
 BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
-          "TripodRollerAnalytic": (ROOT / "reduced_model", KIT)}
+          "TripodRollerAnalytic": (ROOT / "reduced_model", KIT),
+          "Powertrain": (ROOT / "driveline", ROOT / "reduced_model", KIT)}
 # what each FMU needs in the Python it runs in (versions from pyproject.toml): the FMU's log
 # names them when they are missing
-RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",)}
+RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",),
+                "Powertrain": ("numpy", "scipy")}
 
 NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
 AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt kernel
@@ -49,7 +52,7 @@ def _sources(name):
     files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
     if name == "TripodRoller":
         files += list(AOT)
-    else:
+    elif name == "TripodRollerAnalytic":
         files.append(ANALYTIC_SRC)
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
@@ -218,9 +221,17 @@ def is_stale(name="TripodRoller") -> bool:
     return stamp.read_text().strip() != sources_hash(name)
 
 
-def _units_and_ranges(xml: bytes) -> bytes:
-    from reduced_model.scene import BY_NAME
-    from reduced_model.scene import OUTPUTS
+def _table(name):
+    """The parameter table (name -> Param) and the outputs ((name, unit, description)) the
+    FMU ``name``'s variables come from."""
+    if name == "Powertrain":
+        from driveline.powertrain import BY_NAME, OUTPUTS
+    else:
+        from reduced_model.scene import BY_NAME, OUTPUTS
+    return BY_NAME, OUTPUTS
+
+
+def _units_and_ranges(xml: bytes, BY_NAME, OUTPUTS) -> bytes:
     out_units = {n: u for n, u, _ in OUTPUTS}
     root = ET.fromstring(xml)
     units = sorted({p.unit for p in BY_NAME.values() if p.kind == "real"} | set(out_units.values()))
@@ -277,10 +288,11 @@ def build(name="TripodRoller", force=False) -> Path:
     extra = ()
     if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
         extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
-    else:
+    elif name == "TripodRollerAnalytic":
         extra = [(analytic_step_library(force), "resources/_analytic_step.so")]
+    table = _table(name)
     out = package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
-                  _units_and_ranges, extra)
+                  lambda xml: _units_and_ranges(xml, *table), extra)
     _stamp(name).write_text(built_from + "\n")
     return out
 

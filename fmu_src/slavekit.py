@@ -19,7 +19,21 @@ def register_table(slave, model, outputs=None):
     """Register the ``model``'s parameters (inputs continuous, parameters fixed) with their
     defaults, and the outputs named in ``outputs`` (all of OUTPUTS if None), on ``slave``.
     Returns the parameter declarations."""
-    params = params_for(model)
+    params = register_params(slave, params_for(model),
+                             [o for o in OUTPUTS if outputs is None or o[0] in outputs])
+    for name, desc, owner in INT_OUTPUTS:
+        if owner == model:
+            setattr(slave, name, 0)
+            slave.register_variable(Integer(name, causality=Fmi2Causality.output,
+                                            variability=Fmi2Variability.discrete,
+                                            initial=Fmi2Initial.calculated, description=desc))
+    return params
+
+
+def register_params(slave, params, outputs):
+    """Register ``params`` (a parameter table's entries: inputs continuous, parameters fixed)
+    with their defaults, and the Real ``outputs`` ((name, unit, description)), on ``slave``.
+    Returns ``params``."""
     for p in params:
         setattr(slave, p.name, p.default)
         if p.causality == "input":
@@ -30,18 +44,11 @@ def register_table(slave, model, outputs=None):
                                                description=p.description))
     # outputs are calculated at initialisation (the model's values at the start time; the
     # build lists them as InitialUnknowns), so they declare no start value
-    for name, _unit, desc in OUTPUTS:
-        if outputs is None or name in outputs:
-            setattr(slave, name, 0.0)
-            slave.register_variable(Real(name, causality=Fmi2Causality.output,
-                                         variability=Fmi2Variability.continuous,
-                                         initial=Fmi2Initial.calculated, description=desc))
-    for name, desc, owner in INT_OUTPUTS:
-        if owner == model:
-            setattr(slave, name, 0)
-            slave.register_variable(Integer(name, causality=Fmi2Causality.output,
-                                            variability=Fmi2Variability.discrete,
-                                            initial=Fmi2Initial.calculated, description=desc))
+    for name, _unit, desc in outputs:
+        setattr(slave, name, 0.0)
+        slave.register_variable(Real(name, causality=Fmi2Causality.output,
+                                     variability=Fmi2Variability.continuous,
+                                     initial=Fmi2Initial.calculated, description=desc))
     return params
 
 

@@ -285,7 +285,13 @@ def _param(name: str) -> Param:
 
 def check_value(name: str, value) -> None:
     """Raise ValueError naming ``name`` and its allowed range if ``value`` is outside it."""
-    p = _param(name)
+    check_param(_param(name), value)
+
+
+def check_param(p: Param, value) -> None:
+    """Raise ValueError naming the parameter ``p`` and its allowed range if ``value`` is
+    outside it (any table's Param: the joint's here, the powertrain's in driveline/)."""
+    name = p.name
     if p.kind == "bool":
         if not isinstance(value, (bool, int)) or int(value) not in (0, 1):
             raise ValueError(f"{name} = {value!r}: allowed {p.range_text()}")

@@ -20,7 +20,7 @@ contact normal n towards the trunnion axis a at whirl angle x (docs/model.md, "T
       must follow the rolling trunnion's tilt xi as well as its contact point)
   T5  normal force:              f_n = K (rho_c / sqrt(1 - p^2) - (r_groove - r_roller))^1.5
   T6  forces on the groove:      Fz = -f_n (p sin phi + beta cos phi),
-                                 Fx = f_n (sqrt(1 - p^2) + p^2 - p xi),  Fy = f_n p cos phi
+                                 Fx = f_n (sqrt(1 - p^2) + p^2 - p xi),  F . a = 0 (T1) gives Fy
 
 The periodic solution of T4 (implicit trapezoidal rule over one whirl cycle, the start value by
 a secant iteration on the cycle map) is tabulated once per operating point; ``Traverse.at``
@@ -433,7 +433,9 @@ def groove_forces(fn, p, beta, phi, xi, F, m=np):
     pressing load [N]."""
     Fz = -fn * (p * m.sin(phi) + beta * m.cos(phi))
     Fx = fn * (m.sqrt(1.0 - p * p) + p * p - p * xi)
-    Fy = fn * p * m.cos(phi)
+    # T1 on the groove: the ideal bearing takes no force along the trunnion axis
+    # a = (sin xi, cos xi cos phi, cos xi sin phi), so F . a = 0 gives Fy
+    Fy = -(Fx * m.sin(xi) + Fz * m.cos(xi) * m.sin(phi)) / (m.cos(xi) * m.cos(phi))
     if m is SCALAR:
         Fz_mod = Fz * F / Fx if Fx > 1e-9 * max(F, 1.0) else 0.0
     else:

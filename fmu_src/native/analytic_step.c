@@ -369,7 +369,7 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
         /* T6: traverse.groove_forces */
         double Fz = -fn * (p * sin(d0.phi) + beta * cos(d0.phi));
         double Fx = fn * (sqrt(1.0 - p * p) + p * p - p * d0.xi);
-        double Fy = fn * p * cos(d0.phi);
+        double Fy = -(Fx * sin(d0.xi) + Fz * cos(d0.xi) * sin(d0.phi)) / (cos(d0.xi) * cos(d0.phi));
         double Fz_mod = Fx > 1e-9 * pmax(o.F, 1.0) ? Fz * o.F / Fx : 0.0;
         x1[i] = x + wh * (double)n;
         st[i][S_S] = s;

@@ -1,0 +1,77 @@
+"""pythonfmu slave of a powertrain on its mounts driving one tripod joint through a vehicle
+launch: a thin adapter over driveline.powertrain (its table gives the variables)."""
+import math
+
+import numpy as np
+
+from pythonfmu import DefaultExperiment, Fmi2Slave
+from pythonfmu.enums import Fmi2Status
+
+from driveline.powertrain import INPUTS, OUTPUTS, TABLE, PowertrainModel
+from reduced_model.scene import check_param
+from slavekit import DataState, Guarded, StateError, register_params, same_layout
+
+
+class Powertrain(Guarded, DataState, Fmi2Slave):
+    author = "tripod-thrust"
+    description = ("A transverse powertrain on its mounts (lateral, fore-aft, vertical, roll) "
+                   "driving one tripod joint through a vehicle launch: it gives the joint its "
+                   "angle, plunge speed, whirl speed and torque and takes the joint's forces "
+                   "on the housing.")
+    default_experiment = DefaultExperiment(start_time=0.0, stop_time=2.5, step_size=1e-4)
+    STRUCTURAL = tuple(p.name for p in TABLE if p.causality != "input")
+
+    def __init__(self, **kwargs):
+        super().__init__(**kwargs)
+        register_params(self, TABLE, OUTPUTS)
+        self.model = None
+
+    def _values(self, params):
+        for p in params:
+            check_param(p, getattr(self, p.name))
+        return {p.name: getattr(self, p.name) for p in params}
+
+    def _initialise(self):
+        self.model = PowertrainModel(self._values(TABLE))
+        Q = self.model.load(0.0, self._values(INPUTS))
+        self._write(self.model.outputs(0.0, Q))
+
+    def _write(self, out):
+        for k, v in out.items():
+            setattr(self, k, v)
+
+    def _advance(self, current_time, step_size):
+        out = self.model.step(current_time, step_size, self._values(INPUTS))
+        if not math.isfinite(sum(out.values())):
+            self.log(f"non-finite output at t = {current_time:g} s; step rejected",
+                     Fmi2Status.error)
+            return False
+        self._write(out)
+        return True
+
+    # FMU state: the variables and the mounts' state (data only, slavekit)
+    def _get_fmu_state(self):
+        return {"vars": super()._get_fmu_state(),
+                "x": None if self.model is None else self.model.x.copy()}
+
+    def _check_state(self, state):
+        if not isinstance(state, dict) or set(state) != {"vars", "x"}:
+            raise StateError("expected the keys ['vars', 'x']")
+        same_layout(state["vars"], super()._get_fmu_state(), "vars")
+        for n in self.STRUCTURAL:
+            if state["vars"][n] != getattr(self, n):
+                raise StateError(f"state taken with {n} = {state['vars'][n]}, this instance "
+                                 f"has {getattr(self, n)}")
+        if state["x"] is not None:
+            same_layout(state["x"], np.zeros(8), "x")
+
+    def _set_fmu_state(self, state):
+        self._check_state(state)
+        super()._set_fmu_state(state["vars"])
+        if state["x"] is None:
+            self.model, self._ready = None, False
+            return
+        if self.model is None:
+            self._initialise()
+            self._ready = True
+        self.model.x = state["x"].copy()
