@@ -10,7 +10,7 @@ UV := .uv/bin/uv
 # uv installs uv.lock exactly; it never downloads a Python of its own
 UV_ENV := UV_PROJECT_ENVIRONMENT=$(VENV) UV_PYTHON_DOWNLOADS=never UV_NO_PROGRESS=1
 
-.PHONY: demo test venv lock fmu bench native-check docs docs-quick clean
+.PHONY: demo example test venv lock fmu bench native-check docs docs-quick clean
 
 venv: $(STAMP)
 
@@ -44,6 +44,11 @@ lock: $(UV)
 # the main job: both FMUs (built when missing or stale) compared on the paper's scene
 demo: $(STAMP)
 	$(BIN)/tripod-thrust compare --out out
+
+# the driveline example: a vehicle launch, the joint FMU beside a powertrain FMU in one SSP,
+# run by FMPy and by libcosim (docs/driveline-example.md)
+example: $(STAMP)
+	$(BIN)/tripod-thrust example --out out/example
 
 fmu: $(STAMP)
 	$(BIN)/tripod-thrust build

@@ -304,9 +304,24 @@ def cmd_runup(args) -> int:
     return 0
 
 
+def cmd_example(args) -> int:
+    from harness import example as E
+    if not (0 < args.stop <= 60 and 1e-6 <= args.step <= 1e-2 and args.step < args.stop):
+        raise ValueError(f"--stop = {args.stop} s, --step = {args.step} s: allowed (0, 60] s "
+                         "and [1e-6, 1e-2] s, the step below the stop time")
+    powertrain = E.powertrain_overrides(args.set)
+    joints = tuple(E.JOINTS) if args.joint == "both" else (args.joint,)
+    tools = E.TOOLS if args.tool == "both" else (args.tool,)
+    r = E.launch(args.out, args.stop, args.step, joints, tools, powertrain=powertrain,
+                 check_step=not args.no_step_check)
+    print(E.format_table(r))
+    print(f"written into {args.out}: {', '.join(r['files'])}")
+    return 0
+
+
 def cmd_build(args) -> int:
     from harness.fmus import FMU_NAMES, ensure_fmu
-    for name in FMU_NAMES:
+    for name in FMU_NAMES + ("Powertrain",):
         print(ensure_fmu(name, force=args.force))
     return 0
 
@@ -386,7 +401,24 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--dt", type=float, default=1e-4, help="communication step [s]")
     p.add_argument("--out", metavar="DIR", default="out/runup", help="output folder")
     p.set_defaults(func=cmd_runup)
-    p = add("build", "build build/TripodRoller.fmu and build/TripodRollerAnalytic.fmu (when missing or stale)")
+    p = add("example", "the driveline example: a vehicle launch, the joint FMU beside a "
+                       "powertrain FMU in one SSP system file, run by FMPy and libcosim; peak "
+                       "lateral acceleration, order map, the joint's thrust orders "
+                       "(docs/driveline-example.md)")
+    p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
+                   help="a powertrain parameter in SI units (docs/Powertrain.md), repeatable")
+    p.add_argument("--joint", choices=("contact", "analytic", "both"), default="both",
+                   help="which joint FMU is in the system")
+    p.add_argument("--tool", choices=("fmpy", "libcosim", "both"), default="both",
+                   help="which co-simulation tool runs it")
+    p.add_argument("--stop", type=float, default=2.5, help="end of the launch [s]")
+    p.add_argument("--step", type=float, default=1e-4, help="communication step [s]")
+    p.add_argument("--no-step-check", action="store_true",
+                   help="skip the convergence run at half the step")
+    p.add_argument("--out", metavar="DIR", default="out/example", help="output folder")
+    p.set_defaults(func=cmd_example)
+    p = add("build", "build build/TripodRoller.fmu, build/TripodRollerAnalytic.fmu and "
+                     "build/Powertrain.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)
     p = add("params", "print the parameter table (Markdown)")
