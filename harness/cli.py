@@ -38,10 +38,11 @@ class _Help(argparse.RawDescriptionHelpFormatter):
         return f"{h} (default {d})"
 
 
-def _param_epilog(model: str) -> str:
-    """The parameters --set takes, from the parameter table: name, unit, default, range."""
+def _param_epilog(model: str, params=None) -> str:
+    """The parameters --set takes, from the parameter table (``params``, else the ``model``'s
+    of the joint's table): name, unit, default, range."""
     rows = [f"parameters for --set NAME=VALUE (SI units; {model} model):"]
-    for q in scene_mod.params_for(model):
+    for q in params if params is not None else scene_mod.params_for(model):
         unit = "" if q.unit == "1" else f" [{q.unit}]"
         default = (str(q.default).lower() if q.kind == "bool" else
                    q.default if q.kind == "int" else f"{q.default:g}")
@@ -405,8 +406,11 @@ def build_parser() -> argparse.ArgumentParser:
                        "powertrain FMU in one SSP system file, run by FMPy and libcosim; peak "
                        "lateral acceleration, order map, the joint's thrust orders "
                        "(docs/driveline-example.md)")
+    from driveline.powertrain import PARAMS as POWERTRAIN
+    p.epilog = _param_epilog("powertrain", POWERTRAIN)
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
-                   help="a powertrain parameter in SI units (docs/Powertrain.md), repeatable")
+                   help="set a powertrain parameter in SI units (repeatable; names, units, "
+                        "defaults and ranges below)")
     p.add_argument("--joint", choices=("contact", "analytic", "both"), default="both",
                    help="which joint FMU is in the system")
     p.add_argument("--tool", choices=("fmpy", "libcosim", "both"), default="both",

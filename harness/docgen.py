@@ -120,8 +120,14 @@ def _readme_speed() -> str:
         f"{ex[4]}x the FMU's time | {link}#beside-peers-on-the-same-roller-tripod-thrust-bench---peer) |"])
 
 
+def _powertrain_variables() -> str:
+    from harness.fmus import ensure_fmu
+    from harness.reference import variables_markdown
+    return variables_markdown(ensure_fmu("Powertrain"))
+
+
 EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
-         "readme: speed": _readme_speed}
+         "readme: speed": _readme_speed, "powertrain: variables": _powertrain_variables}
 # reproducible except for their timings (compared with the wall-time line masked)
 RUN = {"make demo": _demo}
 SLOW_EXACT = {"traverse grid": _traverse_grid}   # 27 contact runs: tests/test_traverse.py
@@ -179,7 +185,13 @@ def _work_precision_check(content: str) -> list[str]:
     return [] if got == want else [f"work-precision rows {got} != today's ladder {want}"]
 
 
+def _example_rows():
+    from harness.example import JOINTS, TOOLS
+    return [j for j in JOINTS for _ in TOOLS] + [next(iter(JOINTS))]
+
+
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)
+    "make example": (_example_rows, "make example"),
     "bench: step cost": (_step_cost_rows, "tripod-thrust bench"),
     "bench: breakdown": (_breakdown_rows, "tripod-thrust bench"),
     "bench: work-precision": (None, "tripod-thrust bench"),
@@ -234,11 +246,13 @@ def update_exact(files=FILES) -> list[Path]:
 
 def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
                     speed_md: Path | None = None, peers_md: Path | None = None,
-                    files=FILES) -> list[Path]:
+                    example_md: Path | None = None, files=FILES) -> list[Path]:
     """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
     stress.md of `tripod-thrust stress`, the table `make bench` prints, peers.md of
-    `tripod-thrust bench --peer`."""
+    `tripod-thrust bench --peer`, launch.md of `make example`."""
     new_blocks = {}
+    if example_md:
+        new_blocks["make example"] = Path(example_md).read_text()
     if peers_md:
         new_blocks["bench: peers"] = Path(peers_md).read_text()
     if bench_md:
@@ -273,6 +287,7 @@ if __name__ == "__main__":
     ap.add_argument("--stress", metavar="STRESS.md", help="stress.md of `tripod-thrust stress`")
     ap.add_argument("--speed", metavar="SPEED.md", help="the table `make bench` printed")
     ap.add_argument("--peers", metavar="PEERS.md", help="peers.md of `tripod-thrust bench --peer`")
+    ap.add_argument("--example", metavar="LAUNCH.md", help="launch.md of `make example`")
     ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
     a = ap.parse_args()
     if a.check:
@@ -280,6 +295,6 @@ if __name__ == "__main__":
         print("\n".join(bad) or "every generated block is current")
         sys.exit(1 if bad else 0)
     # measured blocks first: the README's speed summary is read from them
-    for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers)
+    for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers, a.example)
                            + update_exact()):
         print("updated", p.relative_to(ROOT))

@@ -285,12 +285,26 @@ def launch(out, stop=STOP, step=STEP, joints=tuple(JOINTS), tools=TOOLS, powertr
         rows.append({"joint": j, "tool": first + f" (step {step / 2:g} s)", **peak(half)})
         checks[f"{j}: step {step:g} s -> {step / 2:g} s, peak"] = \
             abs(peak(half)["peak_acc_y"] / peak(runs[j, first])["peak_acc_y"] - 1)
-    files = [f"launch_{j}.ssp" for j in joints] + ["launch.json"]
+    files = [f"launch_{j}.ssp" for j in joints] + ["launch.json", "launch.md"]
     if plots:
         files += [f.name for f in launch_plots(runs, out, first)]
     result = {"stop": stop, "step": step, "rows": rows, "checks": checks, "files": files}
     (out / "launch.json").write_text(json.dumps(result, indent=1) + "\n")
+    (out / "launch.md").write_text(markdown_table(result))
     return result | {"runs": runs}
+
+
+def markdown_table(result: dict) -> str:
+    """The example's table in Markdown (docs/driveline-example.md's measured block)."""
+    lines = ["| joint | tool | peak lateral acceleration [m/s2] | at wheel speed [Hz] | at t [s] |",
+             "|---|---|---|---|---|"]
+    for r in result["rows"]:
+        lines.append(f"| {r['joint']} | {r['tool']} | {r['peak_acc_y']:.4f} | "
+                     f"{r['wheel_hz']:.3f} | {r['time']:.4f} |")
+    lines += ["", f"Launch 0-{result['stop']:g} s, communication step {result['step']:g} s. "
+              "Relative differences:", ""]
+    lines += [f"- {k}: {v:.2e}" for k, v in result["checks"].items()]
+    return "\n".join(lines) + "\n"
 
 
 def format_table(result: dict) -> str:
@@ -318,14 +332,19 @@ def launch_plots(runs: dict, out, tool="fmpy") -> list[Path]:
     out = Path(out)
     joints = [j for j in JOINTS if (j, tool) in runs]
     files = []
-    fig, (ax, bx) = plt.subplots(2, 1, figsize=(8, 6), sharex=True,
-                                 gridspec_kw={"height_ratios": [3, 1]})
+    fig, (ax, dx, bx) = plt.subplots(3, 1, figsize=(8, 7), sharex=True,
+                                     gridspec_kw={"height_ratios": [3, 1, 1]})
     for j in joints:
         r = runs[j, tool]
         ax.plot(r["time"], r["powertrain.acc_y"], lw=0.6, label=f"{j} joint")
-    ax.set_ylabel("powertrain lateral acceleration [m/s2]")
+    ax.set_ylabel("powertrain lateral\nacceleration [m/s2]")
     ax.legend()
     ax.grid(alpha=0.3)
+    if len(joints) == 2:
+        c, a = runs["contact", tool], runs["analytic", tool]
+        dx.plot(c["time"], a["powertrain.acc_y"] - c["powertrain.acc_y"], "k", lw=0.6)
+        dx.set_ylabel("analytic - contact\n[m/s2]")
+    dx.grid(alpha=0.3)
     r = runs[joints[0], tool]
     bx.plot(r["time"], r["powertrain.omega"] / (2 * math.pi), "k", lw=1)
     bx.set_ylabel("wheel speed [Hz]")
