@@ -188,6 +188,10 @@ class PowertrainModel:
 
     def __init__(self, values: dict):
         self.p = dict(values)
+        for name in ("mass", "J_roll", "vehicle_mass", "wheel_radius"):   # divided by
+            if not self.p[name] ** 2 > 1e-300:
+                raise ValueError(f"{name} = {self.p[name]!r} is too small to compute with; "
+                                 f"allowed range {BY_NAME[name].range_text()}")
         self.mounts = Mounts(self.p)
         self.x = np.zeros(8)
 
@@ -210,6 +214,7 @@ class PowertrainModel:
 
     def step(self, t, h, joint: dict) -> dict:
         """Advance from t to t + h [s] with the joint's forces held; the outputs at t + h."""
-        Q = self.load(t, joint)
-        self.x = self.mounts.step(self.x, Q, h)
-        return self.outputs(t + h, Q)
+        with np.errstate(all="ignore"):     # a non-finite result is refused by the slave
+            Q = self.load(t, joint)
+            self.x = self.mounts.step(self.x, Q, h)
+            return self.outputs(t + h, Q)

@@ -58,10 +58,7 @@ class Powertrain(Guarded, DataState, Fmi2Slave):
         if not isinstance(state, dict) or set(state) != {"vars", "x"}:
             raise StateError("expected the keys ['vars', 'x']")
         same_layout(state["vars"], super()._get_fmu_state(), "vars")
-        for n in self.STRUCTURAL:
-            if state["vars"][n] != getattr(self, n):
-                raise StateError(f"state taken with {n} = {state['vars'][n]}, this instance "
-                                 f"has {getattr(self, n)}")
+        self._check_structural(state["vars"])
         if state["x"] is not None:
             same_layout(state["x"], np.zeros(8), "x")
 

@@ -169,10 +169,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         if not isinstance(state, dict) or set(state) != {"vars", "model"}:
             raise StateError("expected the keys ['model', 'vars']")
         same_layout(state["vars"], super()._get_fmu_state(), "vars")
-        for n in self.STRUCTURAL:
-            if state["vars"][n] != getattr(self, n):
-                raise StateError(f"state taken with {n} = {state['vars'][n]}, this instance "
-                                 f"has {getattr(self, n)}")
+        self._check_structural(state["vars"])
         if state["model"] is None:      # taken before initialisation
             return
         for n in _INPUTS:

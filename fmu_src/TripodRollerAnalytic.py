@@ -211,9 +211,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             raise StateError(f"expected the keys {sorted(keys)}")
         vars_now = super()._get_fmu_state()
         same_layout(st["vars"], vars_now, "vars")
-        for n in self.STRUCTURAL:
-            if st["vars"][n] != getattr(self, n):
-                raise StateError(f"state taken with another {n} than this instance's")
+        self._check_structural(st["vars"])
         if st["scene"] is None:        # taken before initialisation
             same_layout(st, {"vars": vars_now, "x": [0.0], "dt": None, "scene": None,
                              "march": None, "span": None})

@@ -246,6 +246,14 @@ class DataState:
     def _structural(self):
         return {n: getattr(self, n) for n in self.STRUCTURAL}
 
+    def _check_structural(self, state_vars):
+        """Raise StateError unless the state's variables hold this instance's structural
+        parameters (a state belongs to the layout they give)."""
+        for n in self.STRUCTURAL:
+            if state_vars[n] != getattr(self, n):
+                raise StateError(f"state taken with {n} = {state_vars[n]}, this instance "
+                                 f"has {getattr(self, n)}")
+
     def _fmu_state_to_bytes(self, state):
         return encode_state(state, self.fmu_guid, self._structural())
 

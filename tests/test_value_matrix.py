@@ -53,3 +53,23 @@ def test_every_value_runs_finite_or_is_refused_with_a_reason(name, ints):
     assert cases["E=min during"]["outcome"] == "refused"
     assert "E is a fixed parameter" in cases["E=min during"]["message"]
     assert cases["E=max before"]["outcome"] == "finite"
+
+
+def test_powertrain_every_value_runs_finite_or_is_refused_with_a_reason():
+    """The driveline example's powertrain FMU under the same matrix: its inputs (the joint's
+    forces and angle) and parameters."""
+    p = subprocess.run([sys.executable, str(WORKER), str(ensure_fmu("Powertrain")), "{}"],
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0 and "Warning" not in p.stderr, p.stderr[-3000:]   # nothing on stderr
+    rows = [json.loads(line) for line in p.stdout.splitlines() if line.startswith("{\"case")]
+    cases = {r["case"]: r for r in rows}
+    defects = {k: r for k, r in cases.items() if r["outcome"] not in ("finite", "refused")}
+    assert not defects, defects
+    for inp in ("Fz_joint", "F_housing_x", "F_housing_y", "whirl_angle"):
+        for v in ("nan", "+inf", "-inf", "1e300", "-1e300"):
+            for phase in ("before", "during"):
+                r = cases[f"{inp}={v} {phase}"]
+                assert r["outcome"] == "refused" and inp in r["message"], r
+        assert cases[f"{inp}=min during"]["outcome"] == "finite"
+    for case in ("mass=0 before", "mass=denormal before"):
+        assert cases[case]["outcome"] == "refused" and "mass" in cases[case]["message"]
