@@ -130,7 +130,13 @@ EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
          "readme: speed": _readme_speed, "powertrain: variables": _powertrain_variables}
 # reproducible except for their timings (compared with the wall-time line masked)
 RUN = {"make demo": _demo}
-SLOW_EXACT = {"traverse grid": _traverse_grid}   # 27 contact runs: tests/test_traverse.py
+def _quadrant_grid() -> str:
+    from harness.validation import quadrant_markdown, quadrant_rows
+    return quadrant_markdown(quadrant_rows())
+
+
+# slow: checked by the tests that rerun them (tests/test_traverse.py, tests/test_coast.py)
+SLOW_EXACT = {"traverse grid": _traverse_grid, "quadrant grid": _quadrant_grid}
 
 
 # --- measured blocks: the rows today's code would measure ----------------------------------

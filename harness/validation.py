@@ -165,7 +165,69 @@ def markdown(rows) -> str:
     return "\n".join(out)
 
 
+# coast and reverse whirl: the paper's scene and the first grid scenes inside the checked range
+# (whirl from 2 Hz: the FMUs run whole cycles until periodic), through both built FMUs
+QUADRANT_N = 6
+QUADRANTS = {"coast": (1, -1), "reverse": (-1, 1), "coast in reverse": (-1, -1)}
+
+
+def quadrant_scenes() -> dict:
+    """{label: overrides}: the paper's scene and QUADRANT_N grid scenes without plunge inside
+    the checked range with a whirl of 2 Hz or more."""
+    out = {"paper (section 3.1)": {}}
+    for label, ov in grid().items():
+        sc = scene_mod.validate(ov, "analytic")
+        if (label.startswith("grid") and len(out) <= QUADRANT_N and
+                inertia_ratio(sc) <= INERTIA_LIMIT and sc["omega"] >= 4 * math.pi):
+            out[label] = ov
+    return out
+
+
+def fmu_order3(name: str, overrides: dict):
+    """Order 3 of Fz_mod (amplitude N, phase deg) over the last whole cycle of the built FMU
+    ``name`` (FMPy, a fresh process) run until periodic, the phase against the whirl angle's
+    magnitude (reverse whirl turns the other way)."""
+    from .fmus import ensure_fmu
+    from .runs import run_settled
+    sc = scene_mod.validate(overrides, "analytic")
+    w = abs(sc["omega"])
+    r = run_settled(ensure_fmu(name), overrides, w, ["Fz_mod"], dt=2 * math.pi / w / 2000)
+    return last_cycle_orders(r["time"], r["Fz_mod"], np.abs(r["whirl_angle"]), (3,))[3]
+
+
+def quadrant_rows(scenes: dict | None = None) -> list[dict]:
+    """Each scene in coast, reverse and coast in reverse: order 3 of Fz_mod, the analytic FMU
+    against the contact FMU."""
+    rows = []
+    for label, ov in (scenes or quadrant_scenes()).items():
+        sc = scene_mod.validate(ov, "analytic")
+        for q, (sw, sf) in QUADRANTS.items():
+            o = dict(ov, omega=sw * sc["omega"], F_press=sf * sc["F_press"])
+            c, a = fmu_order3("TripodRoller", o), fmu_order3("TripodRollerAnalytic", o)
+            rows.append({"scene": label, "quadrant": q, "theta_deg": sc["theta"] / DEG,
+                         "whirl_hz": o["omega"] / (2 * math.pi), "F_press": o["F_press"],
+                         "contact": c, "analytic": a, "rel": a[0] / c[0] - 1,
+                         "dphase": _dphase(a[1], c[1])})
+    return rows
+
+
+def quadrant_markdown(rows) -> str:
+    out = ["| scene | quadrant | theta [deg] | whirl [Hz] | F_press [N] | contact FMU order 3 "
+           "[N, deg] | analytic FMU |", "|---|---|---|---|---|---|---|"]
+    for r in rows:
+        out.append(f"| {r['scene']} | {r['quadrant']} | {r['theta_deg']:.1f} | "
+                   f"{r['whirl_hz']:+.1f} | {r['F_press']:+.0f} | {r['contact'][0]:.3f} at "
+                   f"{r['contact'][1]:.1f} | {100 * r['rel']:+.1f} %, {r['dphase']:+.1f} deg |")
+    a = np.abs([r["rel"] for r in rows])
+    p = np.abs([r["dphase"] for r in rows])
+    out += ["", f"Analytic against contact FMU over the {len(rows)} coast and reverse runs: "
+            f"order 3 amplitude median {100 * np.median(a):.1f} %, worst {100 * a.max():.1f} %; "
+            f"phase within {p.max():.1f} deg."]
+    return "\n".join(out)
+
+
 START, END = "<!-- generated: traverse grid -->", "<!-- end generated -->"
+QSTART = "<!-- generated: quadrant grid -->"
 
 
 def write_docs(path=ROOT / "docs" / "validation.md") -> str:
@@ -173,8 +235,12 @@ def write_docs(path=ROOT / "docs" / "validation.md") -> str:
     text = path.read_text()
     i, j = text.index(START) + len(START), text.index(END)
     table = markdown(grid_rows())
-    path.write_text(text[:i] + "\n" + table + "\n" + text[j:])
-    return table
+    text = text[:i] + "\n" + table + "\n" + text[j:]
+    i = text.index(QSTART) + len(QSTART)
+    j = text.index(END, i)
+    quadrants = quadrant_markdown(quadrant_rows())
+    path.write_text(text[:i] + "\n" + quadrants + "\n" + text[j:])
+    return table + "\n\n" + quadrants
 
 
 if __name__ == "__main__":
