@@ -135,8 +135,15 @@ def _quadrant_grid() -> str:
     return quadrant_markdown(quadrant_rows())
 
 
-# slow: checked by the tests that rerun them (tests/test_traverse.py, tests/test_coast.py)
-SLOW_EXACT = {"traverse grid": _traverse_grid, "quadrant grid": _quadrant_grid}
+def _contact_damping() -> str:
+    from harness.validation import damping_markdown, damping_rows
+    return damping_markdown(damping_rows())
+
+
+# slow: checked by the tests that rerun them (tests/test_traverse.py, tests/test_coast.py,
+# tests/test_contact_model.py)
+SLOW_EXACT = {"traverse grid": _traverse_grid, "quadrant grid": _quadrant_grid,
+              "contact damping": _contact_damping}
 
 
 # --- measured blocks: the rows today's code would measure ----------------------------------

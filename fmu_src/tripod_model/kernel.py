@@ -14,7 +14,7 @@ from . import needles as NDL
 from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
     P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
     P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
-    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VP, P_LEN,
+    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VP, P_HC, P_LEN,
     Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_PL, Y_LEN, NV,
     O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN, L_LEN,
     W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
@@ -172,6 +172,8 @@ def groove_contact(cx, cy, cz, vx, vy, vz, wx, wy, wz, P, res):
     if delta <= 0.0:
         return
     fn = hertz_normal_force(P[P_K], delta)
+    if P[P_HC] > 0.0:     # Hunt-Crossley: f_n (1 + 3/2 alpha d delta/dt), never pulling
+        fn = max(0.0, fn * (1.0 + 1.5 * P[P_HC] * (vx * nx + vy * ny)))
     # velocity of the roller material at the contact point p = c + r n
     px = vx + (wy * 0.0 - wz * r * ny)
     py = vy + (wz * r * nx - wx * 0.0)
