@@ -154,6 +154,10 @@ PARAMS: tuple[Param, ...] = (
     Param("rho_needle", 7850.0, "kg/m3", 0.0, 1e5, "density of the needles (steel)",
           lo_open=True, models=_C),
     Param("roller_width", 0.013, "m", 0.0, 0.1, "roller width", lo_open=True, models=_C),
+    Param("row_damping", 0.2, "1", 0.0, 1.0,
+          "lumped bearing: damping ratio of the roller's modes on the needle row (radial, "
+          "across the load, tilt), the lumped form of the resolved row's needle-contact "
+          "damping", models=_C),
     Param("contact_damping", 0.0, "s/m", 0.0, 10.0,
           "Hunt-Crossley damping of the roller-groove contact: f_n = K delta^1.5 (1 + 1.5 "
           "contact_damping d delta/dt), never pulling; 0 = the paper's law (no damping)",

@@ -21,6 +21,20 @@ def test_an_input_step_leaves_no_spike(settled_2hz, name, factor):
     assert T.case({}, 3, 2, name, factor, settled_2hz) < 1.0
 
 
+@pytest.fixture(scope="module")
+def lumped_10hz():
+    return T.settle({"bearing": 1}, 1, 10)
+
+
+@pytest.mark.parametrize("name,factor", [("omega", 1.01), ("omega", 1.10), ("theta", 0.90),
+                                         ("torque", 0.90), ("torque", 1.01)])
+def test_the_lumped_bearing_takes_an_input_step(lumped_10hz, name, factor):
+    # the lumped bearing, one roller settled at 10 Hz (where steps missed by 10-128 % of order
+    # 3 while the row's modes rang undamped in the reference): within 1 % of the reference
+    # (measured 0.10-0.61 %)
+    assert T.case({"bearing": 1}, 1, 10, name, factor, lumped_10hz) < 1.0
+
+
 def test_the_integrator_restarts_where_the_inputs_jumped():
     # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
     import sys

@@ -14,7 +14,7 @@ from . import needles as NDL
 from .layout import (  # noqa: F401  (re-exported: K.P_S etc.)
     P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
     P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
-    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VP, P_HC, P_LEN,
+    P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VP, P_HC, P_ZROW, P_DF, P_LEN,
     Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_PL, Y_LEN, NV,
     O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN, L_LEN,
     W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S)
@@ -366,6 +366,14 @@ def groove_stiffness_x(P, res, cx, cy):
 
 
 @inline
+def row_damping(P, k, mass):
+    """Damping [N s/m, N m s] of a mode of stiffness k [N/m, N m] and mass [kg, kg m^2] on the
+    lumped row: 2 zeta sqrt(k mass), zeta = row_damping (the lumped form of the resolved row's
+    needle-contact damping, docs/model.md)."""
+    return 2.0 * P[P_ZROW] * math.sqrt(k * mass)
+
+
+@inline
 def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     """Lumped needle row (section 2.4.2) in the implicit step: needle sliding friction on the
     slide, Eq. (12) rolling resistance on the spin, the row's stiffness across the load and in
@@ -394,12 +402,13 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     kw = kr * P[P_KWR]
     kt2 = kr * P[P_LT]
     kt1 = kt2 * P[P_KWR]
-    b[2] -= kw * (Y[Y_W] + h * Y[Y_WD])
-    b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1
-    b[4] -= kt2 * (Y[Y_B2] + h * Y[Y_B2D]) + drag2
-    A[2, 2] += m + h * h * kw
-    A[3, 3] += It + h * h * kt1
-    A[4, 4] += It + h * h * kt2
+    cw, c1, c2 = row_damping(P, kw, m), row_damping(P, kt1, It), row_damping(P, kt2, It)
+    b[2] -= kw * (Y[Y_W] + h * Y[Y_WD]) + cw * Y[Y_WD]
+    b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1 + c1 * Y[Y_B1D]
+    b[4] -= kt2 * (Y[Y_B2] + h * Y[Y_B2D]) + drag2 + c2 * Y[Y_B2D]
+    A[2, 2] += m + h * h * kw + h * cw
+    A[3, 3] += It + h * h * kt1 + h * c1
+    A[4, 4] += It + h * h * kt2 + h * c2
     return Fr, kr
 
 
@@ -463,12 +472,13 @@ def advance_roller(Y, dv, h, trav, sixdof, resolved, NW):
 
 
 @inline
-def lumped_radial_step(Y, h, m, Fe, ktot):
+def lumped_radial_step(Y, h, m, Fe, ktot, c):
     """Lumped bearing, radial along the pressing direction: the groove pushes the roller in -x,
-    the needles push it back (net force Fe [N], stiffness ktot [N/m]).  Linearly implicit with
-    both stiffnesses, so the stiff radial mode (about 1e4 Hz) needs no artificial damping."""
+    the needles push it back (net force Fe [N], stiffness ktot [N/m], the row's damping c
+    [N s/m]).  Linearly implicit in both, so the stiff radial mode (about 2e4 Hz) is stable at
+    any substep."""
     ed = Y[Y_ED]
-    ded = h * (Fe - h * ktot * ed) / (m + h * h * ktot)
+    ded = h * (Fe - h * ktot * ed - c * ed) / (m + h * h * ktot + h * c)
     Y[Y_ED] = ed + ded
     Y[Y_E] = Y[Y_E] + h * Y[Y_ED]
 
@@ -531,7 +541,7 @@ def substep(Y, P, theta, w, F_press, x0, h, L, res, G, A, b, NW):
     solve_small(A, b, nv)
     advance_roller(Y, b, h, trav, sixdof, resolved, NW)
     if lumped:
-        lumped_radial_step(Y, h, m, res[0] + Fr, kh + kr)
+        lumped_radial_step(Y, h, m, res[0] + Fr, kh + kr, row_damping(P, kh + kr, m))
 
 
 @njit
@@ -590,6 +600,8 @@ GA_STEP = _ga_coefficients(RHO_GA)
 GA_RESTART = _ga_coefficients(0.0)
 GA_RELAX = -2.0        # hs[3]: the next step by the adaptive substeps (inputs_jumped)
 GA_JUMP_RELAX = 0.02   # the slip amplitude's change over v_st above which that is taken
+GA_LOAD_RELAX = 0.02   # the lumped bearing: the pressing load's relative change above which
+GA_RELAX_2 = -4.0      # hs[3]: the lumped bearing's second communication step so
 
 
 # unknowns of the generalized-alpha step: their position and velocity in Y (-1: the spin
@@ -631,11 +643,16 @@ def ga_forces(Y, P, theta, w, x0, L, res, Q, M):
         if P[P_ROLLR] > 0.5 and q > 0.0:
             vr = (Y[Y_OM] - L[13]) * P[P_RB]
             Q[1] -= P[P_MUR] * q * P[P_RB] * math.tanh(3.0 * vr / P[P_VST])
-        kt2 = kr * P[P_LT]
-        Q[2] = fx * e2x + fy * e2y + fz * e2z - kr * P[P_KWR] * Y[Y_W]
-        Q[3] = mx * e1x + my * e1y + mz * e1z - kt2 * P[P_KWR] * Y[Y_B1] - drag1
-        Q[4] = mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
-        Q[5] = fx + Fr
+        kw, kt2 = kr * P[P_KWR], kr * P[P_LT]
+        kt1 = kt2 * P[P_KWR]
+        kx = kr + groove_stiffness_x(P, res, cx, cy)     # radial: the row and the groove
+        Q[2] = (fx * e2x + fy * e2y + fz * e2z - kw * Y[Y_W]
+                - row_damping(P, kw, m) * Y[Y_WD])
+        Q[3] = (mx * e1x + my * e1y + mz * e1z - kt1 * Y[Y_B1] - drag1
+                - row_damping(P, kt1, It) * Y[Y_B1D])
+        Q[4] = (mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
+                - row_damping(P, kt2, It) * Y[Y_B2D])
+        Q[5] = fx + Fr - row_damping(P, kx, m) * Y[Y_ED]
         M[2] = m
         M[3] = It
         M[4] = It
@@ -809,13 +826,15 @@ def inputs_jumped(P, hs, jump):
     large one (GA_JUMP_RELAX; GA_RESTART leaves about 0.5 % of order 3 at a 1 % speed step at
     10 Hz, the adaptive substeps the integrator's own 0.02 %).  The other integrators are
     L-stable one-step methods or BDF2: they land on the new inputs' slip without overshoot.
-    The lumped bearing restarts with GA_RESTART at every change, a load change too (the load
-    sets the row's offset: a jump in the row's spring force), never by the adaptive substeps
-    (slow on the row's stiff modes)."""
+    The lumped bearing takes a load change too (the load sets the row's offset: a jump in the
+    row's spring force, P[P_DF]); a large one it steps through this communication step and
+    the next by the adaptive substeps (the row's modes the jump sets ringing, about 2e4 Hz,
+    decay there; a generalized-alpha step of the default substep started on them overshoots:
+    docs/integrators.md)."""
     if P[P_INTEG] != 4.0 or P[P_BEAR] > 1.0 or hs[3] <= 0.0 or jump < 0.0:
         return
     if P[P_BEAR] == 1.0:
-        hs[3] = -1.0
+        hs[3] = GA_RELAX if (jump > GA_JUMP_RELAX or P[P_DF] > GA_LOAD_RELAX) else -1.0
     elif jump > 0.0:
         hs[3] = GA_RELAX if jump > GA_JUMP_RELAX else -1.0
 
@@ -876,6 +895,11 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
+            if P[P_BEAR] == 1.0 and (hs[3] == GA_RELAX or hs[3] == GA_RELAX_2):
+                adaptive_steps(Y, P, theta, w, F_press, x0, h * n, 0.25 * h, L, res, Y1, Y2,
+                               G, A, b, NW, hs)
+                hs[3] = GA_RELAX_2 if hs[3] == GA_RELAX else 0.0
+                break
             if hs[3] == GA_RELAX:
                 # a large input jump: its boundary layer (the slip relaxing onto the new
                 # inputs' value) by the error-controlled L-stable extrapolated substeps

@@ -69,6 +69,7 @@ class ContactModel:
         P[K.P_VST0] = p["v_st"]
         P[K.P_HSUB] = p["max_substep"]
         P[K.P_HC] = p["contact_damping"]
+        P[K.P_ZROW] = p["row_damping"]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
         # None unless the needles are resolved: the kernel is then compiled without them

@@ -16,7 +16,7 @@ from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0,
                      P_BEAR, P_CLR, P_FRIC, P_FRICN, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU,
                      P_MUN, P_PITCH, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VST, P_VST0,
-                     P_HMAX, P_VP)
+                     P_HMAX, P_VP, P_DF)
 
 
 def amplitudes(P, theta, omega):
@@ -165,6 +165,7 @@ def derive(P, OP):
     vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
     n = max(1, int(math.ceil(dt / h - 1e-9)))
+    P[P_DF] = abs(F - OP[OP_F]) / max(abs(F), abs(OP[OP_F]), 1e-300)
     OP[OP_F] = F
     OP[OP_N] = n
     OP[OP_H] = dt / n
