@@ -276,7 +276,9 @@ def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
                            ("bench: breakdown", "Where one run goes"),
                            ("bench: work-precision", "Work-precision"),
                            ("bench: side by side", "Side by side")):
-            new_blocks[key] = next(v for t, v in by.items() if t.startswith(title))
+            found = [v for t, v in by.items() if t.startswith(title)]
+            if found:      # (a run of only some sections, e.g. bench --step-cost)
+                new_blocks[key] = found[0]
     if stress_md:
         new_blocks["tripod-thrust stress"] = Path(stress_md).read_text()
     if speed_md:

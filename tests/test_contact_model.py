@@ -134,14 +134,16 @@ def test_contact_damping_table():
 
 def test_contact_damping_damps_the_approach():
     """Where the approach moves (the lumped bearing's row after a step of the pressing load
-    from 1000 to 2000 N), the Hunt-Crossley term damps it: the Fx ripple about a cubic fit over
-    the 10 ms after the step falls by at least 5 % at 1 s/m (measured 65.1 -> 59.8 N rms)."""
+    from 1000 to 2000 N, the row's own damping off), the Hunt-Crossley term damps it: the Fx
+    ripple about a cubic fit over the 10 ms after the step falls by at least 5 % at 1 s/m
+    (measured 73.2 -> 59.8 N rms; the default row_damping alone gives 59.9)."""
     from harness.fmus import ensure_fmu
     from harness.runs import run_fmu
     inputs = {"time": [0.0, 0.05, 0.05, 0.2], "F_press": [1000.0, 1000.0, 2000.0, 2000.0]}
     ripple = []
     for alpha in (0.0, 1.0):
-        r = run_fmu(ensure_fmu("TripodRoller"), {"bearing": 1, "contact_damping": alpha},
+        r = run_fmu(ensure_fmu("TripodRoller"), {"bearing": 1, "contact_damping": alpha,
+                                                 "row_damping": 0.0},
                     stop_time=0.08, output_interval=1e-5, outputs=["Fx"], inputs=inputs)
         t, fx = r["time"], r["Fx"]
         m = (t > 0.0502) & (t < 0.06)
