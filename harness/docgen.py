@@ -91,7 +91,8 @@ def _readme_speed() -> str:
     joint = "the whole joint (n_rollers = 3) under that master: "
     master = [f"| {label}: analytic / contact FMU | {_cells(cost, ana_row)[2]}x / "
               f"{_cells(cost, con_row)[2]}x | same |" for label, ana_row, con_row in (
-                  ("the same, a driveline master setting new inputs every step",
+                  ("a driveline master setting new inputs every step (against the bare "
+                   "boundary under the same master)",
                    "analytic FMU, ", "the same, "),
                   ("the whole joint (three rollers) under that master", joint + "analytic",
                    joint + "contact"))]
