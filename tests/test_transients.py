@@ -52,11 +52,16 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     assert 0.0 < jump < K.GA_JUMP_RELAX                 # a ramp's step: the cheap restart
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE)
     assert K.derive_op(r.P, r._OP) > K.GA_JUMP_RELAX    # a step input: the adaptive one
-    r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
-    assert K.derive_op(r.P, r._OP) == 0.0               # a load step alone: no slip jump
+    r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.001)
+    assert K.derive_op(r.P, r._OP) == 0.0               # a load change alone: no slip jump
+    assert r.P[K.P_DF] == pytest.approx(1e-3, rel=1e-3)  # (its own size)
     hs3 = r._hs[3]
     K.inputs_jumped(r.P, r._hs, 0.0)
-    assert r._hs[3] == hs3                               # (so no restart)
+    assert r._hs[3] == hs3                               # small: no restart (ideal bearing)
+    r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
+    assert K.derive_op(r.P, r._OP) == 0.0
+    K.inputs_jumped(r.P, r._hs, 0.0)
+    assert r._hs[3] == K.GA_RELAX                        # a load step: the adaptive one
 
 
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])

@@ -598,10 +598,12 @@ GA_STEP = _ga_coefficients(RHO_GA)
 # to 10 % in order 3.  With rho = 0 (af = 0) the forces are taken at t_{n+1}: the slip lands on
 # the new value, still second order, at the cost of the same one step.
 GA_RESTART = _ga_coefficients(0.0)
-GA_RELAX = -2.0        # hs[3]: the next step by the adaptive substeps (inputs_jumped)
+GA_RELAX = -2.0        # hs[3]: the next substep by the adaptive substeps
 GA_JUMP_RELAX = 0.02   # the slip amplitude's change over v_st above which that is taken
-GA_LOAD_RELAX = 0.02   # the lumped bearing: the pressing load's relative change above which
-GA_RELAX_2 = -4.0      # hs[3]: the lumped bearing's second communication step so
+GA_STEP_IN = -3.0      # hs[3]: a step input: the next two communication steps so
+GA_STEP_IN_2 = -4.0    # hs[3]: the second of them
+GA_JUMP_STEP = 0.2     # the slip amplitude's change over v_st above which that is taken
+GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is taken
 
 
 # unknowns of the generalized-alpha step: their position and velocity in Y (-1: the spin
@@ -820,23 +822,31 @@ def ga_step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
 @njit
 def inputs_jumped(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
-    the slip's amplitude over v_st; a load change alone, 0, moves no slip and restarts
-    nothing): the generalized-alpha step's next step restarts, with
-    GA_RESTART for a small jump (a master's ramp, every step), by the adaptive substeps for a
-    large one (GA_JUMP_RELAX; GA_RESTART leaves about 0.5 % of order 3 at a 1 % speed step at
-    10 Hz, the adaptive substeps the integrator's own 0.02 %).  The other integrators are
-    L-stable one-step methods or BDF2: they land on the new inputs' slip without overshoot.
-    The lumped bearing takes a load change too (the load sets the row's offset: a jump in the
-    row's spring force, P[P_DF]); a large one it steps through this communication step and
-    the next by the adaptive substeps (the row's modes the jump sets ringing, about 2e4 Hz,
-    decay there; a generalized-alpha step of the default substep started on them overshoots:
-    docs/integrators.md)."""
+    the slip's amplitude over v_st, P[P_DF] the pressing load's relative change): the
+    generalized-alpha step restarts.
+    - A step input (the slip above GA_JUMP_STEP, with the lumped bearing above GA_JUMP_RELAX;
+      or the load above GA_LOAD_RELAX: the load sets the pressing offset, and the lumped
+      row's, so the contact's spring force jumps): this communication step and the next by
+      the adaptive substeps, which land on the new slip and let what the step set ringing
+      decay (the lumped row's modes, about 2e4 Hz; the roller's slide); a generalized-alpha
+      step restarted on them overshoots (docs/integrators.md).
+    - A large jump of the slip (above GA_JUMP_RELAX, ideal bearing): one substep by the
+      adaptive substeps, its boundary layer.  (Taking two communication steps there too,
+      the coupled launch of docs/driveline-example.md, whose jumps hover about that bound,
+      switched between the paths from step to step and lost 0.65 % of its peak.)
+    - A small one (a master's ramp, every step): one GA_RESTART step; the lumped bearing
+      takes a small load change so too (its row's offset moves with the load).
+    The other integrators are L-stable one-step methods or BDF2: they land on the new inputs'
+    slip without overshoot."""
     if P[P_INTEG] != 4.0 or P[P_BEAR] > 1.0 or hs[3] <= 0.0 or jump < 0.0:
         return
-    if P[P_BEAR] == 1.0:
-        hs[3] = GA_RELAX if (jump > GA_JUMP_RELAX or P[P_DF] > GA_LOAD_RELAX) else -1.0
-    elif jump > 0.0:
-        hs[3] = GA_RELAX if jump > GA_JUMP_RELAX else -1.0
+    lumped = P[P_BEAR] == 1.0
+    if P[P_DF] > GA_LOAD_RELAX or jump > (GA_JUMP_RELAX if lumped else GA_JUMP_STEP):
+        hs[3] = GA_STEP_IN
+    elif jump > GA_JUMP_RELAX:
+        hs[3] = GA_RELAX
+    elif jump > 0.0 or (lumped and P[P_DF] > 0.0):
+        hs[3] = -1.0
 
 
 @njit
@@ -895,14 +905,17 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
         for _ in range(n):
-            if P[P_BEAR] == 1.0 and (hs[3] == GA_RELAX or hs[3] == GA_RELAX_2):
+            if hs[3] == GA_STEP_IN or hs[3] == GA_STEP_IN_2:
+                # a step input: this communication step and the next by the error-controlled
+                # L-stable extrapolated substeps (the slip relaxing onto the new inputs' value,
+                # and what the step set ringing), then the accelerations afresh from the forces
                 adaptive_steps(Y, P, theta, w, F_press, x0, h * n, 0.25 * h, L, res, Y1, Y2,
                                G, A, b, NW, hs)
-                hs[3] = GA_RELAX_2 if hs[3] == GA_RELAX else 0.0
+                hs[3] = GA_STEP_IN_2 if hs[3] == GA_STEP_IN else 0.0
                 break
             if hs[3] == GA_RELAX:
-                # a large input jump: its boundary layer (the slip relaxing onto the new
-                # inputs' value) by the error-controlled L-stable extrapolated substeps
+                # a large jump: its boundary layer (the slip relaxing onto the new inputs'
+                # value) by the adaptive substeps over one substep
                 adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
                                b, NW, hs)
                 hs[3] = 0.0    # then the accelerations afresh from the forces

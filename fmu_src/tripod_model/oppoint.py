@@ -165,7 +165,10 @@ def derive(P, OP):
     vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
     n = max(1, int(math.ceil(dt / h - 1e-9)))
-    P[P_DF] = abs(F - OP[OP_F]) / max(abs(F), abs(OP[OP_F]), 1e-300)
+    # the load's relative change, from the key (a restored state carries the key, not OP_F)
+    tq0 = OP[OP_KEY + 3]
+    F0 = tq0 / (3.0 * P[P_S]) if tq0 != 0.0 else OP[OP_KEY + 2]
+    P[P_DF] = abs(F - F0) / max(abs(F), abs(F0), 1e-300) if jump >= 0.0 else 0.0
     OP[OP_F] = F
     OP[OP_N] = n
     OP[OP_H] = dt / n
