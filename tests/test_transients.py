@@ -61,7 +61,7 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
     assert K.derive_op(r.P, r._OP) == 0.0
     K.inputs_jumped(r.P, r._hs, 0.0)
-    assert r._hs[3] == K.GA_RELAX                        # a load step: the adaptive one
+    assert r._hs[3] == K.GA_STEP_IN                      # a load step: the adaptive one
 
 
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])

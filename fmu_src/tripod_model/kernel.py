@@ -883,6 +883,41 @@ def adaptive_steps(Y, P, theta, w, F_press, x0, T, h0, L, res, Y1, Y2, G, A, b, 
 
 
 @njit
+def ga_steps(Y, P, theta, w, F_press, x0, h, n, L, res, Y1, Y2, G, A, b, NW, hs, GW):
+    """n generalized-alpha steps of h [s] (ideal or lumped bearing), restarted where the
+    inputs jumped (hs[3], inputs_jumped): a step input by the adaptive substeps over this
+    communication step and the next, a large jump over one substep, a small one by one
+    GA_RESTART step; a step whose Newton fails by the adaptive substeps."""
+    for _ in range(n):
+        if hs[3] == GA_STEP_IN or hs[3] == GA_STEP_IN_2:
+            # a step input: this communication step and the next by the error-controlled
+            # L-stable extrapolated substeps (the slip relaxing onto the new inputs' value,
+            # and what the step set ringing), then the accelerations afresh from the forces
+            adaptive_steps(Y, P, theta, w, F_press, x0, h * n, 0.25 * h, L, res, Y1, Y2,
+                           G, A, b, NW, hs)
+            hs[3] = GA_STEP_IN_2 if hs[3] == GA_STEP_IN else 0.0
+            break
+        if hs[3] == GA_RELAX:
+            # a large jump: its boundary layer (the slip relaxing onto the new inputs'
+            # value) by the adaptive substeps over one substep
+            adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
+                           b, NW, hs)
+            hs[3] = 0.0    # then the accelerations afresh from the forces
+            continue
+        if hs[3] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
+            if ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
+                continue
+            hs[3] = 1.0    # its Newton did not converge: the regular step
+        if not ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
+            # Newton did not converge (a very steep friction law): this step by the
+            # error-controlled extrapolated substeps instead, then start afresh
+            adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
+                           b, NW, hs)
+            hs[3] = 0.0
+            hs[4] += 1.0
+
+
+@njit
 def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b, NW, hs,
                  GW):
     """Advance Y by n substeps of h [s] at constant inputs; write the outputs at the end.
@@ -904,33 +939,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
     extrap = P[P_INTEG] == 1.0
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
     if P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
-        for _ in range(n):
-            if hs[3] == GA_STEP_IN or hs[3] == GA_STEP_IN_2:
-                # a step input: this communication step and the next by the error-controlled
-                # L-stable extrapolated substeps (the slip relaxing onto the new inputs' value,
-                # and what the step set ringing), then the accelerations afresh from the forces
-                adaptive_steps(Y, P, theta, w, F_press, x0, h * n, 0.25 * h, L, res, Y1, Y2,
-                               G, A, b, NW, hs)
-                hs[3] = GA_STEP_IN_2 if hs[3] == GA_STEP_IN else 0.0
-                break
-            if hs[3] == GA_RELAX:
-                # a large jump: its boundary layer (the slip relaxing onto the new inputs'
-                # value) by the adaptive substeps over one substep
-                adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
-                               b, NW, hs)
-                hs[3] = 0.0    # then the accelerations afresh from the forces
-                continue
-            if hs[3] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
-                if ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
-                    continue
-                hs[3] = 1.0    # its Newton did not converge: the regular step
-            if not ga_step(Y, P, theta, w, x0, h, L, res, b, Y1, A, GW, hs):
-                # Newton did not converge (a very steep friction law): this step by the
-                # error-controlled extrapolated substeps instead, then start afresh
-                adaptive_steps(Y, P, theta, w, F_press, x0, h, 0.25 * h, L, res, Y1, Y2, G, A,
-                               b, NW, hs)
-                hs[3] = 0.0
-                hs[4] += 1.0
+        ga_steps(Y, P, theta, w, F_press, x0, h, n, L, res, Y1, Y2, G, A, b, NW, hs, GW)
         n = 0
     elif P[P_INTEG] == 4.0:   # the needle-resolved bearing: BDF2, roller and row in one system
         if NW is not None:    # (always, here; the test lets numba drop it from the others)
