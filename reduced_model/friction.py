@@ -13,10 +13,21 @@ def mu_tanh(v, mu_s, v_st):
     return mu_s * np.tanh(3.0 * v / v_st)
 
 
+# The automatic v_st scales with the whirl and vanishes at rest; it never falls below this
+# [m/s].  Under the tanh law a contact held at a fraction g of mu f_n creeps at
+# (v_st / 3) atanh(g): at this floor and g = 0.99, 0.9 um/s.  A Hertz contact of the default
+# geometry starts to slide after about 0.5 um of elastic tangential displacement (Mindlin,
+# 3 mu P (2 - nu) / (8 G a), a the ellipse's mean semi-axis: 0.5 um at 1 kN, 3.5 um at 18 kN),
+# so over a second at standstill the regularised law creeps about what the real contact
+# deforms before it slides (docs/model.md; tests/test_reduced_model.py).
+V_ST_FLOOR = 1e-6
+
+
 def v_st_auto(A, B, Vp=0.0):
     """Automatic transition velocity [m/s]: a quarter of the peak sliding speed sqrt(A^2+B^2),
-    with the plunge's sliding Vp [m/s] (sliding.amplitude_plunge) added in quadrature."""
+    with the plunge's sliding Vp [m/s] (sliding.amplitude_plunge) added in quadrature, and
+    at least V_ST_FLOOR (a joint at rest or straight)."""
     h = np.hypot(A, B)
     if Vp != 0.0:
         h = np.hypot(h, Vp)
-    return float(h) / 4.0
+    return max(float(h) / 4.0, V_ST_FLOOR)

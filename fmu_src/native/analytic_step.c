@@ -19,6 +19,7 @@
 #include <stdint.h>
 
 #define PI 3.141592653589793   /* math.pi */
+#define V_ST_FLOOR 1e-6        /* reduced_model/friction.py: V_ST_FLOOR [m/s] */
 
 enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, S_PITCH, VP, VP_DT, OP_LEN };
 enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, WHIRL, FX_2, FY_2, FX_3, FY_3,
@@ -190,7 +191,7 @@ static void operating_point(const double *M, Op *o)
         double h = hypot(A, B);                                    /* friction.v_st_auto */
         double Vp = M[M_PITCH] != 0.0 ? fabs(o->vp) * sin(th) : 0.0; /* amplitude_plunge */
         if (Vp != 0.0) h = hypot(h, Vp);
-        o->vst = h / 4.0;
+        o->vst = pmax(h / 4.0, V_ST_FLOOR);
     }
     o->K = M[M_K];
     o->a1 = M[M_A1];

@@ -26,12 +26,12 @@ def amplitudes(P, theta, omega):
 
 def v_st(P, theta, omega, vp=0.0):
     """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2+Vp^2)/4 (model.md;
-    Vp the plunge's sliding at the plunge speed vp [m/s]), floored: a joint at rest or
-    straight still needs one."""
+    Vp the plunge's sliding at the plunge speed vp [m/s]) with its floor (friction.V_ST_FLOOR:
+    a joint at rest or straight still needs one)."""
     if P[P_VST0] > 0.0:
         return P[P_VST0]
     A, B = amplitudes(P, theta, omega)
-    return max(v_st_auto(A, B, amplitude_plunge(vp, theta, P[P_PITCH] > 0.5)), 1e-6)
+    return v_st_auto(A, B, amplitude_plunge(vp, theta, P[P_PITCH] > 0.5))
 
 
 def _rate_amplitude(P, theta, omega):
