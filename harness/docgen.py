@@ -204,8 +204,13 @@ def _example_rows():
     return [j for j in JOINTS for _ in TOOLS] + [next(iter(JOINTS))]
 
 
+def _transients_rows():
+    return ["ideal"] * 6 + ["lumped"] * 6 + ["needle-resolved"]
+
+
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)
     "make example": (_example_rows, "make example"),
+    "benchmarks/transients.py": (_transients_rows, "python benchmarks/transients.py --md FILE"),
     "bench: step cost": (_step_cost_rows, "tripod-thrust bench"),
     "bench: breakdown": (_breakdown_rows, "tripod-thrust bench"),
     "bench: work-precision": (None, "tripod-thrust bench"),
@@ -260,11 +265,14 @@ def update_exact(files=FILES) -> list[Path]:
 
 def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
                     speed_md: Path | None = None, peers_md: Path | None = None,
-                    example_md: Path | None = None, files=FILES) -> list[Path]:
+                    example_md: Path | None = None, transients_md: Path | None = None,
+                    files=FILES) -> list[Path]:
     """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
     stress.md of `tripod-thrust stress`, the table `make bench` prints, peers.md of
     `tripod-thrust bench --peer`, launch.md of `make example`."""
     new_blocks = {}
+    if transients_md:
+        new_blocks["benchmarks/transients.py"] = Path(transients_md).read_text()
     if example_md:
         new_blocks["make example"] = Path(example_md).read_text()
     if peers_md:
@@ -304,6 +312,8 @@ if __name__ == "__main__":
     ap.add_argument("--speed", metavar="SPEED.md", help="the table `make bench` printed")
     ap.add_argument("--peers", metavar="PEERS.md", help="peers.md of `tripod-thrust bench --peer`")
     ap.add_argument("--example", metavar="LAUNCH.md", help="launch.md of `make example`")
+    ap.add_argument("--transients", metavar="FILE.md",
+                    help="the table of `python benchmarks/transients.py --md FILE.md`")
     ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
     a = ap.parse_args()
     if a.check:
@@ -311,6 +321,7 @@ if __name__ == "__main__":
         print("\n".join(bad) or "every generated block is current")
         sys.exit(1 if bad else 0)
     # measured blocks first: the README's speed summary is read from them
-    for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers, a.example)
+    for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers, a.example,
+                                             a.transients)
                            + update_exact()):
         print("updated", p.relative_to(ROOT))
