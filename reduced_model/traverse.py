@@ -256,11 +256,14 @@ class Traverse:
         """p at table point i for the slide slip s [m/s]."""
         return self._p_at(s, self._bi[i], self._dphi[i], self._spin[i])
 
-    def _p_at(self, s, bi, dphi, spin):
+    def _p_at(self, s, bi, dphi, spin, p0=None):
         """p for the slide slip s [m/s] where the drive gives bi, dphi, spin (T2, T3, T5: beta
-        depends weakly on p through f_n and the spin moment: fixed point)."""
+        depends weakly on p through f_n and the spin moment: fixed point), from p0 when it is
+        given and of p's sign (the march: a nearby point's p), else from beta = 0."""
         sign = -1.0 if s > 0 else 1.0
         p = sign * self.mu * math.tanh(3.0 * abs(s) / self.vst)
+        if p0 is not None and p0 * sign > 0.0:
+            p = p0
         for _ in range(6):
             q = sign * self._share(s, abs(self._beta_at(p, self._fn(p), bi, dphi, spin)))
             if abs(q - p) < 1e-11 * self.mu:
@@ -269,18 +272,21 @@ class Traverse:
         return p
 
     # --- the periodic solution of T4 in the slide slip s ----------------------------------------
-    def _step(self, rhs0, s, h, P1):
+    def _step(self, rhs0, s, h, P1, p0=None):
         """s1 [m/s] of one trapezoidal step of T4 from slip s over h [s]: the root of
         f(z) = rho_c P1(z) - h/2 z - rhs0, P1 the p of the step's end point.  Newton: f falls
         with slope <= -h/2 and |p| <= mu, so its root lies in [lo, hi]; a Newton step that
         leaves the bracket (it overshoots on the tanh's knee and can cycle there) is a
-        bisection instead."""
+        bisection instead.  p0 (the march): P1 takes a guess for its fixed point as second
+        argument, p0 first, then the last p it gave (the table: p0 None, one argument)."""
         rho, mu = self.rho_c, self.mu
         e = 1e-6 * self.vst              # finite-difference step of the Newton slope
         lo, hi = -2.0 * (rho * mu + rhs0) / h, 2.0 * (rho * mu - rhs0) / h
         z = min(max(s, lo), hi)
+        g = p0
         for _ in range(200):
-            p1 = P1(z)
+            p1 = P1(z) if p0 is None else P1(z, g)
+            g = p1
             res = rho * p1 - 0.5 * h * z - rhs0
             if res > 0.0:
                 lo = z
@@ -288,7 +294,7 @@ class Traverse:
                 hi = z
             else:
                 break
-            d = (rho * (P1(z + e) - p1)) / e - 0.5 * h
+            d = (rho * ((P1(z + e) if p0 is None else P1(z + e, p1)) - p1)) / e - 0.5 * h
             dz = -res / d
             if not lo < z + dz < hi:
                 dz = 0.5 * (lo + hi) - z
@@ -397,8 +403,8 @@ class Traverse:
             phi, xi, V1, dphi, spin, bi = self._drive_on(x + wh * (i + 1), SCALAR)
             if self.held:
                 rhs0 = self.rho_c * p + 0.5 * h * (s - V0 - V1)
-                s = self._step(rhs0, s, h, lambda z: self._p_at(z, bi, dphi, spin))
-                p = self._p_at(s, bi, dphi, spin)
+                s = self._step(rhs0, s, h, lambda z, g: self._p_at(z, bi, dphi, spin, g), p)
+                p = self._p_at(s, bi, dphi, spin, p)
             V0 = V1
         if not self.held:
             s, p = V0, 0.0

@@ -275,11 +275,12 @@ static double share(const Op *o, double s, double B)
     return mu * tanh(k * s / cos(a)) * cos(a);
 }
 
-/* T2, T3, T5: Traverse._p_at */
-static double p_at(const Op *o, double s, const Drive *d)
+/* T2, T3, T5: Traverse._p_at (p0: the guess, NAN for none) */
+static double p_at(const Op *o, double s, const Drive *d, double p0)
 {
     double sign = s > 0 ? -1.0 : 1.0;
     double p = sign * o->mu * tanh(3.0 * fabs(s) / o->vst);
+    if (p0 == p0 && p0 * sign > 0.0) p = p0;
     for (int it = 0; it < 6; ++it) {
         double q = sign * share(o, s, fabs(beta_at(o, p, normal_force(o, p), d)));
         if (fabs(q - p) < 1e-11 * o->mu) return q;
@@ -288,20 +289,22 @@ static double p_at(const Op *o, double s, const Drive *d)
     return p;
 }
 
-/* T4, one trapezoidal step: Traverse._step (Newton kept in the root's bracket) */
-static double trapezoid_step(const Op *o, double rhs0, double s, double h, const Drive *d)
+/* T4, one trapezoidal step: Traverse._step with p0 (Newton kept in the root's bracket) */
+static double trapezoid_step(const Op *o, double rhs0, double s, double h, const Drive *d,
+                             double p0)
 {
     double rho = o->rho, mu = o->mu;
     double e = 1e-6 * o->vst;
     double lo = -2.0 * (rho * mu + rhs0) / h, hi = 2.0 * (rho * mu - rhs0) / h;
     double z = pmin(pmax(s, lo), hi);
     for (int it = 0; it < 200; ++it) {
-        double p1 = p_at(o, z, d);
+        double p1 = p_at(o, z, d, p0);
+        p0 = p1;
         double res = rho * p1 - 0.5 * h * z - rhs0;
         if (res > 0.0) lo = z;
         else if (res < 0.0) hi = z;
         else break;
-        double dd = (rho * (p_at(o, z + e, d) - p1)) / e - 0.5 * h;
+        double dd = (rho * (p_at(o, z + e, d, p1) - p1)) / e - 0.5 * h;
         double dz = -res / dd;
         if (!(lo < z + dz && z + dz < hi)) dz = 0.5 * (lo + hi) - z;
         z += dz;
@@ -356,8 +359,8 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
             drive_on(&o, x + wh * (double)(j + 1), &d1);
             if (o.held) {
                 double rhs0 = o.rho * p + 0.5 * h * (s - d0.V - d1.V);
-                s = trapezoid_step(&o, rhs0, s, h, &d1);
-                p = p_at(&o, s, &d1);
+                s = trapezoid_step(&o, rhs0, s, h, &d1, p);
+                p = p_at(&o, s, &d1, p);
             }
             d0 = d1;
         }
