@@ -11,6 +11,7 @@ implementation for both.
 import math
 
 from reduced_model.friction import v_st_auto
+from reduced_model.scene import pressing_load
 from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0,
@@ -161,13 +162,12 @@ def derive(P, OP):
     jump = -1.0
     if not same and OP[OP_KEY] == OP[OP_KEY]:
         jump = 0.0
-    F = tq / (3.0 * P[P_S]) if tq != 0.0 else Fp
+    F = pressing_load(Fp, tq, P[P_S])
     vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
     n = max(1, int(math.ceil(dt / h - 1e-9)))
     # the load's relative change, from the key (a restored state carries the key, not OP_F)
-    tq0 = OP[OP_KEY + 3]
-    F0 = tq0 / (3.0 * P[P_S]) if tq0 != 0.0 else OP[OP_KEY + 2]
+    F0 = pressing_load(OP[OP_KEY + 2], OP[OP_KEY + 3], P[P_S])
     P[P_DF] = abs(F - F0) / max(abs(F), abs(F0), 1e-300) if jump >= 0.0 else 0.0
     OP[OP_F] = F
     OP[OP_N] = n
@@ -195,6 +195,6 @@ def derive(P, OP):
 
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
-FUNCTIONS = ("row_substep", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
+FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
              "_rate_amplitude", "ga_step_size", "substep", "groove_offset", "lumped_offset",
              "derive")
