@@ -1,7 +1,9 @@
 """Calls every FMI 2.0 co-simulation function of a built FMU in every phase of its call sequence,
 in its own process (tests/test_call_states.py).
 
-Usage: python call_states.py FMU; prints one JSON object: "table" {phase: {function: status}},
+Usage: python call_states.py FMU [SPEC_JSON]; SPEC: {"input": the Real input set to NaN and
+back (default theta), "outputs": the Real outputs read (default the joint's)}; prints one
+JSON object: "table" {phase: {function: status}},
 the status the FMU returned (0 OK ... 3 Error), each call on a fresh instance brought to the
 phase; and whether a state restored into an instance not yet initialised continues the run
 of the instance it was taken from bit for bit.
@@ -19,7 +21,12 @@ fmu = sys.argv[1]
 md = read_model_description(fmu)
 d = extract(fmu)
 vr = {v.name: v.valueReference for v in md.modelVariables}
-THETA = float(next(v.start for v in md.modelVariables if v.name == "theta"))
+spec = json.loads(sys.argv[2]) if len(sys.argv) > 2 else {}
+INPUT = spec.get("input", "theta")
+OUTPUTS = spec.get("outputs", ["Fz", "Fx", "Fz_joint", "whirl_angle"])
+THETA = float(next(v.start for v in md.modelVariables if v.name == INPUT))
+INT = next((v.name for v in md.modelVariables if v.type == "Integer"), None)
+BOOL = next((v.name for v in md.modelVariables if v.type == "Boolean"), None)
 
 
 def status_of(call):
@@ -40,7 +47,7 @@ def at(phase):
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
     if phase == "error":      # a failed call (an initialisation refusing its inputs) is an error
-        s.setReal([vr["theta"]], [math.nan])
+        s.setReal([vr[INPUT]], [math.nan])
         assert status_of(s.exitInitializationMode) == 3
         return s
     if phase == "initialization":
@@ -50,7 +57,7 @@ def at(phase):
     if phase == "step complete":
         return s
     if phase == "step failed":     # a step refused (an invalid input) is a failed step
-        s.setReal([vr["theta"]], [math.nan])
+        s.setReal([vr[INPUT]], [math.nan])
         assert status_of(lambda: s.doStep(1e-4, 1e-4)) == 2
         return s
     if phase == "terminated":
@@ -94,11 +101,14 @@ def calls(s):
         "fmi2ExitInitializationMode": s.exitInitializationMode,
         "fmi2Terminate": s.terminate,
         "fmi2Reset": s.reset,
-        "fmi2GetReal": lambda: s.getReal([vr["Fz"]]),
-        "fmi2GetInteger": lambda: s.getInteger([vr["n_rollers"]]),
-        "fmi2GetBoolean": lambda: s.getBoolean([vr["pitch"]]),
+        "fmi2GetReal": lambda: s.getReal([vr[OUTPUTS[0]]]),
+        # the first Integer and Boolean variable (none: a call for zero variables)
+        "fmi2GetInteger": lambda: (s.getInteger([vr[INT]]) if INT else
+                                   s.fmi2GetInteger(s.component, n0, 0, i)),
+        "fmi2GetBoolean": lambda: (s.getBoolean([vr[BOOL]]) if BOOL else
+                                   s.fmi2GetBoolean(s.component, n0, 0, i)),
         "fmi2GetString": lambda: s.fmi2GetString(s.component, n0, 0, (ctypes.c_char_p * 1)()),
-        "fmi2SetReal": lambda: s.setReal([vr["theta"]], [THETA]),
+        "fmi2SetReal": lambda: s.setReal([vr[INPUT]], [THETA]),
         "fmi2SetInteger": lambda: s.fmi2SetInteger(s.component, n0, 0, i),
         "fmi2SetBoolean": lambda: s.fmi2SetBoolean(s.component, n0, 0, i),
         "fmi2SetString": lambda: s.fmi2SetString(s.component, n0, 0, (ctypes.c_char_p * 1)()),
@@ -126,7 +136,7 @@ for phase in PHASES:
         except Exception:
             pass
 # a state restored into an instance not yet initialised continues the run bit for bit
-OUT = [vr[n] for n in ("Fz", "Fx", "Fz_joint", "whirl_angle")]
+OUT = [vr[n] for n in OUTPUTS]
 donor = at("step complete")
 for i in range(1, 200):
     donor.doStep(i * 1e-4, 1e-4)

@@ -32,9 +32,12 @@ ALLOWED = {
 }
 
 
-@pytest.mark.parametrize("name", ["TripodRoller", "TripodRollerAnalytic"])
-def test_call_sequence_table(name):
-    p = subprocess.run([sys.executable, str(WORKER), str(ensure_fmu(name))],
+@pytest.mark.parametrize("name,spec", [
+    ("TripodRoller", {}), ("TripodRollerAnalytic", {}),
+    # the driveline example's powertrain: its input the joint's force, its outputs moving
+    ("Powertrain", {"input": "Fz_joint", "outputs": ["torque", "omega", "acc_y"]})])
+def test_call_sequence_table(name, spec):
+    p = subprocess.run([sys.executable, str(WORKER), str(ensure_fmu(name)), json.dumps(spec)],
                        capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
     r = json.loads(p.stdout.strip().splitlines()[-1])
