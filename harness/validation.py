@@ -268,26 +268,25 @@ def damping_markdown(rows) -> str:
     return "\n".join(out)
 
 
-START, END = "<!-- generated: traverse grid -->", "<!-- end generated -->"
-QSTART = "<!-- generated: quadrant grid -->"
-DSTART = "<!-- generated: contact damping -->"
+END = "<!-- end generated -->"
+# docs/validation.md's generated blocks: (name, the table's generator)
+BLOCKS = (("traverse grid", lambda: markdown(grid_rows())),
+          ("quadrant grid", lambda: quadrant_markdown(quadrant_rows())),
+          ("contact damping", lambda: damping_markdown(damping_rows())))
 
 
 def write_docs(path=ROOT / "docs" / "validation.md") -> str:
-    """Regenerate the grid table between the markers of docs/validation.md."""
+    """Regenerate the tables between their markers in docs/validation.md."""
     text = path.read_text()
-    i, j = text.index(START) + len(START), text.index(END)
-    table = markdown(grid_rows())
-    text = text[:i] + "\n" + table + "\n" + text[j:]
-    i = text.index(QSTART) + len(QSTART)
-    j = text.index(END, i)
-    quadrants = quadrant_markdown(quadrant_rows())
-    text = text[:i] + "\n" + quadrants + "\n" + text[j:]
-    i = text.index(DSTART) + len(DSTART)
-    j = text.index(END, i)
-    damping = damping_markdown(damping_rows())
-    path.write_text(text[:i] + "\n" + damping + "\n" + text[j:])
-    return table + "\n\n" + quadrants + "\n\n" + damping
+    tables = []
+    for name, table in BLOCKS:
+        start = f"<!-- generated: {name} -->"
+        i = text.index(start) + len(start)
+        j = text.index(END, i)
+        tables.append(table())
+        text = text[:i] + "\n" + tables[-1] + "\n" + text[j:]
+    path.write_text(text)
+    return "\n\n".join(tables)
 
 
 if __name__ == "__main__":
