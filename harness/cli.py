@@ -59,7 +59,7 @@ def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.add_argument("--whirl-hz", type=float, metavar="HZ", help="whirl frequency in Hz (omega = 2 pi f)")
 
 
-def overrides_from(args, model: str = "analytic") -> dict:
+def overrides_from(args) -> dict:
     """Scene overrides from --set and the unit-named convenience options (SI values)."""
     out: dict = {}
     for item in args.set:
@@ -169,7 +169,7 @@ def _load_scene_file(path) -> dict:
 def cmd_compare(args) -> int:
     from harness.compare import compare, format_table
     over = _load_scene_file(args.scene) if args.scene else {}
-    over.update(overrides_from(args, model="contact"))
+    over.update(overrides_from(args))
     r = compare(over, max_cycles=args.max_cycles, dt=_dt(args))
     if args.out:
         from harness.plots import compare_plots
@@ -277,7 +277,7 @@ def cmd_stress(args) -> int:
 
 def cmd_runup(args) -> int:
     from harness import transients as T
-    sv = dict(T.RUNUP_START, **overrides_from(args, "contact"))
+    sv = dict(T.RUNUP_START, **overrides_from(args))
     if args.input:
         inputs = T.read_input_csv(args.input)
         stop = inputs["time"][-1]

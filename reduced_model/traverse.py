@@ -156,7 +156,7 @@ class Traverse:
         if not periodic:              # the operating point only, for march
             return
         self.x = 2.0 * math.pi * np.arange(n + 1) / n
-        self._drive(sc)
+        self._drive()
         if not self.held:                             # no friction, or no slip to drive it
             self.p = np.zeros(n + 1)
             self.slip = self.V.copy()                 # nothing holds the roller: it slips by V
@@ -192,7 +192,7 @@ class Traverse:
         V = v1 + v2 * (1.0 + self.rho_c / r)                # T4
         return phi, xi, V, dphi, zd / r, -self.inertia * zdd / (r * r)
 
-    def _drive(self, sc):
+    def _drive(self):
         (self.phi, self.xi, self.V, self.dphi, self.spin,
          self.b_inertia) = self._drive_on(self.x)
         # plain lists: the time-stepping loop reads them one float at a time

@@ -89,7 +89,7 @@ def test_static_load_sharing_eq17():
     E = -m.Y[K.Y_E]
     c = np.cos(psi)
     ap = np.maximum(E * c - m.p["needle_clearance"], 0.0)
-    Cl = hertz.needle_line_stiffness(m.p["n_spheres"], m.p["l_needle"])
+    Cl = hertz.needle_line_stiffness(m.p["l_needle"])
     expect = Cl * (0.5 * ap) ** (10 / 9)        # two races in series, whole needle
     got = ND[:, NDL.D_BORE]
     assert np.sum(got * c) == pytest.approx(1000.0, rel=1e-3)

@@ -6,7 +6,7 @@ it too); the needle line contact, Eq. (17), is here.  SI units throughout.
 from reduced_model.hertz import groove_curvature_radii, hertz_point  # noqa: F401 (re-exported)
 
 
-def needle_line_stiffness(n_spheres, l_needle):
+def needle_line_stiffness(l_needle):
     """Needle line contact, Eq. (17) / Table 1: delta = 3.8e-5 (N_s f)^0.9 / l^0.8 [mm, N].
 
     Returns C_line [N/m^(10/9)] with the force on the whole needle f_needle = C_line delta^(10/9)

@@ -575,9 +575,9 @@ def step_error(Y, Y1, P):
 
 
 # generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
-RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) let the stick mode ring
-               # in a first version of this step: order 3 off by 40-200 % at 25-100 us, while
-               # 0.6-0.9 all stayed below 0.02 % at 25-50 us (paper's scene, ideal bearing)
+RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) lets the stick mode
+               # ring: order 3 off by 40-200 % at 25-100 us, while 0.6-0.9 all stay below
+               # 0.02 % at 25-50 us (paper's scene, ideal bearing)
 GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-2: same order 3)
 GA_MAXIT = 12
 
@@ -977,8 +977,7 @@ def run_substeps(Y, P, theta, w, F_press, x0, h, n, out, L, res, Y1, Y2, G, A, b
 
 # the roller's velocity unknowns in Y (ud, om, wd, b1d, b2d, ed) and the positions they move
 # (-1: none)
-_RV = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
-_RQ = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
+_RV, _RQ = GA_VEL, GA_POS   # the same unknowns (velocity, position) as the GA step's
 
 
 @njit

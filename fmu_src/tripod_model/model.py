@@ -51,7 +51,7 @@ class ContactModel:
         # the loaded half of the row at angles 2 pi j / n_needles from the pressing direction
         psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
         c = np.cos(psi)[np.cos(psi) > 1e-12]
-        C_line = hertz.needle_line_stiffness(p["n_spheres"], p["l_needle"])
+        C_line = hertz.needle_line_stiffness(p["l_needle"])
         s19, s10 = float(np.sum(c ** (19 / 9))), float(np.sum(c ** (10 / 9)))
         self.K_row = C_line * 2.0 ** (-10 / 9) * s19          # F_r = K_row g^(10/9)
         P[K.P_KN] = self.K_row
@@ -185,7 +185,7 @@ class ContactModel:
         # races in series; solve sum_j C_line (approach_j / 2)^(10/9) cos(psi_j) = F for E
         psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
         c = np.cos(psi)
-        Cl = hertz.needle_line_stiffness(p["n_spheres"], p["l_needle"])
+        Cl = hertz.needle_line_stiffness(p["l_needle"])
 
         def load(g):   # g = -E > 0
             ap = np.maximum(g * c - p["needle_clearance"], 0.0)

@@ -2,8 +2,8 @@
 built (fmu_src/aot.py), loaded here with ctypes.  A scene without resolved needles then steps
 through it and never imports numba: a fresh process saves numba's import and start-up (about
 0.6 s of a 1.3 s `fmpy simulate`).  The library is used only when it was built from exactly
-these sources (their content hash); otherwise, or with TRIPOD_AOT=0, the kernel is compiled
-by numba as before (TRIPOD_NUMBA=0: plain Python, neither).
+these sources (their content hash); otherwise, or with TRIPOD_AOT=0, numba compiles the
+kernel (TRIPOD_NUMBA=0: plain Python, neither).
 """
 import ctypes
 import hashlib

@@ -4,7 +4,7 @@ count, the largest adaptive substep, the pressing offset of the trunnion axis.
 
 Plain Python over the parameter vector P and the operating-point vector OP (layout.py), so the
 model derives it without numba (its log, the needle-resolved bearing), and numba compiles the
-same functions into the communication step (kernel.py: ``compile_into``), which then derives it
+same functions into the communication step (kernel.py: ``_compile_oppoint``), which derives it
 itself when a master sets new inputs (the native layer's fast path, fast.py): one
 implementation for both.
 """
