@@ -21,7 +21,7 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from driveline import powertrain as pt
-from reduced_model.scene import check_param
+from reduced_model.scene import check_param, parse_param
 
 JOINTS = {"contact": "TripodRoller", "analytic": "TripodRollerAnalytic"}
 TO_JOINT = ("theta", "plunge_speed", "omega", "torque")      # powertrain outputs -> joint inputs
@@ -241,11 +241,7 @@ def powertrain_overrides(items) -> dict:
         if not sep or p is None or p.causality == "input":
             raise ValueError(f"--set {item}: expected NAME=VALUE with NAME a powertrain "
                              f"parameter: {', '.join(q.name for q in pt.PARAMS)}")
-        try:
-            value = int(text) if p.kind == "int" else float(text)
-        except ValueError:
-            raise ValueError(f"{name} = {text!r} is not a number; allowed range "
-                             f"{p.range_text()}") from None
+        value = parse_param(p, text)
         check_param(p, value)
         out[p.name] = value
     return out

@@ -265,7 +265,12 @@ _FALSE = {"0", "false", "no", "off"}
 
 def parse_value(name: str, text: str):
     """Parse a textual value (as given by ``--set NAME=VALUE``) for parameter ``name``."""
-    p = _param(name)
+    return parse_param(_param(name), text)
+
+
+def parse_param(p: Param, text: str):
+    """Parse a textual value for the parameter ``p`` (any table's)."""
+    name = p.name
     t = str(text).strip().lower()
     if p.kind == "bool":
         if t in _TRUE:
