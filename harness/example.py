@@ -226,10 +226,6 @@ def peak(r: dict) -> dict:
             "wheel_hz": float(r["powertrain.omega"][i] / (2 * math.pi))}
 
 
-def relative_difference(a: dict, b: dict, name="powertrain.acc_y") -> float:
-    """Largest difference of ``name`` between two runs over the run, relative to its peak."""
-    return float(np.max(np.abs(a[name] - b[name])) / np.max(np.abs(a[name])))
-
 
 def powertrain_overrides(items) -> dict:
     """``NAME=VALUE`` strings (SI units) as powertrain parameters, each checked against its
