@@ -14,7 +14,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "fmu_src"))
 from tripod_model.model import ContactModel  # noqa: E402
-from tripod_model import kernel as K, needles as NDL  # noqa: E402
+from tripod_model import motion, layout as LY  # noqa: E402
 
 
 def main():
@@ -31,16 +31,16 @@ def main():
         ND = m.needle_loads()
         pos = m.needle_positions()
         finite &= bool(np.all(np.isfinite(m.Y))) and all(math.isfinite(v) for v in o.values())
-        err.append(abs(ND[:, NDL.D_R1].sum() - o["Fx"]) / o["Fx"])
-        bore = ND[:, NDL.D_BORE]
+        err.append(abs(ND[:, LY.D_R1].sum() - o["Fx"]) / o["Fx"])
+        bore = ND[:, LY.D_BORE]
         psi = np.arctan2(pos[:, 1], pos[:, 0])
         ang.append(math.degrees(math.atan2(np.sum(bore * np.sin(psi)),
                                            np.sum(bore * np.cos(psi)))))
         far.append(np.sum(bore[np.cos(psi) < -0.2]) / np.sum(bore))
         rho_lo = min(rho_lo, np.hypot(pos[:, 0], pos[:, 1]).min())
         # the outer limit from the roller bore's axis (the roller sits off the trunnion's by E, W)
-        rho_hi = max(rho_hi, np.hypot(pos[:, 0] - m.Y[K.Y_E], pos[:, 1] - m.Y[K.Y_W]).max())
-        d = K.trunnion_axial(m.Y[K.Y_X], p["theta"], p["s"], p["axial"])
+        rho_hi = max(rho_hi, np.hypot(pos[:, 0] - m.Y[LY.Y_E], pos[:, 1] - m.Y[LY.Y_W]).max())
+        d = motion.trunnion_axial(m.Y[LY.Y_X], p["theta"], p["s"], p["axial"])
         ax_over = max(ax_over, np.max(np.abs(pos[:, 2] - d)) - p["needle_axial_clearance"])
     err = np.array(err)
     print(f"two whirl cycles, {p['n_needles']} x {p['n_spheres']}: wall {time.time() - t0:.1f} s")

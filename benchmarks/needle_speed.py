@@ -26,7 +26,7 @@ sys.path.insert(0, str(ROOT / "fmu_src"))
 from harness.bench import REFERENCES, time_runs  # noqa: E402
 from harness.fmus import ensure_fmu  # noqa: E402
 from reduced_model.orders import last_cycle_orders  # noqa: E402
-from tripod_model import kernel as K, layout as LY, needles as NDL  # noqa: E402
+from tripod_model import assembly, bdf2, rowsolve, layout as LY  # noqa: E402
 from tripod_model.model import ContactModel, simulate  # noqa: E402
 
 CYCLES = 2
@@ -45,35 +45,35 @@ def contact_checks(m):
 @numba.njit
 def _loop_contacts(reps, Y, P, NW, th, x, h, L, e1, e2):
     for _ in range(reps):   # as the default step evaluates them: one system, no K v term
-        K.resolved_forces(Y, P, NW, th, x, h, L, e1[0], e1[1], e1[2], e2[0], e2[1], e2[2], 0.0,
-                          True)
+        assembly.resolved_forces(Y, P, NW, th, x, h, L, (e1[0], e1[1], e1[2]),
+                                 (e2[0], e2[1], e2[2]), True)
 
 
 @numba.njit
 def _loop_solve(reps, NW, n, h, A0, b0, A, b, AN0, FN0):
     for _ in range(reps):
-        NW[3][:] = AN0
-        NW[2][:] = FN0
+        NW.AN[:] = AN0
+        NW.FN[:] = FN0
         A[:] = A0
         b[:] = b0
-        K.coupled_solve(A, b, NW, h, n, True)
+        rowsolve.coupled_solve(A, b, NW, h, n, True)
 
 
 @numba.njit
 def _loop_copy(reps, NW, n, h, A0, b0, A, b, AN0, FN0):
     for _ in range(reps):
-        NW[3][:] = AN0
-        NW[2][:] = FN0
+        NW.AN[:] = AN0
+        NW.FN[:] = FN0
         A[:] = A0
         b[:] = b0
 
 
 @numba.njit
-def _loop_substep(reps, Y0, Yp0, Y, Yp, YL, P, th, om, F, x0, h, L, res, G, A, b, NW):
+def _loop_substep(reps, Y0, Yp0, Y, P, drive, h, W, NW):
     for _ in range(reps):
         Y[:] = Y0
-        Yp[:] = Yp0
-        K.bdf2_substep(Y, Yp, YL, P, th, om, F, x0, h, h, L, res, G, A, b, NW)
+        W.Y2[:] = Yp0
+        bdf2.bdf2_substep(Y, P, drive, h, h, W, NW)
 
 
 def substep_profile(m, reps=1000):
@@ -99,17 +99,17 @@ def substep_profile(m, reps=1000):
             f(reps, *a)
             best = min(best, (time.perf_counter() - t0) / reps * 1e6)
         return best
-    tc = timed(_loop_contacts, Y, m.P, NW, th, Y[K.Y_X], h, L, e1, e2)
-    AN0, FN0 = NW[3].copy(), NW[2].copy()
+    tc = timed(_loop_contacts, Y, m.P, NW, th, Y[LY.Y_X], h, L, e1, e2)
+    AN0, FN0 = NW.AN.copy(), NW.FN.copy()
     for j in range(n):   # the solve's ring matrix carries the needles' masses
-        AN0[j] += np.diag([NW[0][NDL.N_MN]] * 3 + [NW[0][NDL.N_I1]] * 2 + [NW[0][NDL.N_I3]])
-    A0 = NW[5].copy() + np.diag([m.P[K.P_M], m.P[K.P_IS], m.P[K.P_M], m.P[K.P_IT],
-                                 m.P[K.P_IT], m.P[K.P_M]])
-    a = (NW, n, h, A0, NW[4].copy(), np.empty((6, 6)), np.empty(6), AN0, FN0)
+        AN0[j] += np.diag([NW.NP[LY.N_MN]] * 3 + [NW.NP[LY.N_I1]] * 2 + [NW.NP[LY.N_I3]])
+    A0 = NW.AR.copy() + np.diag([m.P[LY.P_M], m.P[LY.P_IS], m.P[LY.P_M], m.P[LY.P_IT],
+                                 m.P[LY.P_IT], m.P[LY.P_M]])
+    a = (NW, n, h, A0, NW.FR.copy(), np.empty((6, 6)), np.empty(6), AN0, FN0)
     tr = timed(_loop_solve, *a) - timed(_loop_copy, *a)
-    ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m._Y2.copy(), m._Y1, m.P, th, om,
-               m.p["F_press"], m._x0, h, L, m._res, m._G, m._A, m._b, NW)
-    touching = [int(np.sum(NW[6][:, k] > 0)) for k in (NDL.D_BORE, NDL.D_TRUN, NDL.D_NEIGH)]
+    W = m._W._replace(Y2=m._Y2.copy())   # the model's own previous state left as it is
+    ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m.P, LY.Drive(th, om, m._x0), h, W, NW)
+    touching = [int(np.sum(NW.ND[:, k] > 0)) for k in (LY.D_BORE, LY.D_TRUN, LY.D_NEIGH)]
     return tc, tr, ts, touching
 
 

@@ -439,14 +439,14 @@ def breakdown(runs=5, dt=1e-4):
     """Where the time of one two-cycle run of the default contact scene goes [s]:
     FMI boundary (bare slave), the slave adapter, the model's Python, the numba kernel."""
     sys.path.insert(0, str(ROOT / "fmu_src"))
-    from tripod_model import kernel as K
+    from tripod_model import kernel
     from tripod_model.model import JointModel
     n = int(round(STOP / dt))
     bare = time_runs(bare_fmu(), [{"sv": {}, "dt": dt, "stop": STOP}], runs, read=("Fz",))[0]["wall"]
     fmu = time_runs(ensure_fmu("TripodRoller"), [{"sv": {}, "dt": dt, "stop": STOP}], runs,
                     read=("Fz",))[0]["wall"]
     model_t, kernel_t = [], []
-    orig = K.run_substeps
+    orig = kernel.run_substeps
     for _ in range(runs + 1):
         m = JointModel({})
         p = m.p
@@ -456,7 +456,7 @@ def breakdown(runs=5, dt=1e-4):
             t0 = time.perf_counter()
             orig(*a)
             acc[0] += time.perf_counter() - t0
-        K.run_substeps = timed
+        kernel.run_substeps = timed
         try:
             t0 = time.perf_counter()
             for _ in range(n):
@@ -464,7 +464,7 @@ def breakdown(runs=5, dt=1e-4):
             model_t.append(time.perf_counter() - t0)
             kernel_t.append(acc[0])
         finally:
-            K.run_substeps = orig
+            kernel.run_substeps = orig
     model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
     return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - model - bare, 0.0), model - kernel,
                                       kernel, fmu)))

@@ -3,8 +3,8 @@ an implicit fixed step whose Newton iterations call back for the forces.
 
 For the side-by-side of `tripod-thrust bench` (issue 7: our integrators against explicit
 stepping and against such an engine at equal order-3 error).  It runs the very step of the
-default integrator (kernel.ga_step, its plain-Python source) and only the force evaluations
-(kernel._ga_residual -> ga_forces) are compiled: a lower bound of what a Python force callback
+default integrator (genalpha.ga_step, its plain-Python source) and only the force evaluations
+(genalpha._ga_residual -> ga_forces) are compiled: a lower bound of what a Python force callback
 costs, so the difference to integrator 4 is what stepping in a host language costs.  Run with
 the ideal bearing, the scene of the side-by-side.
 """
@@ -15,7 +15,8 @@ import time
 
 import numpy as np
 
-from tripod_model import kernel as K
+from reduced_model.thrust import fz_mod
+from tripod_model import euler, genalpha, layout as LY
 from tripod_model.model import ContactModel
 
 
@@ -29,27 +30,26 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
     p = m.p
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
-    m.P[K.P_VST] = m.v_st(theta, w)
+    m.P[LY.P_VST] = m.v_st(theta, w)
     x0 = m.pressing_offset(F)
     every = max(1, int(round(dt_out / h)))
     if abs(every * h - max(dt_out, h)) > 1e-9 * h:
         raise ValueError(f"dt_out = {dt_out:g} s is not a whole number of steps h = {h:g} s")
     n_out = int(round(cycles * 2 * math.pi / w / (every * h)))
-    Y, P, L, res = m.Y, m.P, m._L, m._res
-    Q, Yf, A, GW, hs = m._b, m._Y1, m._A, m._GW, m._hs
-    step = K.ga_step.py_func          # the step in Python; its force evaluations compiled
+    Y, P, W = m.Y, m.P, m._W
+    drive = LY.Drive(theta, w, x0)
+    step = genalpha.ga_step.py_func          # the step in Python; its force evaluations compiled
     out = np.zeros(n_out)
     failed = 0
     t0 = time.perf_counter()
     for k in range(n_out):
         for _ in range(every):
-            if not step(Y, P, theta, w, x0, h, L, res, Q, Yf, A, GW, hs):
+            if not step(Y, P, drive, h, W):
                 failed += 1           # integrator 4 would hand this step to integrator 3
-                hs[3] = 0.0
-                K.adaptive_steps(Y, P, theta, w, F, x0, h, 0.25 * h, L, res, m._Y1, m._Y2,
-                                 m._G, m._A, m._b, None, hs)
-        K.ga_forces(Y, P, theta, w, x0, L, res, Q, GW[K.W_M])
-        out[k] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
+                W.hs[LY.H_GA] = 0.0
+                euler.adaptive_steps(Y, P, drive, h, 0.25 * h, W, None)
+        genalpha.ga_forces(Y, P, drive, W.L, W.res, W.b, W.GW[LY.W_M])
+        out[k] = fz_mod(-W.res[LY.R_FX], -W.res[LY.R_FZ], F)
     wall = time.perf_counter() - t0
     t = every * h * np.arange(1, n_out + 1)
     return t, out, {"steps": n_out * every, "failed": failed}, wall

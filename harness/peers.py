@@ -3,7 +3,7 @@
 scipy's solve_ivp is what a Python user writes first: the roller's equations of the ideal
 bearing with traverse (slide u along the trunnion axis, its rate, the spin rate; the whirl
 angle w t drives the trunnion), the right-hand side the kernel's own compiled force evaluation
-(kernel.ga_forces: Hertz contact, tanh friction, spin moment, driving accelerations), so the
+(genalpha.ga_forces: Hertz contact, tanh friction, spin moment, driving accelerations), so the
 two differ only in how they integrate.  Outputs Fz' at the communication instants from the
 dense solution, like the FMU's.
 
@@ -17,7 +17,8 @@ import time
 
 import numpy as np
 
-from tripod_model import kernel as K
+from reduced_model.thrust import fz_mod
+from tripod_model import contact, genalpha, motion, layout as LY
 from tripod_model.model import ContactModel
 
 
@@ -35,20 +36,21 @@ def solve_ivp_run(method: str = "LSODA", rtol: float = 1e-6, params=None, cycles
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
     vst = m.v_st(theta, w)
-    m.P[K.P_VST] = vst
+    m.P[LY.P_VST] = vst
     x0 = m.pressing_offset(F)
-    Y, P, L, res, Q, M = m.Y.copy(), m.P, m._L, m._res, m._b, m._GW[K.W_M]
-    xs = Y[K.Y_X]
+    Y, P, L, res, Q, M = m.Y.copy(), m.P, m._L, m._res, m._b, m._GW[LY.W_M]
+    xs = Y[LY.Y_X]
+    drive = LY.Drive(theta, w, x0)
 
     def rhs(t, y):
-        Y[K.Y_X] = xs + w * t
-        Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM] = y
-        K.ga_forces(Y, P, theta, w, x0, L, res, Q, M)
+        Y[LY.Y_X] = xs + w * t
+        Y[LY.Y_U], Y[LY.Y_UD], Y[LY.Y_OM] = y
+        genalpha.ga_forces(Y, P, drive, L, res, Q, M)
         return (y[1], Q[0] / M[0], Q[1] / M[1])
 
     n_out = int(round(cycles * 2 * math.pi / w / dt_out))
     t_eval = dt_out * np.arange(1, n_out + 1)
-    y0 = (Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM])
+    y0 = (Y[LY.Y_U], Y[LY.Y_UD], Y[LY.Y_OM])
     atol = rtol * np.array([1e-6, vst, vst / p["r_roller"]])
     t0 = time.perf_counter()
     sol = solve_ivp(rhs, (0.0, t_eval[-1]), y0, method=method, t_eval=t_eval, rtol=rtol,
@@ -56,10 +58,10 @@ def solve_ivp_run(method: str = "LSODA", rtol: float = 1e-6, params=None, cycles
     wall = time.perf_counter() - t0
     out = np.full(n_out, np.nan)
     for k in range(sol.y.shape[1]):
-        Y[K.Y_X] = xs + w * sol.t[k]
-        Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM] = sol.y[:, k]
-        K.ga_forces(Y, P, theta, w, x0, L, res, Q, M)
-        out[k] = res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
+        Y[LY.Y_X] = xs + w * sol.t[k]
+        Y[LY.Y_U], Y[LY.Y_UD], Y[LY.Y_OM] = sol.y[:, k]
+        genalpha.ga_forces(Y, P, drive, L, res, Q, M)
+        out[k] = fz_mod(-res[LY.R_FX], -res[LY.R_FZ], F)
     return t_eval, out, {"nfev": sol.nfev, "status": sol.status}, wall
 
 
@@ -72,7 +74,7 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
     axis a through Q) by a generic joint with time offsets; the roller a rigid body (mass m,
     inertia I_t, I_t, I_s) on it by a cylindrical joint (slide along a free with traverse, spin
     about a free): the ideal needle bearing.  The groove's Hertz force, tanh friction and spin
-    moment (kernel.groove_contact) act on the roller as user loads, Python callbacks at each
+    moment (contact.groove_contact) act on the roller as user loads, Python callbacks at each
     evaluation.  Exudyn's generalized-alpha (index 3, spectral radius 0.9), Newton with a
     numerical system Jacobian; a step whose Newton iteration fails is cut by the engine.
     Returns (t [s], Fz' [N], {"steps", "extra_steps"}, wall time of the solve [s]).
@@ -83,7 +85,7 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
     p = m.p
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
-    m.P[K.P_VST] = m.v_st(theta, w)
+    m.P[LY.P_VST] = m.v_st(theta, w)
     mbs = exu.SystemContainer().AddSystem()
     sensors = _exudyn_roller(mbs, m, _TrunnionMotion(m, theta, w, m.pressing_offset(F)))
     mbs.Assemble()
@@ -125,11 +127,11 @@ class _TrunnionMotion:
 
     def __init__(self, m, theta, w, x0):
         P = m.P
-        self.args = (theta, P[K.P_S], P[K.P_PITCH] > 0.5, P[K.P_ROLL] > 0.5)
+        self.args = (theta, P[LY.P_S], P[LY.P_PITCH] > 0.5, P[LY.P_ROLL] > 0.5)
         self.x_start, self.w, self.x0 = m.phase, w, x0
 
     def pose(self, t):
-        qz, ax, ay, az = K.trunnion_line(self.x_start + self.w * t, *self.args)
+        qz, ax, ay, az = motion.trunnion_line(self.x_start + self.w * t, *self.args)
         return np.array([self.x0, 0.0, qz, math.atan2(az, ay), math.asin(ax), 0.0])
 
     def rate(self, t):
@@ -164,9 +166,9 @@ def _exudyn_roller(mbs, m, motion):
         constrainedAxes=[1] * 6, offsetUserFunction=lambda mbs, t, i, par: list(motion.pose(t)),
         offsetUserFunction_t=lambda mbs, t, i, par: list(motion.rate(t))))
     a0 = R0[:, 2]
-    wr0 = w0 + (m.Y[K.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
+    wr0 = w0 + (m.Y[LY.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
     roller = mbs.CreateRigidBody(
-        inertia=RigidBodyInertia(P[K.P_M], np.diag([P[K.P_IT], P[K.P_IT], P[K.P_IS]])),
+        inertia=RigidBodyInertia(P[LY.P_M], np.diag([P[LY.P_IT], P[LY.P_IT], P[LY.P_IS]])),
         referencePosition=q0, referenceRotationMatrix=R0, initialVelocity=v0,
         initialAngularVelocity=wr0)
     mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=roller))
@@ -174,20 +176,20 @@ def _exudyn_roller(mbs, m, motion):
     mbs.AddObject(GenericJoint(markerNumbers=[mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion)),
                                               mr], constrainedAxes=[1, 1, slide, 1, 1, 0]))
     node = mbs.GetObject(roller)["nodeNumber"]
-    res = np.zeros(19)
+    res = np.zeros(LY.R_LEN)
     OV = exu.OutputVariableType
 
-    def contact(mbs):
+    def groove(mbs):
         c = mbs.GetNodeOutput(node, OV.Position)
         v = mbs.GetNodeOutput(node, OV.Velocity)
         om = mbs.GetNodeOutput(node, OV.AngularVelocity)
-        K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
+        contact.groove_contact(tuple(c), tuple(v), tuple(om), P, res)
         return res
 
     mbs.AddLoad(LoadForceVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
-                                list(contact(mbs)[0:3])))
+                                list(groove(mbs)[LY.R_FX:LY.R_FZ + 1])))
     mbs.AddLoad(LoadTorqueVector(markerNumber=mr, loadVectorUserFunction=lambda mbs, t, f:
-                                 list(contact(mbs)[3:6])))
+                                 list(groove(mbs)[LY.R_MX:LY.R_MZ + 1])))
     return [mbs.AddSensor(SensorNode(nodeNumber=node, outputVariableType=o, storeInternal=True,
                                      writeToFile=False))
             for o in (OV.Position, OV.Velocity, OV.AngularVelocity)]
@@ -196,6 +198,6 @@ def _exudyn_roller(mbs, m, motion):
 def _fz_prime(P, F, c, v, om):
     """Fz' = Fz F_press / Fx [N] of the roller at centre c [m], velocity v [m/s], angular
     velocity om [rad/s] (global), as the FMU computes it."""
-    res = np.zeros(19)
-    K.groove_contact(c[0], c[1], c[2], v[0], v[1], v[2], om[0], om[1], om[2], P, res)
-    return res[2] * F / res[0] if -res[0] > 1e-9 * max(F, 1.0) else 0.0
+    res = np.zeros(LY.R_LEN)
+    contact.groove_contact(tuple(c), tuple(v), tuple(om), P, res)
+    return fz_mod(-res[LY.R_FX], -res[LY.R_FZ], F)

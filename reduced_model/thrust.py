@@ -16,6 +16,14 @@ def _load(scene):
     return pressing_load(scene["F_press"], scene.get("torque", 0.0), scene["s"])
 
 
+def fz_mod(Fx, Fz, F):
+    """Fz_mod [N]: the thrust Fz [N] scaled to the pressing load F [N], Fz F / Fx, the paper's
+    Fz' (its Fig. 16); 0 while the roller carries no load in F's direction (Fx F <= 1e-9 F^2:
+    coast has F and Fx both negative).  Scalars; the contact FMU compiles it (fast.py) and
+    analytic_step.c mirrors it."""
+    return Fz * F / Fx if Fx * F > 1e-9 * max(F * F, 1.0) else 0.0
+
+
 def spin_inertia(m, r, r_bore):
     """Spin inertia of the roller as a thick ring, I = m (r^2 + r_bore^2) / 2 [kg m^2]."""
     return 0.5 * m * (r**2 + r_bore**2)

@@ -37,7 +37,7 @@ import numpy as np
 from .hertz import hertz_point
 from .orders import order_spectrum
 from .scene import BY_NAME, check_traverse_mu, pressing_load
-from .thrust import Thrust, spin_inertia, transition_velocity
+from .thrust import Thrust, fz_mod, spin_inertia, transition_velocity
 
 N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
 MICRO_SLIP_G = 0.95        # friction never above 95 % of mu_s f_n: the roller never slides across
@@ -443,10 +443,8 @@ def groove_forces(fn, p, beta, phi, xi, F, m=np):
     # a = (sin xi, cos xi cos phi, cos xi sin phi), so F . a = 0 gives Fy
     Fy = -(Fx * m.sin(xi) + Fz * m.cos(xi) * m.sin(phi)) / (m.cos(xi) * m.cos(phi))
     if m is SCALAR:
-        Fz_mod = Fz * F / Fx if Fx > 1e-9 * max(F, 1.0) else 0.0
-    else:
-        Fz_mod = np.where(Fx > 1e-9 * max(F, 1.0), Fz * F / np.where(Fx > 0, Fx, 1.0), 0.0)
-    return Fz, Fx, Fy, Fz_mod
+        return Fz, Fx, Fy, fz_mod(Fx, Fz, F)
+    return Fz, Fx, Fy, np.vectorize(fz_mod, otypes=[float])(Fx, Fz, F)
 
 
 def regime_of(g_max, o3, o3_eq27) -> str:

@@ -15,7 +15,7 @@ import pytest
 from rounding import solve_error
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
-from tripod_model import hertz, kernel as K, needles as NDL  # noqa: E402
+from tripod_model import hertz, motion, rowsolve, layout as LY, needle_laws, needles as NDL, ring  # noqa: E402
 from tripod_model.model import ContactModel  # noqa: E402
 
 SCENE = {"bearing": 2, "n_needles": 12}
@@ -40,7 +40,7 @@ def test_needle_loads_balance_the_groove_load(run):
     for o, ND, _, _ in rows:
         # along the pressing direction the roller feels Fx from the groove, the needles' sum
         # the other way; the rest is m * acceleration (below 0.5 % here: 0.06 kg at < 100 m/s^2)
-        err.append(abs(ND[:, NDL.D_R1].sum() - o["Fx"]) / o["Fx"])
+        err.append(abs(ND[:, LY.D_R1].sum() - o["Fx"]) / o["Fx"])
     print(f"needle load sum vs groove load: median {100 * np.median(err):.3f} %, "
           f"max {100 * max(err):.3f} %")
     assert np.median(err) < 0.01
@@ -50,7 +50,7 @@ def test_needle_loads_balance_the_groove_load(run):
 def test_loaded_zone_on_the_pressed_side(run):
     m, rows = run
     for _, ND, pos, _ in rows[50:]:
-        bore = ND[:, NDL.D_BORE]
+        bore = ND[:, LY.D_BORE]
         psi = np.arctan2(pos[:, 1], pos[:, 0])
         # load-weighted direction of the loaded needles: the pressing direction e1 (psi = 0)
         c = np.sum(bore * np.cos(psi))
@@ -72,7 +72,7 @@ def test_needles_stay_in_the_row_and_finite(run):
         rho = np.hypot(pos[:, 0], pos[:, 1])
         # a few micrometres of contact approach at most, never out of the annulus
         assert np.all(rho > inner - 5e-6) and np.all(rho < outer + 5e-6 + 2e-5)
-        d = K.trunnion_axial(Y[K.Y_X], p["theta"], p["s"], p["axial"])
+        d = motion.trunnion_axial(Y[LY.Y_X], p["theta"], p["s"], p["axial"])
         assert np.all(np.abs(pos[:, 2] - d) < p["needle_axial_clearance"] + 2e-5)
 
 
@@ -86,12 +86,12 @@ def test_static_load_sharing_eq17():
     ND = m.needle_loads()
     pos = m.needle_positions()
     psi = np.arctan2(pos[:, 1], pos[:, 0])
-    E = -m.Y[K.Y_E]
+    E = -m.Y[LY.Y_E]
     c = np.cos(psi)
     ap = np.maximum(E * c - m.p["needle_clearance"], 0.0)
     Cl = hertz.needle_line_stiffness(m.p["l_needle"])
     expect = Cl * (0.5 * ap) ** (10 / 9)        # two races in series, whole needle
-    got = ND[:, NDL.D_BORE]
+    got = ND[:, LY.D_BORE]
     assert np.sum(got * c) == pytest.approx(1000.0, rel=1e-3)
     loaded = expect > 1.0
     assert np.allclose(got[loaded], expect[loaded], rtol=0.02)
@@ -119,14 +119,14 @@ def test_ring_solve_against_dense_solve(gaps):
             A[6 * jn:6 * jn + 6, 6 * j:6 * j + 6] += UN[j].T
         expect = np.linalg.solve(A, h * FN.ravel()).reshape(n, 6)
         got = FN.copy()
-        NDL.ring_solve(AN.copy(), UN.copy(), got, h, n, np.zeros((n, 6, 6)),
+        ring.ring_solve(AN.copy(), UN.copy(), got, h, n, np.zeros((n, 6, 6)),
                        np.zeros((n, 6, 7)), np.zeros((6, 6)), np.zeros((6, 13)))
         assert np.linalg.norm(got - expect) <= solve_error(A, expect), n
         # several right-hand sides in one elimination (the coupled step's seven)
         RHS = rng.normal(size=(n, 6, 7))
         expect = np.linalg.solve(A, RHS.reshape(6 * n, 7)).reshape(n, 6, 7)
         got = RHS.copy()
-        NDL.ring_solve_m(AN.copy(), UN.copy(), got, 7, n, np.zeros((n, 6, 6)),
+        ring.ring_solve_m(AN.copy(), UN.copy(), got, 7, n, np.zeros((n, 6, 6)),
                          np.zeros((n, 6, 13)), np.zeros((6, 6)), np.zeros((6, 19)))
         assert np.linalg.norm(got - expect) <= solve_error(A, expect), n
 
@@ -142,22 +142,22 @@ def test_coupled_solve_against_dense_solve(gaps):
     m = ContactModel(SCENE)
     NW, n = m.NW, m.n_needle_bodies
     AN = rng.normal(size=(n, 6, 6))
-    NW[3][:] = np.einsum("nij,nkj->nik", AN, AN) + 10 * np.eye(6)
-    NW[11][:] = 0.5 * rng.normal(size=(n, 6, 6))
+    NW.AN[:] = np.einsum("nij,nkj->nik", AN, AN) + 10 * np.eye(6)
+    NW.UN[:] = 0.5 * rng.normal(size=(n, 6, 6))
     if gaps == "indefinite":
         gaps = (4,)
-        NW[3][6, 2, 2] = -50.0
+        NW.AN[6, 2, 2] = -50.0
     for g in (range(n) if gaps == "all" else gaps):
-        NW[11][g] = 0.0
-    NW[18][:] = 0.3 * rng.normal(size=(n, 6, 6))
-    NW[6][:, NDL.D_BORE] = 1.0        # needles on the bore; two clear of it (no coupling)
+        NW.UN[g] = 0.0
+    NW.BN[:] = 0.3 * rng.normal(size=(n, 6, 6))
+    NW.ND[:, LY.D_BORE] = 1.0        # needles on the bore; two clear of it (no coupling)
     for j in (2, 7):
-        NW[18][j] = 0.0
-        NW[6][j, NDL.D_BORE] = 0.0
+        NW.BN[j] = 0.0
+        NW.ND[j, LY.D_BORE] = 0.0
     TM = rng.normal(size=(6, 6))
-    NW[10][:, 7:13] = TM
+    NW.RS[:, 7:13] = TM
     FN = rng.normal(size=(n, 6))
-    NW[2][:] = FN
+    NW.FN[:] = FN
     A = rng.normal(size=(6, 6))
     A = A @ A.T + 30 * np.eye(6)
     b = rng.normal(size=6)
@@ -165,17 +165,17 @@ def test_coupled_solve_against_dense_solve(gaps):
     D = np.zeros((6 * n + 6, 6 * n + 6))
     for j in range(n):
         jn = (j + 1) % n
-        D[6 * j:6 * j + 6, 6 * j:6 * j + 6] += NW[3][j]
-        D[6 * j:6 * j + 6, 6 * jn:6 * jn + 6] += NW[11][j]
-        D[6 * jn:6 * jn + 6, 6 * j:6 * j + 6] += NW[11][j].T
-        Bj = NW[18][j] @ TM.T
+        D[6 * j:6 * j + 6, 6 * j:6 * j + 6] += NW.AN[j]
+        D[6 * j:6 * j + 6, 6 * jn:6 * jn + 6] += NW.UN[j]
+        D[6 * jn:6 * jn + 6, 6 * j:6 * j + 6] += NW.UN[j].T
+        Bj = NW.BN[j] @ TM.T
         D[6 * j:6 * j + 6, 6 * n:] = Bj
         D[6 * n:, 6 * j:6 * j + 6] = Bj.T
     D[6 * n:, 6 * n:] = A
     sol = np.linalg.solve(D, np.concatenate([g * FN.ravel(), b]))
     Ac, bc = A.copy(), b.copy()
-    K.coupled_solve(Ac, bc, NW, g, n, True)
-    got = np.concatenate([NW[2].ravel(), bc])
+    rowsolve.coupled_solve(Ac, bc, NW, g, n, True)
+    got = np.concatenate([NW.FN.ravel(), bc])
     assert np.linalg.norm(got - sol) <= solve_error(D, sol)
 
 
@@ -186,9 +186,9 @@ def test_fast_tanh_matches_math_tanh():
     xs = np.concatenate([np.logspace(-12, 2, 4001), [1e-4, 19.0, 0.0, 1e300]])
     for x in np.concatenate([xs, -xs]):
         want = math.tanh(x)
-        got = NDL._tanh(float(x))
+        got = needle_laws.tanh_clipped(float(x))
         assert abs(got - want) <= 1e-12 * abs(want), x
-    assert math.isnan(NDL._tanh(float("nan")))
+    assert math.isnan(needle_laws.tanh_clipped(float("nan")))
 
 
 def test_pair_blocks_match_per_contact_sums():

@@ -39,29 +39,29 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
     import sys
     sys.path.insert(0, str(T.ROOT / "fmu_src"))
-    from tripod_model import kernel as K
+    from tripod_model import genalpha, kernel, layout as LY
     m = T._model({}, 1)
     w = 2 * math.pi * 10
     for _ in range(5):
         m.step(1e-4, T.THETA, w, 0.0, T.TORQUE)
     r = m.rollers[0]
     r.set_inputs(1e-4, T.THETA, w, 0.0, T.TORQUE)
-    assert K.derive_op(r.P, r._OP) == -1.0            # the same inputs: no jump
+    assert kernel.derive_op(r.P, r._OP) == -1.0            # the same inputs: no jump
     r.set_inputs(1e-4, T.THETA, w * 1.001, 0.0, T.TORQUE)
-    jump = K.derive_op(r.P, r._OP)
-    assert 0.0 < jump < K.GA_JUMP_RELAX                 # a ramp's step: the cheap restart
+    jump = kernel.derive_op(r.P, r._OP)
+    assert 0.0 < jump < genalpha.GA_JUMP_RELAX                 # a ramp's step: the cheap restart
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE)
-    assert K.derive_op(r.P, r._OP) > K.GA_JUMP_RELAX    # a step input: the adaptive one
+    assert kernel.derive_op(r.P, r._OP) > genalpha.GA_JUMP_RELAX    # a step input: the adaptive one
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.001)
-    assert K.derive_op(r.P, r._OP) == 0.0               # a load change alone: no slip jump
-    assert r.P[K.P_DF] == pytest.approx(1e-3, rel=1e-3)  # (its own size)
+    assert kernel.derive_op(r.P, r._OP) == 0.0               # a load change alone: no slip jump
+    assert r.P[LY.P_DF] == pytest.approx(1e-3, rel=1e-3)  # (its own size)
     hs3 = r._hs[3]
-    K.inputs_jumped(r.P, r._hs, 0.0)
+    genalpha.inputs_jumped(r.P, r._hs, 0.0)
     assert r._hs[3] == hs3                               # small: no restart (ideal bearing)
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
-    assert K.derive_op(r.P, r._OP) == 0.0
-    K.inputs_jumped(r.P, r._hs, 0.0)
-    assert r._hs[3] == K.GA_STEP_IN                      # a load step: the adaptive one
+    assert kernel.derive_op(r.P, r._OP) == 0.0
+    genalpha.inputs_jumped(r.P, r._hs, 0.0)
+    assert r._hs[3] == genalpha.GA_STEP_IN                      # a load step: the adaptive one
 
 
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])

@@ -12,15 +12,19 @@ import math
 
 from numba import carray, cfunc, types
 
-from . import kernel as K
+from . import layout as K
+from .genalpha import inputs_jumped
+from .kernel import derive_op, run_substeps
 from .jit import njit
 
-from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL,  # noqa: F401
-                     OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2,
-                     OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE, OUTPUT_NAMES)
+from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, # noqa: F401
+    OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3,
+    OUT_FZ_JOINT, OUT_PLUNGE)
 from reduced_model.housing import housing_forces
+from reduced_model.thrust import fz_mod
 
 _housing = njit(housing_forces)
+_fz_mod = njit(fz_mod)
 
 _d = types.CPointer(types.float64)
 SIGNATURE = types.int32(*([_d] * 14))
@@ -32,8 +36,7 @@ def outputs_into(o, F_press, dst):
     ContactModel.outputs and JointModel.step compute them.  Returns whether all are finite
     (nothing is written otherwise)."""
     Fx = o[K.O_FX]
-    Fz_mod = o[K.O_FZ] * F_press / Fx if Fx * F_press > 1e-9 * max(F_press * F_press, 1.0) \
-        else 0.0   # (coast: F_press and Fx both negative)
+    Fz_mod = _fz_mod(Fx, o[K.O_FZ], F_press)
     vals = (Fx, o[K.O_FY], o[K.O_FZ], Fz_mod, Fx - F_press, o[K.O_CY], o[K.O_CZ], o[K.O_SLIP],
             o[K.O_SPIN], o[K.O_FZ], 0.0, 0.0, o[K.O_X])
     for v in vals:
@@ -74,12 +77,11 @@ def joint_into(out, n, s, F, dst):
 
 
 @njit
-def _roller(Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out):
-    """One roller's step at the inputs in its OP."""
-    K.inputs_jumped(P, hs, K.derive_op(P, OP))
-    K.run_substeps(Y, P, OP[OP_THETA], OP[OP_W], OP[OP_F], OP[OP_X0], OP[OP_H],
-                   0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, L, res, Y1, Y2, G, A, b,
-                   None, hs, GW)
+def _roller(Y, P, OP, W, out):
+    """One roller's step at the inputs in its OP (W: its work arrays, layout.Work)."""
+    inputs_jumped(P, W.hs, derive_op(P, OP))
+    run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0]), OP[OP_H],
+                 0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 
 
 @cfunc(SIGNATURE, nopython=True, cache=True)
@@ -97,10 +99,10 @@ def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
     dst = carray(pOUT, (N_OUT,))
     if n == 0:
         out = carray(pout, (K.O_LEN,))
-        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, carray(pL, (K.L_LEN,)),
-                carray(pres, (19,)), carray(pY1, (K.Y_LEN,)), carray(pY2, (K.Y_LEN,)),
-                carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)), carray(pb, (K.NV,)),
-                carray(phs, (5 + K.NV,)), carray(pGW, (K.NV + 8, K.NV)), out)
+        W = K.Work(carray(pL, (K.L_LEN,)), carray(pres, (K.R_LEN,)), carray(pY1, (K.Y_LEN,)),
+                   carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
+                   carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
+        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, W, out)
         if not outputs_into(out, head[OP_F], dst):
             return 2
         # (the same output array seen as one row: no reshape, whose helper the prebuilt
@@ -109,17 +111,17 @@ def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
                                head[OP_F], dst) else 2
     OP = carray(pOP, (n + 1, OP_LEN))
     Y, P = carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN))
-    L, res = carray(pL, (n, K.L_LEN)), carray(pres, (n, 19))
+    L, res = carray(pL, (n, K.L_LEN)), carray(pres, (n, K.R_LEN))
     Y1, Y2 = carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN))
     G, A = carray(pG, (n, K.NV, 3)), carray(pA, (n, K.NV, K.NV))
-    b, hs = carray(pb, (n, K.NV)), carray(phs, (n, 5 + K.NV))
+    b, hs = carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN))
     GW, out = carray(pGW, (n, K.NV + 8, K.NV)), carray(pout, (n, K.O_LEN))
     total = 0.0   # left to right, as JointModel.step
     for i in range(n):
         row = OP[i + 1]
         for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
             row[j] = head[j]
-        _roller(Y[i], P[i], row, L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i],
+        _roller(Y[i], P[i], row, K.Work(L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i]),
                 out[i])
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):

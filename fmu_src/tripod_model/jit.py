@@ -11,6 +11,7 @@ TRIPOD_NUMBA_CACHE.
 """
 import os
 import sys
+import types
 
 from .native import source_hash   # the sources' content hash (no numba there)
 
@@ -138,3 +139,20 @@ def inline(fn):
     if HAVE_NUMBA:
         return _compiled(fn, inline="always")
     return fn
+
+
+def compiled_copies(module, names):
+    """numba versions of ``module``'s functions ``names`` (its own and those it imported), the
+    module's own calling each other compiled, in a namespace; the module itself is untouched,
+    so its plain functions stay plain (oppoint: the model derives an operating point without
+    numba, and the kernel compiles the same source into the step)."""
+    if not HAVE_NUMBA:
+        return types.SimpleNamespace(**{n: getattr(module, n) for n in names})
+    g = dict(vars(module))   # the copies' globals: the module's, with the compiled callees
+    for n in names:
+        f = g[n]
+        if getattr(f, "__module__", None) == module.__name__:
+            f = types.FunctionType(f.__code__, g, f.__name__, f.__defaults__, f.__closure__)
+            f.__qualname__ = g[n].__qualname__
+        g[n] = njit(f)
+    return types.SimpleNamespace(**{n: g[n] for n in names})

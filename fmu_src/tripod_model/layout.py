@@ -2,6 +2,8 @@
 parameter, state, output and operating-point vectors holds.  Plain Python (no numba), so the
 model can be set up and stepped through a prebuilt kernel without importing numba.
 """
+from collections import namedtuple
+
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
@@ -12,6 +14,14 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 # step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
 # P_ZROW: row_damping [1]; P_DF: the pressing load's relative change at this communication
 # point (oppoint.derive; the lumped row's offset moves with it)
+# --- the bearings and integrators: the numbers the parameters `bearing` and `integrator` take
+# (reduced_model/scene.py), named here once; code tests P[P_BEAR], P[P_INTEG] against these
+BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED = 0.0, 1.0, 2.0
+INT_EULER = 0.0          # linearly implicit Euler
+INT_EXTRAPOLATED = 1.0   # the same, Richardson-extrapolated at the fixed substep (euler.py)
+INT_EXPLICIT = 2.0       # explicit (symplectic) Euler: no friction Jacobian, for comparison
+INT_ADAPTIVE = 3.0       # extrapolated, substep by its own error estimate (euler.adaptive_steps)
+INT_DEFAULT = 4.0        # generalized-alpha (ideal, lumped: genalpha.py); BDF2 (resolved: bdf2.py)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
 # radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
@@ -20,10 +30,32 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 # Y_PL: the plunge [m], the spider's travel along the groove (the integral of the plunge speed)
 (Y_X, Y_U, Y_UD, Y_OM, Y_E, Y_ED, Y_W, Y_WD, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_PL, Y_LEN) = range(14)
 NV = 6   # velocity unknowns of the implicit step: ud, om, wd, b1d, b2d, (ed: resolved bearing)
+# the roller's velocity unknowns in Y, in the order of the implicit steps' systems, the
+# positions they move (-1: the spin angle, which nothing depends on), and whether they turn
+# (scaled by r against v_st)
+V_VEL = (Y_UD, Y_OM, Y_WD, Y_B1D, Y_B2D, Y_ED)
+V_POS = (Y_U, -1, Y_W, Y_B1, Y_B2, Y_E)
+V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
+# --- the roller-groove contact's result res (contact.groove_contact), forces on the roller ---
+# force [N], moment about the centre [N m], normal n, f_n [N], tangential slip v_t [m/s], |v_t|,
+# g = tanh(3 |v_t| / v_st), the friction slope d(mu f_n g)/d|v_t| [N s/m], contact point [m]
+(R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, R_NX, R_NY, R_NZ, R_FN, R_VTX, R_VTY, R_VTZ, R_SLIP,
+ R_G, R_SLOPE, R_PX, R_PY, R_PZ, R_LEN) = range(20)
+# --- the trunnion line L (motion.line_kinematics) at whirl angle x ---
+# its axis a and da/dt, d2a/dt2; the origin Q's travel along the groove Qz with dQz/dt (the
+# plunge speed included) and d2Qz/dt2; the trunnion's material velocity along a and its spin
+# rate about a; then the key (x, w, theta, plunge speed) it was computed for (NaN: none)
+(L_AX, L_AY, L_AZ, L_ADX, L_ADY, L_ADZ, L_AAX, L_AAY, L_AAZ, L_QZ, L_QZD, L_QZDD, L_VAX,
+ L_SPIN, L_KX, L_KW, L_KTH, L_KVP, L_LEN) = range(19)
+# --- the integrators' history hs, carried from step to step ---
+# H_SUB: the adaptive substep (BDF2: the previous substep) [s]; H_TAKEN, H_REJECTED: substeps
+# counted; H_GA: the generalized-alpha history's state (genalpha.py; BDF2: its previous state
+# valid); H_FALLBACK: steps handed to the adaptive substeps; H_ACC..: the algorithmic
+# accelerations of the NV unknowns (generalized-alpha)
+H_SUB, H_TAKEN, H_REJECTED, H_GA, H_FALLBACK, H_ACC = range(6)
+H_LEN = H_ACC + NV
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN) = range(11)
-# line kinematics L (kernel.line_kinematics): 14 values and the key (x, w, theta, plunge speed)
-L_LEN = 18
 # generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own
 (W_R, W_A, W_D, W_RT, W_AT, W_M, W_A0, W_S) = range(NV, NV + 8)
 
@@ -56,3 +88,22 @@ N_OUT = len(OUTPUT_NAMES)
 OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))
 OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (fast.joint_into)
 OUT_PLUNGE = OUTPUT_NAMES.index("plunge")
+
+# --- records passed through the kernel (numba takes namedtuples as typed records) ---
+# the step's driving inputs: joint angle theta [rad], whirl rate w [rad/s] and the trunnion
+# axis' pressing offset x0 [m] (oppoint.derive)
+Drive = namedtuple("Drive", "theta w x0")
+# one roller's work arrays (model.ContactModel makes them): the trunnion line L (L_LEN), the
+# contact's result res (R_LEN), two states Y1, Y2 (like Y), the slip sensitivities G (NV x 3),
+# the implicit step's system A (NV x NV) and b (NV), the integrators' history hs (H_LEN), the
+# generalized-alpha work rows GW (NV + 8 x NV)
+Work = namedtuple("Work", "L res Y1 Y2 G A b hs GW")
+# the needle-resolved bearing's parameters NP and work arrays (needle_setup.needle_work;
+# needles.py, ring.py, rowsolve.py): sphere centres SP, each needle's system FN, AN, the roller's
+# FR, AR, diagnostics ND, friction moments MOM, PM, the roller's standard system RS and moments
+# MR, scratch normals gn, gn2, the neighbour coupling UN; the ring solve's CW, XW, S, T; the
+# one-system step's roller-needle coupling BN and its moments PB, right-hand sides RH, the
+# ring solve's XW7, T7 for seven of them, B' (BP), the open ring's Cholesky factors LF and
+# flags ZF
+NeedleWork = namedtuple("NeedleWork", "NP SP FN AN FR AR ND MOM gn PM RS UN MR gn2 CW XW S T "
+                                      "BN PB RH XW7 T7 BP LF ZF")

@@ -11,10 +11,11 @@ import numpy as np
 
 from reduced_model import scene as scene_mod
 
-from . import hertz, layout as K, layout as NDL, native, oppoint   # numba only when needed
+from . import hertz, layout as K, native, needle_setup, oppoint   # numba only when needed
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
+from reduced_model.thrust import fz_mod, spin_inertia
 from reduced_model.scene import same_step
 
 
@@ -35,7 +36,7 @@ class ContactModel:
         P[K.P_R] = p["r_roller"]
         P[K.P_RG] = p["r_groove"]
         P[K.P_M] = p["m_roller"]
-        P[K.P_IS] = 0.5 * p["m_roller"] * (p["r_roller"] ** 2 + p["r_bore"] ** 2)  # thick ring
+        P[K.P_IS] = spin_inertia(p["m_roller"], p["r_roller"], p["r_bore"])   # thick ring
         P[K.P_K] = self.Kh
         P[K.P_A1] = self.a1
         P[K.P_MU] = p["mu_groove"]
@@ -65,19 +66,20 @@ class ContactModel:
         P[K.P_IT] = p["m_roller"] * (3 * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
                                      + p["roller_width"] ** 2) / 12.0   # ring about a diameter
         P[K.P_INTEG] = p["integrator"]
-        P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == 2 else 1e-3)
+        P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == K.BEAR_RESOLVED else 1e-3)
         P[K.P_VST0] = p["v_st"]
         P[K.P_HSUB] = p["max_substep"]
         P[K.P_HC] = p["contact_damping"]
         P[K.P_ZROW] = p["row_damping"]
         self.P = P
-        self.n_needle_bodies = p["n_needles"] if p["bearing"] == 2 else 0
+        self.n_needle_bodies = p["n_needles"] if p["bearing"] == K.BEAR_RESOLVED else 0
         # None unless the needles are resolved: the kernel is then compiled without them
-        self.NW = self._needle_work(C_line) if self.n_needle_bodies else None
-        self.Y = np.zeros(K.Y_LEN + NDL.N_F * self.n_needle_bodies)
+        self.NW = (needle_setup.needle_work(p, self.n_needle_bodies, C_line)
+                   if self.n_needle_bodies else None)
+        self.Y = np.zeros(K.Y_LEN + K.N_F * self.n_needle_bodies)
         self.out = np.zeros(K.O_LEN)
         self._L = np.full(K.L_LEN, np.nan)   # line kinematics + its cache key
-        self._res = np.zeros(19)
+        self._res = np.zeros(K.R_LEN)
         self._Y1 = np.zeros_like(self.Y)
         self._Y2 = np.zeros_like(self.Y)
         self._G = np.zeros((K.NV, 3))
@@ -86,8 +88,9 @@ class ContactModel:
         # integrators 3 and 4: adaptive substep, accepted and rejected substeps; generalized-
         # alpha: whether its accelerations are valid, steps handed to the adaptive substeps,
         # the accelerations (NV)
-        self._hs = np.zeros(5 + K.NV)
+        self._hs = np.zeros(K.H_LEN)
         self._GW = np.zeros((K.NV + 8, K.NV))   # generalized-alpha work array
+        self._bind_work()
         self.time = 0.0
         self.substeps = 0
         self._OP = np.zeros(K.OP_LEN)   # inputs and operating point of a step (oppoint.py)
@@ -97,58 +100,11 @@ class ContactModel:
         self._started = False
         self._x0, self._x0_for = 0.0, None   # resolved bearing: pressing offset, at load
 
-    def _needle_work(self, C_line):
-        """Parameter vector and work arrays of the needle-resolved bearing (needles.py)."""
-        p = self.p
-        n = self.n_needle_bodies
-        ns = p["n_spheres"]
-        NP = np.zeros(NDL.N_LEN)
-        rn = 0.5 * p["d_needle"]
-        NP[NDL.N_N] = self.n_needle_bodies
-        NP[NDL.N_NS] = ns
-        NP[NDL.N_RN] = rn
-        NP[NDL.N_RT] = p["r_trunnion"]
-        NP[NDL.N_RBR] = self.row_bore_radius()
-        NP[NDL.N_LN] = p["l_needle"]
-        mn = p["rho_needle"] * math.pi * rn ** 2 * p["l_needle"]
-        NP[NDL.N_MN] = mn
-        NP[NDL.N_I1] = mn * (3 * rn ** 2 + p["l_needle"] ** 2) / 12.0   # cylinder, transverse
-        NP[NDL.N_I3] = 0.5 * mn * rn ** 2                                  # about its axis
-        NP[NDL.N_CS] = C_line / ns               # Table 1: C = 8.15e4 l^(8/9) / N_s per sphere
-        NP[NDL.N_DC] = self.neighbour_distance()
-        NP[NDL.N_ZAX] = p["needle_axial_clearance"]
-        NP[NDL.N_HW] = 0.5 * p["roller_width"]
-        NP[NDL.N_MU] = p["mu_needle"]
-        NP[NDL.N_MUR] = p["mu_rolling"]
-        NP[NDL.N_FRIC] = 1.0 if p["friction_needle"] else 0.0
-        NP[NDL.N_ROLLR] = 1.0 if p["rolling_resistance"] else 0.0
-        # NP, SP, FN, AN, FR, AR, ND, MOM, gn, PM, RS, UN, MR, gn2, CW, XW, S, T, then the
-        # one-system step's BN, PB, RH (7 right-hand sides), XW and T for them, B', the open
-        # ring's Cholesky factors and fill flags (kernel.resolved_forces and coupled_solve,
-        # needles.needle_forces, ring_solve and chain_forward)
-        return (NP, np.zeros((n, ns, 3)), np.zeros((n, 6)), np.zeros((n, 6, 6)), np.zeros(6),
-                np.zeros((6, 6)), np.zeros((n, NDL.D_LEN)), np.zeros((n, 10)), np.zeros(6),
-                np.zeros((n, 10)), np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros(10),
-                np.zeros(6), np.zeros((n, 6, 6)), np.zeros((n, 6, 7)), np.zeros((6, 6)),
-                np.zeros((6, 13)), np.zeros((n, 6, 6)), np.zeros((n, 10)),
-                np.zeros((n, 6, 7)), np.zeros((n, 6, 13)), np.zeros((6, 19)),
-                np.zeros((n, 6, 6)), np.zeros((n, 6, 6)), np.zeros(n))
-
-    def row_bore_radius(self):
-        """Radius of the needles' outer race [m]: trunnion + needle diameter + the row's radial
-        clearance (r_bore sets the roller's inertia; model.md's 12.5 mm leaves no clearance)."""
-        p = self.p
-        return p["r_trunnion"] + p["d_needle"] + p["needle_clearance"]
-
-    def neighbour_distance(self):
-        """Centre distance [m] at which two neighbouring needles touch: the needle diameter, or
-        less where n_needles of that diameter would over-fill the pitch circle without the
-        row's circumferential play (model.md's 46 x 1.6 mm on 11.705 mm over-fill it by
-        0.11 mm); then the chord of equal spacing less the play shared out."""
-        p = self.p
-        n = p["n_needles"]
-        Rp = p["r_trunnion"] + 0.5 * p["d_needle"] + 0.5 * p["needle_clearance"]
-        return min(p["d_needle"], 2 * Rp * math.sin(math.pi / n) - p["needle_circ_clearance"] / n)
+    def _bind_work(self):
+        """The work record the kernel takes (layout.Work), over the arrays as now bound (a
+        joint rebinds them to rows of its stacks: JointModel._stack)."""
+        self._W = K.Work(self._L, self._res, self._Y1, self._Y2, self._G, self._A, self._b,
+                         self._hs, self._GW)
 
     # --- inputs that set the operating point (oppoint.py: one implementation, compiled into
     # the step) ---
@@ -168,7 +124,7 @@ class ContactModel:
         """Compulsory displacement: x position of the trunnion axis [m] that gives F_press
         with the roller at the groove bottom (Hertz approach, plus the needle row if lumped)."""
         x0 = oppoint.groove_offset(self.P, F_press)
-        if self.p["bearing"] >= 1:
+        if self.p["bearing"] != K.BEAR_IDEAL:
             x0 -= self.radial_offset(F_press)
         return x0
 
@@ -177,31 +133,18 @@ class ContactModel:
         (lumped bearing; the same estimate starts the resolved one): the clearance plus the
         row's approach (F/K_row)^0.9, negative."""
         p = self.p
-        if p["bearing"] == 0:
+        if p["bearing"] == K.BEAR_IDEAL:
             return 0.0
-        if p["bearing"] == 1:
+        if p["bearing"] == K.BEAR_LUMPED:
             return oppoint.lumped_offset(self.P, F)
-        # resolved: needle j at psi_j is squeezed by -E cos(psi_j) - clearance across its two
-        # races in series; solve sum_j C_line (approach_j / 2)^(10/9) cos(psi_j) = F for E
-        psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
-        c = np.cos(psi)
-        Cl = hertz.needle_line_stiffness(p["l_needle"])
-
-        def load(g):   # g = -E > 0
-            ap = np.maximum(g * c - p["needle_clearance"], 0.0)
-            return float(np.sum(Cl * (0.5 * ap) ** (10 / 9) * c))
-        lo, hi = 0.0, p["needle_clearance"] + 1e-3
-        for _ in range(100):   # bisection: load(g) is monotonic
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if load(mid) < abs(F) else (lo, mid)
-        return 0.5 * (lo + hi) if F < 0 else -0.5 * (lo + hi)   # against the load
+        return needle_setup.radial_offset(p, F)
 
     def bearing_load(self):
         """Radial load carried by the needle row now [N]: along the pressing direction, the sum
         over the needles at the last output (resolved), the row law (lumped), 0 (ideal)."""
-        if self.p["bearing"] == 2:
-            return float(np.sum(self.NW[6][:, NDL.D_R1]))
-        if self.p["bearing"] != 1:
+        if self.p["bearing"] == K.BEAR_RESOLVED:
+            return float(np.sum(self.NW.ND[:, K.D_R1]))
+        if self.p["bearing"] != K.BEAR_LUMPED:
             return 0.0
         g = abs(self.Y[K.Y_E]) - self.p["needle_clearance"]
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
@@ -221,41 +164,24 @@ class ContactModel:
             self.Y[K.Y_OM] = -self.Y[K.Y_OM]
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
         if self.n_needle_bodies:
-            self._start_needles(theta)
-        self._hs[3] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
+            needle_setup.start_needles(self.Y, p, self.phase, theta, self.n_needle_bodies)
+        self._hs[K.H_GA] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
         self._started = True
 
-    def _start_needles(self, theta):
-        """Needles equally spaced from the pressing direction, each midway between trunnion and
-        bore (equal approach on both races), rolling without slip on both races."""
-        p = self.p
-        n = self.n_needle_bodies
-        Rt, Rb = p["r_trunnion"], self.row_bore_radius()
-        rn = 0.5 * p["d_needle"]
-        E = self.Y[K.Y_E]
-        om = self.Y[K.Y_OM]
-        from .kernel import trunnion_axial
-        d0 = trunnion_axial(self.phase, theta, p["s"], p["axial"])
-        for j in range(n):
-            psi = 2 * math.pi * j / n
-            c, s = math.cos(psi), math.sin(psi)
-            rho_b = E * c + math.sqrt(Rb ** 2 - (E * s) ** 2)   # bore surface along psi
-            rho = 0.5 * (Rt + rho_b)
-            vc = 0.5 * om * Rb
-            q = K.Y_LEN + NDL.N_F * j
-            self.Y[q:q + NDL.N_F] = (rho * c, rho * s, d0, 0.0, 0.0, -vc * s, vc * c, 0.0,
-                                     0.0, 0.0, om * Rb / (2 * rn))
+    def row_bore_radius(self):
+        """Radius of the needles' outer race [m] (needle_setup.row_bore_radius)."""
+        return needle_setup.row_bore_radius(self.p)
 
     def needle_loads(self):
         """Needle diagnostics at the last output [N], one row per needle: normal loads on the
         bore, trunnion, neighbours, flange/retainer, and the needle's force on the roller
         along e1, e2, e3 of the trunnion frame (needles.D_*); positions from needle_positions."""
-        return self.NW[6][:self.n_needle_bodies].copy()
+        return self.NW.ND[:self.n_needle_bodies].copy()
 
     def needle_positions(self):
         """(n, 3) needle centres in the trunnion frame (e1 = pressing direction, e3 = the
         trunnion axis, origin on it at the groove mid-plane) [m]."""
-        q = K.Y_LEN + NDL.N_F * np.arange(self.n_needle_bodies)
+        q = K.Y_LEN + K.N_F * np.arange(self.n_needle_bodies)
         return np.stack([self.Y[q], self.Y[q + 1], self.Y[q + 2]], axis=1)
 
     def step(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
@@ -268,9 +194,9 @@ class ContactModel:
         if not self._started:
             self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
         self.set_inputs(dt, theta, omega, F_press, torque, plunge_speed)
-        acc = self._hs[1]
+        acc = self._hs[K.H_TAKEN]
         self._run()
-        self.substeps += int(self._hs[1] - acc)
+        self.substeps += int(self._hs[K.H_TAKEN] - acc)
         self.time += dt
         return self.outputs(self._OP[K.OP_F])
 
@@ -325,17 +251,16 @@ class ContactModel:
                 raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
                                          "(a division by zero)")
             return
-        from . import kernel
+        from . import genalpha, kernel
         OP = self._OP
-        kernel.inputs_jumped(self.P, self._hs, kernel.derive_op(self.P, OP))
+        genalpha.inputs_jumped(self.P, self._hs, kernel.derive_op(self.P, OP))
         if self.NW is not None and self._x0_for != OP[K.OP_F]:
             self._x0 = self.pressing_offset(OP[K.OP_F])     # the row's static offset (numpy)
             self._x0_for = OP[K.OP_F]
         x0 = self._x0 if self.NW is not None else OP[K.OP_X0]
         n = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
-        kernel.run_substeps(self.Y, self.P, OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_F], x0,
-                            OP[K.OP_H], n, self.out, self._L, self._res, self._Y1, self._Y2,
-                            self._G, self._A, self._b, self.NW, self._hs, self._GW)
+        kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0),
+                            OP[K.OP_H], n, self.out, self._W, self.NW)
 
     def kernel_name(self) -> str:
         """Which compiled kernel steps this roller (for the FMU's log)."""
@@ -352,17 +277,17 @@ class ContactModel:
         return tuple(getattr(self, name) for name in _FAST_ARRAYS)
 
     def fast_synced(self, k, dt, hs1_before):
-        """Count k steps of dt [s] that fast.step took (hs[1] was hs1_before)."""
+        """Count k steps of dt [s] that fast.step took (hs[H_TAKEN] was hs1_before)."""
         self.time += k * dt
-        self.substeps += int(self._hs[1] - hs1_before)
+        self.substeps += int(self._hs[K.H_TAKEN] - hs1_before)
 
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
         return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
                 "hs": self._hs.copy(), "Y2": self._Y2.copy(),   # Y2: BDF2's previous state
-                "ND": None if self.NW is None else self.NW[6].copy(),
+                "ND": None if self.NW is None else self.NW.ND.copy(),
                 # the inputs the state was stepped at: a restore followed by other inputs is a
-                # jump (kernel.inputs_jumped), the same inputs are none
+                # jump (genalpha.inputs_jumped), the same inputs are none
                 "inputs": np.append(self._OP[K.OP_KEY:K.OP_KEY + 4], self._OP[K.OP_KEY + 5]),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 
@@ -370,7 +295,7 @@ class ContactModel:
         self.Y[:] = st["Y"]
         self.out[:] = st["out"]
         if self.NW is not None:
-            self.NW[6][:] = st["ND"]
+            self.NW.ND[:] = st["ND"]
         self._hs[:] = st["hs"]
         self._Y2[:] = st["Y2"]
         self.P[K.P_VST] = st["vst"]
@@ -382,8 +307,7 @@ class ContactModel:
     def outputs(self, F_press):
         o = self.out
         Fx = o[K.O_FX]
-        Fz_mod = o[K.O_FZ] * F_press / Fx if Fx * F_press > 1e-9 * max(F_press * F_press, 1.0) \
-            else 0.0   # (coast: F_press and Fx both negative)
+        Fz_mod = fz_mod(Fx, o[K.O_FZ], F_press)
         return {"Fx": Fx, "Fy": o[K.O_FY], "Fz": o[K.O_FZ], "Fz_mod": Fz_mod,
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X],
@@ -461,7 +385,7 @@ class JointModel:
         self.p = p
         self.rollers = [ContactModel(params, phase=2 * math.pi * i / 3)
                         for i in range(p["n_rollers"])]
-        self._stacks = self._stack() if len(self.rollers) > 1 and p["bearing"] != 2 else None
+        self._stacks = self._stack() if len(self.rollers) > 1 and p["bearing"] != K.BEAR_RESOLVED else None
 
     def _stack(self):
         """The rollers' arrays as rows of one array each (fast.step steps them as a joint in
@@ -476,6 +400,8 @@ class JointModel:
             for i, r in enumerate(self.rollers):
                 setattr(r, name, st[head + i])
             stacks[name] = st
+        for r in self.rollers:
+            r._bind_work()
         stacks["_OP"][0, K.OP_NROLL] = n
         return stacks
 
@@ -517,11 +443,11 @@ class JointModel:
         r = self.rollers[0]
         hs = r._hs
         text = f"roller 1: {r.substeps} steps, {r.time:.6g} s"
-        if self.p["integrator"] == 4 and self.p["bearing"] <= 1:
-            text += (f"; generalized-alpha, {int(hs[4])} step(s) handed to the extrapolated "
+        if self.p["integrator"] == K.INT_DEFAULT and self.p["bearing"] != K.BEAR_RESOLVED:
+            text += (f"; generalized-alpha, {int(hs[K.H_FALLBACK])} step(s) handed to the extrapolated "
                      f"substeps when Newton did not converge")
-        elif self.p["integrator"] >= 3:
-            text += f"; {int(hs[2])} substep(s) rejected by the error estimate"
+        elif self.p["integrator"] >= K.INT_ADAPTIVE:
+            text += f"; {int(hs[K.H_REJECTED])} substep(s) rejected by the error estimate"
         return text
 
     def info(self, theta, omega, F_press, torque=0.0) -> str:

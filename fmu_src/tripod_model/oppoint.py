@@ -4,7 +4,7 @@ count, the largest adaptive substep, the pressing offset of the trunnion axis.
 
 Plain Python over the parameter vector P and the operating-point vector OP (layout.py), so the
 model derives it without numba (its log, the needle-resolved bearing), and numba compiles the
-same functions into the communication step (kernel.py: ``_compile_oppoint``), which derives it
+same functions into the communication step (kernel.derive_op, by jit.compiled_copies), which derives it
 itself when a master sets new inputs (the native layer's fast path, fast.py): one
 implementation for both.
 """
@@ -14,10 +14,10 @@ from reduced_model.friction import v_st_auto
 from reduced_model.scene import pressing_load
 from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 
-from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_KEY, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0,
-                     P_BEAR, P_CLR, P_FRIC, P_FRICN, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU,
-                     P_MUN, P_PITCH, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VST, P_VST0,
-                     P_HMAX, P_VP, P_DF)
+from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP, OP_H, OP_KEY,
+    OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, P_BEAR, P_CLR, P_DF, P_FRIC,
+    P_FRICN, P_HMAX, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU, P_MUN, P_PITCH,
+    P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
 
 
 def amplitudes(P, theta, omega):
@@ -89,7 +89,7 @@ def substep(P, theta, omega, F, vst, stiff):
     """
     if P[P_HSUB] > 0:
         return P[P_HSUB]
-    if stiff and P[P_INTEG] == 4.0 and P[P_BEAR] <= 1.0:
+    if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
         return ga_step_size(P, theta, omega, F, vst)
     h = 1e-4
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
@@ -98,11 +98,11 @@ def substep(P, theta, omega, F, vst, stiff):
         R = _rate_amplitude(P, theta, w) if stiff else 0.0
         if R > 0:
             h = min(h, vst / (2 * w * R) / 80.0)
-    if stiff and P[P_INTEG] == 4.0 and P[P_BEAR] == 2.0:
+    if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] == BEAR_RESOLVED:
         return max(min(h, row_substep(P, F)), 1e-7)
     if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
         mu = P[P_MU]
-        if P[P_BEAR] == 2.0 and P[P_FRICN] > 0.5:
+        if P[P_BEAR] == BEAR_RESOLVED and P[P_FRICN] > 0.5:
             # resolved needles hold the roller's slide with their own friction too: the
             # needle loads sum to QSUM x F_press (Eq. 17 over the row, about 1.3 F); with
             # only the groove's rate the bearing-2 order 3 was 3 % off, with both 0.6 %
@@ -150,7 +150,7 @@ def derive(P, OP):
     largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
     [N m] is given (not 0; < 0 coast), else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
     the inputs did not move, else how far they moved the driven slip (its amplitude's change
-    over v_st; 0 for a load change alone): kernel.inputs_jumped restarts the integrator."""
+    over v_st; 0 for a load change alone): genalpha.inputs_jumped restarts the integrator."""
     theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
     vp = OP[OP_VP]
     same = (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
@@ -173,7 +173,7 @@ def derive(P, OP):
     OP[OP_N] = n
     OP[OP_H] = dt / n
     x0 = groove_offset(P, F)
-    if P[P_BEAR] == 1.0:
+    if P[P_BEAR] == BEAR_LUMPED:
         x0 -= lumped_offset(P, F)
     OP[OP_X0] = x0
     if jump == 0.0:

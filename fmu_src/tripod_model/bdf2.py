@@ -1,0 +1,123 @@
+"""Integrator 4 with the needle-resolved bearing: linearly implicit variable-step BDF2, roller
+and needle row in one system (rowsolve.coupled_solve).
+"""
+
+from .jit import njit
+from .assembly import hold_slide, resolved_row_terms, roller_system
+from .contact import groove_stiffness_x
+from .euler import extrapolated_step
+from .motion import tilt_drag
+from .rowsolve import coupled_solve
+from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_IS, P_IT, P_M, P_TRAV, V_POS, V_VEL,
+    Y_LEN, Y_X)
+
+
+@njit
+def bdf2_steps(Y, P, drive, h, n, W, NW):
+    """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing; W.Y2 carries
+    the previous state and hs[H_SUB] the previous substep from call to call, hs[H_GA] whether they are
+    valid, hs[H_TAKEN] counts substeps."""
+    ny = Y.shape[0]
+    Y2, hs = W.Y2, W.hs
+    for _ in range(n):
+        if hs[H_GA] == 0.0 or h > 2.0 * hs[H_SUB]:
+            # no history yet (or a step more than twice the last, where variable-step BDF2
+            # nears its stability limit): one extrapolated split step (re)starts it
+            for i in range(ny):
+                Y2[i] = Y[i]
+            extrapolated_step(Y, P, drive, h, W, NW)
+            hs[H_GA] = 1.0
+        else:
+            bdf2_substep(Y, P, drive, h, hs[H_SUB], W, NW)
+        hs[H_SUB] = h
+        hs[H_TAKEN] += 1.0
+
+
+@njit
+def bdf2_substep(Y, P, drive, h, hp, W, NW):
+    """One linearly implicit BDF2 step of h [s] (the previous step hp) with the needle-resolved
+    bearing: Y = y_n -> y_{n+1}, Yp = W.Y2 = y_{n-1} -> y_n, YL = W.Y1 work.
+
+    y_{n+1} - a1 y_n + a2 y_{n-1} = g f(y_{n+1}) (variable-step BDF2, g = beta h), linearized
+    at the predicted state y_L: velocities extrapolated linearly, positions
+    q_L = a1 q_n - a2 q_{n-1} + g v_L (the BDF2 position rule, so the correction e moves
+    positions by g e_v and the stiffness needs no K v term): (M + g D + g^2 K) e_v =
+    g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a step; second order with
+    any tangent (the linearization error is O(e^2) with e = O(h^2))."""
+    Yp, YL, A, b = W.Y2, W.Y1, W.A, W.b
+    r = h / hp
+    a1 = (1.0 + r) ** 2 / (1.0 + 2.0 * r)
+    a2 = r * r / (1.0 + 2.0 * r)
+    g = (1.0 + r) / (1.0 + 2.0 * r) * h
+    m = P[P_M]
+    It = P[P_IT]
+    NP = NW.NP
+    n = int(NP[N_N])
+    _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
+    x = Y[Y_X] + h * drive.w
+    YL[Y_X] = x
+    c, e1, e2 = roller_system(YL, P, drive, x, g, W, True, True, 6)
+    drag = tilt_drag(It, W.L, e1, e2)
+    kh = groove_stiffness_x(P, W.res, c)
+    resolved_row_terms(YL, P, NW, drive.theta, x, g, W, (e1, e2), kh, drag, True)
+    mr = (m, P[P_IS], m, It, It, m)
+    for i in range(6):
+        vi = V_VEL[i]
+        b[i] = g * b[i] - mr[i] * (YL[vi] - a1 * Y[vi] + a2 * Yp[vi])
+    trav = P[P_TRAV] > 0.5
+    if not trav:
+        hold_slide(A, b, 6)
+    # the needles: the same rule on the ring (right-hand side h FN in ring_solve)
+    FN, AN = NW.FN, NW.AN
+    mn, I1, I3 = NP[N_MN], NP[N_I1], NP[N_I3]
+    for j in range(n):
+        q = Y_LEN + N_F * j
+        mj = (mn, mn, mn, I1, I1, I3)
+        for i in range(6):
+            FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
+            AN[j, i, i] += mj[i]
+    coupled_solve(A, b, NW, g, n, trav)
+    _bdf2_correct(Y, Yp, YL, b, FN, g, n)
+
+
+@njit
+def _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n):
+    """bdf2_substep's predicted state YL: velocities extrapolated from y_n, y_{n-1} (step ratio
+    r), positions by the BDF2 rule q_L = a1 q_n - a2 q_{n-1} + g v_L (needle tilts: t1' = w2,
+    t2' = -w1)."""
+    for i in range(6):
+        vi, qi = V_VEL[i], V_POS[i]
+        YL[vi] = Y[vi] + r * (Y[vi] - Yp[vi])
+        if qi >= 0:
+            YL[qi] = a1 * Y[qi] - a2 * Yp[qi] + g * YL[vi]
+    for j in range(n):
+        q = Y_LEN + N_F * j
+        for i in range(5, 11):
+            YL[q + i] = Y[q + i] + r * (Y[q + i] - Yp[q + i])
+        for i in range(3):
+            YL[q + i] = a1 * Y[q + i] - a2 * Yp[q + i] + g * YL[q + 5 + i]
+        YL[q + 3] = a1 * Y[q + 3] - a2 * Yp[q + 3] + g * YL[q + 9]
+        YL[q + 4] = a1 * Y[q + 4] - a2 * Yp[q + 4] - g * YL[q + 8]
+
+
+@njit
+def _bdf2_correct(Y, Yp, YL, b, FN, g, n):
+    """bdf2_substep's new state: the predicted one plus the velocity corrections (b: the
+    roller's unknowns, FN: each needle's), positions moved by g times them; Yp <- y_n,
+    Y <- y_{n+1}."""
+    for i in range(6):
+        vi, qi = V_VEL[i], V_POS[i]
+        YL[vi] += b[i]
+        if qi >= 0:
+            YL[qi] += g * b[i]
+    for j in range(n):
+        q = Y_LEN + N_F * j
+        for i in range(6):
+            YL[q + 5 + i] += FN[j, i]
+        for i in range(3):
+            YL[q + i] += g * FN[j, i]
+        YL[q + 3] += g * FN[j, 4]
+        YL[q + 4] -= g * FN[j, 3]
+    for i in range(Y.shape[0]):
+        Yp[i] = Y[i]
+        Y[i] = YL[i]

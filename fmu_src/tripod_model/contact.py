@@ -1,0 +1,148 @@
+"""Contact laws of the contact model, each one equation: Hertz normal force (Eq. 10), tanh
+friction (Eq. 11), spin moment (Eqs. 14-16), the roller-groove contact they make, and the lumped
+needle row's load (Eq. 17) and damping.
+
+Forces in res are on the roller; the outputs report those on the groove (kernel.run_substeps).
+"""
+import math
+
+from .jit import inline, njit
+from .layout import (P_A1, P_CLR, P_FRIC, P_HC, P_K, P_KN, P_MU, P_R, P_RG, P_SPIN, P_VST, P_ZROW, R_FN, R_FX,
+    R_FY, R_FZ, R_G, R_LEN, R_MX, R_MY, R_MZ, R_NX, R_NY, R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE,
+    R_VTX, R_VTY, R_VTZ)
+
+
+@inline
+def hertz_normal_force(K, delta):
+    """Roller-groove normal force [N] at the approach delta [m]: Eq. (10) with Table 1's point
+    contact, f_n = K delta^(3/2) (K [N/m^1.5] from hertz.hertz_point)."""
+    return K * delta ** 1.5
+
+
+@inline
+def tanh_friction(mu, fn, vt, vst):
+    """Regularised friction, Eq. (11) with model.md's law mu(v) = mu tanh(3 v / v_st): returns
+    g = tanh(3 |v_t| / v_st) (the friction force is mu f_n g [N]) and its slope
+    d(mu f_n g)/d|v_t| [N s/m] at the slip |v_t| [m/s], normal force f_n [N]."""
+    g = math.tanh(3.0 * vt / vst)
+    return g, mu * fn * 3.0 / vst * (1.0 - g * g)
+
+
+@inline
+def spin_moment(mu, fn, a1, wn, vst):
+    """Spin moment [N m] of the elliptical contact about its normal, Eqs. (14)-(16): the
+    contact's semi-major axis a = a1 f_n^(1/3) (Eq. 15) and 3/8 mu f_n a, regularised in the
+    spin rate wn [rad/s] like the sliding friction."""
+    a = a1 * fn ** (1.0 / 3.0)
+    return 0.375 * mu * math.tanh(3.0 * wn * a / vst) * fn * a
+
+
+@njit
+def groove_contact(c, v, wr, P, res):
+    """Roller (sphere) in groove (concave cylinder along z): Hertz normal force, tanh friction
+    on the full 3-D slip at the contact point, spin moment Eq. (16).
+
+    c: roller centre [m], v: its velocity [m/s], wr: roller angular velocity [rad/s] (each
+    (x, y, z)).  res (layout's R_ slots, on the roller): force [N], moment about c [N m],
+    normal n, f_n [N], tangential slip v_t [m/s], |v_t|, g = tanh(3|v_t|/v_st), friction slope
+    d(mu f_n g)/d|v_t| [N s/m], contact point [m].
+    """
+    cx, cy, cz = c
+    vx, vy, vz = v
+    wx, wy, wz = wr
+    r = P[P_R]
+    rho = math.sqrt(cx * cx + cy * cy)
+    nx = cx / rho
+    ny = cy / rho
+    delta = rho + r - P[P_RG]                 # penetration, model.md
+    for i in range(R_LEN):
+        res[i] = 0.0
+    res[R_NX] = nx
+    res[R_NY] = ny
+    res[R_PX] = cx + r * nx
+    res[R_PY] = cy + r * ny
+    res[R_PZ] = cz
+    if delta <= 0.0:
+        return
+    fn = hertz_normal_force(P[P_K], delta)
+    if P[P_HC] > 0.0:     # Hunt-Crossley: f_n (1 + 3/2 alpha d delta/dt), never pulling
+        fn = max(0.0, fn * (1.0 + 1.5 * P[P_HC] * (vx * nx + vy * ny)))
+    # velocity of the roller material at the contact point p = c + r n
+    px = vx + (wy * 0.0 - wz * r * ny)
+    py = vy + (wz * r * nx - wx * 0.0)
+    pz = vz + (wx * r * ny - wy * r * nx)
+    pn = px * nx + py * ny
+    tx = px - pn * nx
+    ty = py - pn * ny
+    tz = pz
+    vt = math.sqrt(tx * tx + ty * ty + tz * tz)
+    mu = P[P_MU]
+    vst = P[P_VST]
+    fx = -fn * nx
+    fy = -fn * ny
+    fz = 0.0
+    mx = 0.0
+    my = 0.0
+    mz = 0.0
+    g = 0.0
+    slope = 0.0
+    if P[P_FRIC] > 0.5 and mu > 0.0:
+        g, slope = tanh_friction(mu, fn, vt, vst)
+        if vt > 0.0:
+            ft = mu * fn * g / vt             # Eq. (11): |f_t| = mu(v) f_n, opposing the slip
+            fx -= ft * tx
+            fy -= ft * ty
+            fz -= ft * tz
+            # moment of the friction about the centre: (r n) x f_t
+            mx += r * ny * (-ft * tz)
+            my += -r * nx * (-ft * tz)
+            mz += r * nx * (-ft * ty) - r * ny * (-ft * tx)
+    if P[P_SPIN] > 0.5 and mu > 0.0:
+        ms = spin_moment(mu, fn, P[P_A1], wx * nx + wy * ny, vst)   # spin against the groove
+        mx -= ms * nx
+        my -= ms * ny
+    res[R_FX] = fx
+    res[R_FY] = fy
+    res[R_FZ] = fz
+    res[R_MX] = mx
+    res[R_MY] = my
+    res[R_MZ] = mz
+    res[R_FN] = fn
+    res[R_VTX] = tx
+    res[R_VTY] = ty
+    res[R_VTZ] = tz
+    res[R_SLIP] = vt
+    res[R_G] = g
+    res[R_SLOPE] = slope
+
+
+@njit
+def row_load(P, e):
+    """Lumped needle row: the row's radial force on the roller F_r [N] along x and its tangent
+    stiffness [N/m] at the roller's radial offset e [m].  Eq. (17) summed over the loaded
+    needles: |F_r| = K_row g^(10/9), g the radial approach beyond the row's clearance; it
+    pushes the roller back onto the trunnion axis (+x in drive, e < 0; -x in coast)."""
+    g = abs(e) - P[P_CLR]
+    if g <= 0.0:
+        return 0.0, 0.0
+    Fr = P[P_KN] * g ** (10.0 / 9.0)
+    return (Fr if e < 0.0 else -Fr), 10.0 / 9.0 * Fr / g
+
+
+@inline
+def groove_stiffness_x(P, res, c):
+    """Tangent stiffness [N/m] of the groove's Hertz contact along x: d f_n / d delta (Eq. 10,
+    n = 3/2) times n_x^2, the roller's centre at c [m]."""
+    cx, cy = c[0], c[1]
+    delta = math.sqrt(cx * cx + cy * cy) + P[P_R] - P[P_RG]
+    if delta > 0.0:
+        return 1.5 * res[R_FN] / delta * res[R_NX] * res[R_NX]
+    return 0.0
+
+
+@inline
+def row_damping(P, k, mass):
+    """Damping [N s/m, N m s] of a mode of stiffness k [N/m, N m] and mass [kg, kg m^2] on the
+    lumped row: 2 zeta sqrt(k mass), zeta = row_damping (the lumped form of the resolved row's
+    needle-contact damping, docs/model.md)."""
+    return 2.0 * P[P_ZROW] * math.sqrt(k * mass)

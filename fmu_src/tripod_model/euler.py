@@ -1,0 +1,118 @@
+"""Integrators 0, 1, 3 (linearly implicit Euler, Richardson-extrapolated, adaptive): L-stable
+one-step methods over assembly.roller_system; the other integrators hand their hard steps to
+adaptive_steps.
+"""
+import math
+
+from .jit import njit
+from .linalg import solve_small
+from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row_terms, resolved_row_terms, roller_system
+from .contact import groove_stiffness_x, row_damping
+from .motion import tilt_drag
+from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, H_REJECTED, H_SUB, H_TAKEN, P_BEAR, P_HMAX, P_IT,
+    P_M, P_R, P_TOL, P_TRAV, P_VST, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
+
+
+@njit
+def substep(Y, P, drive, h, W, NW):
+    """One linearly implicit Euler substep of h [s] on the state Y (in place).
+
+    Velocities v = (ud, om[, wd, b1d, b2d][, ed]): (M - h J + h^2 K) dv = h (Q - h K v), with J
+    the friction Jacobian (the friction slope mu f_n / v_st against the roller's mass and
+    inertia is the stiff part) and K the needle row's stiffness; positions then move with the
+    new velocities; the driving motion is taken at the end of the substep (backward in the
+    driving terms, so the rolling target is not lagged by a whole substep).
+    W: the work arrays (layout.Work; L, res, G, A, b here).
+    """
+    L, res, A, b = W.L, W.res, W.A, W.b
+    m = P[P_M]
+    lumped = P[P_BEAR] == BEAR_LUMPED
+    resolved = P[P_BEAR] == BEAR_RESOLVED
+    sixdof = lumped or resolved
+    x = Y[Y_X] + h * drive.w
+    Y[Y_X] = x
+    nv = 6 if resolved else 5 if lumped else 2
+    c, e1, e2 = roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv)
+    It = P[P_IT]
+    drag1 = drag2 = kh = Fr = kr = 0.0
+    if sixdof:
+        drag1, drag2 = tilt_drag(It, L, e1, e2)
+        kh = groove_stiffness_x(P, res, c)
+    if lumped:
+        Fr, kr = lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b)
+    if resolved:
+        resolved_row_terms(Y, P, NW, drive.theta, x, h, W, (e1, e2), kh, (drag1, drag2), False)
+    trav = P[P_TRAV] > 0.5
+    if not trav:
+        hold_slide(A, b, nv)
+    for i in range(nv):
+        b[i] *= h
+    solve_small(A, b, nv)
+    advance_roller(Y, b, h, trav, sixdof, resolved, NW)
+    if lumped:
+        lumped_radial_step(Y, h, m, res[R_FX] + Fr, kh + kr, row_damping(P, kh + kr, m))
+
+
+@njit
+def extrapolated_step(Y, P, drive, h, W, NW):
+    """One substep of h [s] extrapolated (Richardson) from one linearly implicit Euler step of
+    h (in W.Y1) and two of h/2: second order, L-stable (integrator 1)."""
+    ny = Y.shape[0]
+    Y1 = W.Y1
+    for i in range(ny):
+        Y1[i] = Y[i]
+    substep(Y1, P, drive, h, W, NW)
+    substep(Y, P, drive, 0.5 * h, W, NW)
+    substep(Y, P, drive, 0.5 * h, W, NW)
+    for i in range(ny):
+        Y[i] = 2.0 * Y[i] - Y1[i]
+
+
+@njit
+def step_error(Y, Y1, P):
+    """Scaled error estimate of one extrapolated step: the difference between the two half
+    steps (Y) and the whole step (Y1) in the roller's velocities, against tol x v_st (slides)
+    and tol x v_st / r (turns): what sets the friction's direction and so the thrust."""
+    vs = P[P_TOL] * P[P_VST]
+    vr = vs / P[P_R]
+    e = abs(Y[Y_OM] - Y1[Y_OM]) / vr
+    if P[P_TRAV] > 0.5:
+        e = max(e, abs(Y[Y_UD] - Y1[Y_UD]) / vs)
+    if P[P_BEAR] != BEAR_IDEAL:
+        e = max(e, abs(Y[Y_WD] - Y1[Y_WD]) / vs, abs(Y[Y_ED] - Y1[Y_ED]) / vs,
+                abs(Y[Y_B1D] - Y1[Y_B1D]) / vr, abs(Y[Y_B2D] - Y1[Y_B2D]) / vr)
+    return e
+
+
+@njit
+def adaptive_steps(Y, P, drive, T, h0, W, NW):
+    """Advance Y by T [s] with extrapolated substeps chosen by their own error estimate
+    (step_error <= 1; up to P[P_HMAX]); hs[H_SUB] carries the substep from call to call (h0 [s]
+    the first), hs[H_TAKEN] counts accepted, hs[H_REJECTED] rejected substeps."""
+    ny = Y.shape[0]
+    Y1, Y2, hs = W.Y1, W.Y2, W.hs
+    t = 0.0
+    hc = hs[H_SUB] if hs[H_SUB] > 0.0 else h0
+    while t < T * (1.0 - 1e-12):
+        last = hc >= T - t
+        hh = T - t if last else hc
+        for i in range(ny):
+            Y1[i] = Y[i]
+            Y2[i] = Y[i]
+        substep(Y1, P, drive, hh, W, NW)
+        substep(Y2, P, drive, 0.5 * hh, W, NW)
+        substep(Y2, P, drive, 0.5 * hh, W, NW)
+        err = step_error(Y2, Y1, P)
+        fac = 0.9 / math.sqrt(max(err, 1e-12))   # local error of the whole step ~ h^2
+        fac = min(4.0, max(0.2, fac))
+        if err <= 1.0:
+            for i in range(ny):
+                Y[i] = 2.0 * Y2[i] - Y1[i]
+            t += hh
+            hs[H_TAKEN] += 1.0
+            if not last:            # a step cut short to land on T says nothing of hc
+                hc = min(hc * fac, P[P_HMAX])
+        else:
+            hs[H_REJECTED] += 1.0
+            hc = hh * fac
+    hs[H_SUB] = hc

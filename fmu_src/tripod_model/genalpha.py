@@ -1,0 +1,323 @@
+"""Integrator 4 with the ideal or lumped bearing: the generalized-alpha method (Chung & Hulbert
+1993) with Newton on the roller's velocity unknowns, and its restarts when a master's inputs
+jump (docs/integrators.md).
+"""
+import math
+
+from .jit import inline, njit
+from .linalg import solve_small
+from .contact import groove_contact, groove_stiffness_x, row_damping, row_load
+from .euler import adaptive_steps
+from .motion import line_kinematics, roller_motion, tilt_drag
+from .layout import (BEAR_LUMPED, BEAR_RESOLVED, H_ACC, H_FALLBACK, H_GA, H_TAKEN, INT_DEFAULT, L_AAX, L_AAY,
+    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_INTEG, P_IS, P_IT,
+    P_KWR, P_LT, P_M, P_MUN, P_MUR, P_QSUM, P_R, P_RB, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ,
+    R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1,
+    Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD, Y_X)
+
+
+# generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
+RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) lets the stick mode
+               # ring: order 3 off by 40-200 % at 25-100 us, while 0.6-0.9 all stay below
+               # 0.02 % at 25-50 us (paper's scene, ideal bearing)
+GA_NTOL = 1e-3   # Newton stops at velocity increments below GA_NTOL x v_st (1e-2: same order 3)
+GA_MAXIT = 12
+
+
+def _ga_coefficients(rho):
+    """(alpha_m, alpha_f, gamma, beta) from the spectral radius at infinity rho (Chung &
+    Hulbert: second order, maximal damping at infinity for the given rho)."""
+    am, af = (2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0)
+    return am, af, 0.5 - am + af, 0.25 * (1.0 - am + af) ** 2
+
+
+GA_STEP = _ga_coefficients(RHO_GA)
+
+
+# The step right after the inputs jumped (hs[H_GA] = -1).  The method weighs the forces at
+# t_{n+1-alpha_f}, the velocities there (1 - af) v1 + af v0; v0 equilibrated with the old inputs,
+# so where friction pins the slip to the new inputs' value within far less than a step, v1
+# overshoots that value by af / (1 - af) of the jump (0.8 at rho 0.8) and rings down at -rho a
+# step: the one-sample spikes and, with a master that moves the inputs every step, a bias of up
+# to 10 % in order 3.  With rho = 0 (af = 0) the forces are taken at t_{n+1}: the slip lands on
+# the new value, still second order, at the cost of the same one step.
+GA_RESTART = _ga_coefficients(0.0)
+GA_RELAX = -2.0        # hs[H_GA]: the next substep by the adaptive substeps
+GA_JUMP_RELAX = 0.02   # the slip amplitude's change over v_st above which that is taken
+GA_STEP_IN = -3.0      # hs[H_GA]: a step input: the next two communication steps so
+GA_STEP_IN_2 = -4.0    # hs[H_GA]: the second of them
+GA_JUMP_STEP = 0.2     # the slip amplitude's change over v_st above which that is taken
+GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is taken
+
+
+@njit
+def ga_forces(Y, P, drive, L, res, Q, M):
+    """Generalized forces Q [N, N m] and masses M [kg, kg m^2] of the roller's unknowns at the
+    state Y (whirl angle Y[Y_X]), the equations of euler.substep: ideal bearing (2 unknowns:
+    m u'' = F.a - m (Q''.a + u a''.a), I_s om' = M.a) or lumped (6: also the slide across the
+    load w, the tilts b1, b2 and the radial offset e, with the row's forces).  Returns nv."""
+    lumped = P[P_BEAR] == BEAR_LUMPED
+    line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
+    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, lumped)
+    groove_contact(c, v, wr, P, res)
+    ax, ay, az = L[L_AX], L[L_AY], L[L_AZ]
+    fx, fy, fz, mx, my, mz = res[R_FX], res[R_FY], res[R_FZ], res[R_MX], res[R_MY], res[R_MZ]
+    m = P[P_M]
+    u = Y[Y_U]
+    Q[0] = fx * ax + fy * ay + fz * az - m * (L[L_QZDD] * az + u * (L[L_AAX] * ax + L[L_AAY] * ay + L[L_AAZ] * az))
+    Q[1] = mx * ax + my * ay + mz * az
+    M[0] = m
+    M[1] = P[P_IS]
+    nv = 2
+    if lumped:
+        nv = 6
+        It = P[P_IT]
+        drag1, drag2 = tilt_drag(It, L, e1, e2)
+        e1x, e1y, e1z = e1
+        e2x, e2y, e2z = e2
+        Fr, kr = row_load(P, Y[Y_E])
+        q = P[P_QSUM] * abs(Fr)
+        if P[P_FRICN] > 0.5 and q > 0.0:
+            Q[0] -= P[P_MUN] * q * math.tanh(3.0 * (Y[Y_UD] - L[L_VAX]) / P[P_VST])
+        if P[P_ROLLR] > 0.5 and q > 0.0:
+            vr = (Y[Y_OM] - L[L_SPIN]) * P[P_RB]
+            Q[1] -= P[P_MUR] * q * P[P_RB] * math.tanh(3.0 * vr / P[P_VST])
+        kw, kt2 = kr * P[P_KWR], kr * P[P_LT]
+        kt1 = kt2 * P[P_KWR]
+        kx = kr + groove_stiffness_x(P, res, c)     # radial: the row and the groove
+        Q[2] = (fx * e2x + fy * e2y + fz * e2z - kw * Y[Y_W]
+                - row_damping(P, kw, m) * Y[Y_WD])
+        Q[3] = (mx * e1x + my * e1y + mz * e1z - kt1 * Y[Y_B1] - drag1
+                - row_damping(P, kt1, It) * Y[Y_B1D])
+        Q[4] = (mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
+                - row_damping(P, kt2, It) * Y[Y_B2D])
+        Q[5] = fx + Fr - row_damping(P, kx, m) * Y[Y_ED]
+        M[2] = m
+        M[3] = It
+        M[4] = It
+        M[5] = m
+    if P[P_TRAV] < 0.5:
+        Q[0] = 0.0
+    return nv
+
+
+@njit
+def _ga_residual(Y, P, drive, h, W, ra, rr, co):
+    """Residual M ((1 - am) a1 + am a0) - Q(t_f, q_f, v_f) of the generalized-alpha equations at
+    the trial accelerations GW[ra] into GW[rr]; GW[W_A0] holds a0, GW[W_M] the masses; co the
+    coefficients (GA_STEP or GA_RESTART).  The state at t_f in W.Y1, the forces in W.b."""
+    am, af, ga, be = co
+    Yf, GW, Q = W.Y1, W.GW, W.b
+    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
+    for i in range(nv):
+        a0 = GW[W_A0, i]
+        a1 = GW[ra, i]
+        iv = V_VEL[i]
+        v = Y[iv]
+        Yf[iv] = (1.0 - af) * (v + h * ((1.0 - ga) * a0 + ga * a1)) + af * v
+        ip = V_POS[i]
+        if ip >= 0:
+            q = Y[ip]
+            Yf[ip] = (1.0 - af) * (q + h * v + h * h * ((0.5 - be) * a0 + be * a1)) + af * q
+    Yf[Y_X] = Y[Y_X] + (1.0 - af) * h * drive.w
+    ga_forces(Yf, P, drive, W.L, W.res, Q, GW[W_M])
+    for i in range(nv):
+        GW[rr, i] = GW[W_M, i] * ((1.0 - am) * GW[ra, i] + am * GW[W_A0, i]) - Q[i]
+    if P[P_TRAV] < 0.5:
+        GW[rr, 0] = 0.0
+
+
+@inline
+def _ga_jacobian(Y, P, drive, h, W, nv, co):
+    """GW[0:nv, 0:nv]: the residual's Jacobian in the accelerations, column j by a finite
+    difference of 1e-4 v_st in unknown j's velocity."""
+    vs, r, ga = P[P_VST], P[P_R], co[2]
+    GW = W.GW
+    for j in range(nv):
+        d = 1e-4 * vs / (ga * h) / (r if V_ROT[j] > 0.0 else 1.0)
+        for i in range(nv):
+            GW[W_AT, i] = GW[W_A, i]
+        GW[W_AT, j] += d
+        _ga_residual(Y, P, drive, h, W, W_AT, W_RT, co)
+        for i in range(nv):
+            GW[i, j] = (GW[W_RT, i] - GW[W_R, i]) / d
+
+
+@inline
+def _ga_newton_direction(GW, nv, trav, A, Q):
+    """Newton direction GW[W_D] = -J^-1 R (the slide's row held when traverse is off); returns
+    the residual's scaled size max |R_i| S_i."""
+    for i in range(nv):
+        for j in range(nv):
+            A[i, j] = GW[i, j]
+        Q[i] = -GW[W_R, i]
+    if not trav:   # the slide is held: its acceleration stays as it is
+        for j in range(nv):
+            A[0, j] = 0.0
+            A[j, 0] = 0.0
+        A[0, 0] = 1.0
+        Q[0] = 0.0
+    solve_small(A, Q, nv)
+    n0 = 0.0
+    for i in range(nv):
+        GW[W_D, i] = Q[i]
+        n0 = max(n0, abs(GW[W_R, i]) * GW[W_S, i])
+    return n0
+
+
+@inline
+def _ga_line_search(Y, P, drive, h, W, nv, n0, co):
+    """The Newton step halved (up to 8 times) until the scaled residual falls below n0 (the
+    tanh friction is steep over v_st); trial point in GW[W_AT], its residual in GW[W_RT].
+    Returns the step fraction."""
+    lam = 1.0
+    GW = W.GW
+    for _ in range(8):
+        for i in range(nv):
+            GW[W_AT, i] = GW[W_A, i] + lam * GW[W_D, i]
+        _ga_residual(Y, P, drive, h, W, W_AT, W_RT, co)
+        n1 = 0.0
+        for i in range(nv):
+            n1 = max(n1, abs(GW[W_RT, i]) * GW[W_S, i])
+        if n1 < n0:
+            break
+        lam *= 0.5
+    return lam
+
+
+@inline
+def _ga_accept(Y, GW, h, w, nv, hs, co):
+    """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
+    converged a1 (GW[W_A]); a1 kept in hs[5:] for the next step."""
+    ga, be = co[2], co[3]
+    for i in range(nv):
+        a0 = GW[W_A0, i]
+        a1 = GW[W_A, i]
+        iv = V_VEL[i]
+        v = Y[iv]
+        ip = V_POS[i]
+        if ip >= 0:
+            Y[ip] = Y[ip] + h * v + h * h * ((0.5 - be) * a0 + be * a1)
+        Y[iv] = v + h * ((1.0 - ga) * a0 + ga * a1)
+        hs[H_ACC + i] = a1
+    Y[Y_X] += h * w
+    hs[H_TAKEN] += 1.0
+    # whose history the accelerations are: a restart step's (2) serve a restart at the next
+    # jump, a regular step takes its own from the forces after it (ga_step)
+    hs[H_GA] = 2.0 if co[1] != GA_STEP[1] else 1.0
+
+
+@njit
+def ga_step(Y, P, drive, h, W):
+    """One generalized-alpha step of h [s] on Y (ideal or lumped bearing; Chung & Hulbert
+    1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
+    convergence is slow), each Newton step halved until the residual falls (the tanh friction
+    is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
+    (hs[H_GA] = 1 when valid; 2 after a restart step; 0: first step or after a fallback, from the
+    forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).
+    Returns False and leaves Y untouched when Newton does not converge.  W: the work arrays
+    (layout.Work)."""
+    Yf, A, GW, hs, Q = W.Y1, W.A, W.GW, W.hs, W.b
+    vs, r = P[P_VST], P[P_R]
+    trav = P[P_TRAV] > 0.5
+    for i in range(Y.shape[0]):
+        Yf[i] = Y[i]
+    co = GA_RESTART if hs[H_GA] < 0.0 else GA_STEP
+    # accelerations from the forces: at the first step, after a fallback, and for a regular
+    # step after a restart step (hs[H_GA] = 2: the history belongs to the other coefficients; the
+    # slip is on the new inputs' value by now)
+    if hs[H_GA] == 0.0 or (hs[H_GA] == 2.0 and co[1] == GA_STEP[1]):
+        nv = ga_forces(Y, P, drive, W.L, W.res, Q, GW[W_M])
+        for i in range(nv):
+            hs[H_ACC + i] = Q[i] / GW[W_M, i]
+    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
+    ga = co[2]
+    for i in range(nv):
+        GW[W_A0, i] = hs[H_ACC + i]
+        GW[W_A, i] = hs[H_ACC + i]
+    _ga_residual(Y, P, drive, h, W, W_A, W_R, co)
+    for i in range(nv):   # residual -> the velocity change it would cause, against the tolerance
+        GW[W_S, i] = h * ga / (GW[W_M, i] * GA_NTOL * vs) * (r if V_ROT[i] > 0.0 else 1.0)
+    fresh = False
+    for it in range(GA_MAXIT):
+        if not fresh:
+            _ga_jacobian(Y, P, drive, h, W, nv, co)
+            fresh = True
+        n0 = _ga_newton_direction(GW, nv, trav, A, Q)
+        lam = _ga_line_search(Y, P, drive, h, W, nv, n0, co)
+        conv = True
+        for i in range(nv):
+            GW[W_A, i] = GW[W_AT, i]
+            GW[W_R, i] = GW[W_RT, i]
+            dv = abs(h * ga * lam * GW[W_D, i]) * (r if V_ROT[i] > 0.0 else 1.0)
+            if dv > GA_NTOL * vs:
+                conv = False
+        if conv:
+            _ga_accept(Y, GW, h, drive.w, nv, hs, co)
+            return True
+        if it % 3 == 2 or lam < 1.0:
+            fresh = False       # slow convergence: a Jacobian at the current iterate
+    return False
+
+
+@njit
+def inputs_jumped(P, hs, jump):
+    """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
+    the slip's amplitude over v_st, P[P_DF] the pressing load's relative change): the
+    generalized-alpha step restarts.
+    - A step input (the slip above GA_JUMP_STEP, with the lumped bearing above GA_JUMP_RELAX;
+      or the load above GA_LOAD_RELAX: the load sets the pressing offset, and the lumped
+      row's, so the contact's spring force jumps): this communication step and the next by
+      the adaptive substeps, which land on the new slip and let what the step set ringing
+      decay (the lumped row's modes, about 2e4 Hz; the roller's slide); a generalized-alpha
+      step restarted on them overshoots (docs/integrators.md).
+    - A large jump of the slip (above GA_JUMP_RELAX, ideal bearing): one substep by the
+      adaptive substeps, its boundary layer.  (Taking two communication steps there too,
+      the coupled launch of docs/driveline-example.md, whose jumps hover about that bound,
+      switched between the paths from step to step and lost 0.65 % of its peak.)
+    - A small one (a master's ramp, every step): one GA_RESTART step; the lumped bearing
+      takes a small load change so too (its row's offset moves with the load).
+    The other integrators are L-stable one-step methods or BDF2: they land on the new inputs'
+    slip without overshoot."""
+    if P[P_INTEG] != INT_DEFAULT or P[P_BEAR] == BEAR_RESOLVED or hs[H_GA] <= 0.0 or jump < 0.0:
+        return
+    lumped = P[P_BEAR] == BEAR_LUMPED
+    if P[P_DF] > GA_LOAD_RELAX or jump > (GA_JUMP_RELAX if lumped else GA_JUMP_STEP):
+        hs[H_GA] = GA_STEP_IN
+    elif jump > GA_JUMP_RELAX:
+        hs[H_GA] = GA_RELAX
+    elif jump > 0.0 or (lumped and P[P_DF] > 0.0):
+        hs[H_GA] = -1.0
+
+
+@njit
+def ga_steps(Y, P, drive, h, n, W, NW):
+    """n generalized-alpha steps of h [s] (ideal or lumped bearing), restarted where the
+    inputs jumped (hs[H_GA], inputs_jumped): a step input by the adaptive substeps over this
+    communication step and the next, a large jump over one substep, a small one by one
+    GA_RESTART step; a step whose Newton fails by the adaptive substeps."""
+    hs = W.hs
+    for _ in range(n):
+        if hs[H_GA] == GA_STEP_IN or hs[H_GA] == GA_STEP_IN_2:
+            # a step input: this communication step and the next by the error-controlled
+            # L-stable extrapolated substeps (the slip relaxing onto the new inputs' value,
+            # and what the step set ringing), then the accelerations afresh from the forces
+            adaptive_steps(Y, P, drive, h * n, 0.25 * h, W, NW)
+            hs[H_GA] = GA_STEP_IN_2 if hs[H_GA] == GA_STEP_IN else 0.0
+            break
+        if hs[H_GA] == GA_RELAX:
+            # a large jump: its boundary layer (the slip relaxing onto the new inputs'
+            # value) by the adaptive substeps over one substep
+            adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
+            hs[H_GA] = 0.0    # then the accelerations afresh from the forces
+            continue
+        if hs[H_GA] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
+            if ga_step(Y, P, drive, h, W):
+                continue
+            hs[H_GA] = 1.0    # its Newton did not converge: the regular step
+        if not ga_step(Y, P, drive, h, W):
+            # Newton did not converge (a very steep friction law): this step by the
+            # error-controlled extrapolated substeps instead, then start afresh
+            adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
+            hs[H_GA] = 0.0
+            hs[H_FALLBACK] += 1.0
