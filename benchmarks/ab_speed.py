@@ -3,9 +3,9 @@ cost speed: issue 14 asks for within 5 %).
 
 The earlier commit is checked out into a temporary git worktree and its contact FMU built there;
 both FMUs are timed in alternation (each in its own fresh worker process, after warm-up):
-two whirl cycles of the paper's scene (ideal and lumped bearing, 1e-4 s communication step)
-and the step cost (doStep + getReal); plus the needle-resolved bearing in-process (46 x 7
-needles, 0.1 whirl cycle).  Prints a table of medians and the ratio now / before.
+two whirl cycles of the paper's scene (contact FMU with the ideal and lumped bearing, the
+analytic FMU; 1e-4 s communication step, doStep + getReal); plus the needle-resolved bearing
+in-process (46 x 7 needles, 0.1 whirl cycle).  Prints a table of medians and the ratio now / before.
 Usage: python benchmarks/ab_speed.py --before REV [--runs N]
 """
 import argparse
@@ -33,7 +33,10 @@ from harness.fmus import ensure_fmu
 from harness.bench import time_runs
 fmu = ensure_fmu("TripodRoller")
 cases = [{"sv": {}, "dt": 1e-4, "stop": 0.2}, {"sv": {"bearing": 1}, "dt": 1e-4, "stop": 0.2}]
-print(json.dumps([r["wall"] for r in time_runs(fmu, cases, runs=int(sys.argv[2]))]))
+walls = [r["wall"] for r in time_runs(fmu, cases, runs=int(sys.argv[2]))]
+walls += [r["wall"] for r in time_runs(ensure_fmu("TripodRollerAnalytic"), cases[:1],
+                                       runs=int(sys.argv[2]))]
+print(json.dumps(walls))
 '''
 
 
@@ -56,13 +59,15 @@ def main():
                         args.before], check=True, capture_output=True)
         try:
             trees = {"before": old, "now": ROOT}
-            t = {k: {"ideal": [], "lumped": [], "needles": []} for k in trees}
-            for _ in range(args.runs):
-                for k, tree in trees.items():
-                    ideal, lumped = json.loads(_run(_FMU, tree, 1))
+            t = {k: {"ideal": [], "lumped": [], "analytic": [], "needles": []} for k in trees}
+            for r in range(args.runs):
+                # alternate which tree goes first: a drift of the machine's load hits both
+                for k in (("before", "now") if r % 2 == 0 else ("now", "before")):
+                    ideal, lumped, analytic = json.loads(_run(_FMU, trees[k], 1))
                     t[k]["ideal"].append(ideal)
                     t[k]["lumped"].append(lumped)
-                    t[k]["needles"].append(float(_run(_NEEDLES, tree)))
+                    t[k]["analytic"].append(analytic)
+                    t[k]["needles"].append(float(_run(_NEEDLES, trees[k])))
         finally:
             subprocess.run(["git", "-C", str(ROOT), "worktree", "remove", "--force", str(old)],
                            capture_output=True)
@@ -73,6 +78,7 @@ def main():
     print("|---|---|---|---|")
     names = {"ideal": "contact FMU, ideal bearing, two cycles (2000 doStep + getReal)",
              "lumped": "contact FMU, lumped bearing, two cycles",
+             "analytic": "analytic FMU, two cycles (2000 doStep + getReal)",
              "needles": "needle-resolved bearing (46 x 7), 0.1 cycle in-process"}
     for key, name in names.items():
         b, n = t["before"][key], t["now"][key]

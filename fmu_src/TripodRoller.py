@@ -5,17 +5,17 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 """
 import copy
 import math
-import os
 import sys
 
 from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from fmi2bridge import requirements
+from reduced_model import switches
 from reduced_model.scene import BY_NAME, check_value, params_for
-from slavekit import DataState, Guarded, StateError, register_table, same_layout
+from slavekit import DataState, FastStep, Guarded, StateError, register_table, same_layout
 from tripod_model import native
-from tripod_model.model import JointModel
+from tripod_model.model import JointModel, fast_argv
 
 _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
 
@@ -26,7 +26,7 @@ def _have_numba():
     return importlib.util.find_spec("numba") is not None
 
 
-_NUMBA_ON = os.environ.get("TRIPOD_NUMBA", "1") != "0"   # 0: plain Python on purpose
+_NUMBA_ON = switches.NUMBA   # off: plain Python on purpose
 
 
 class TripodRoller(Guarded, DataState, Fmi2Slave):
@@ -75,7 +75,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         lumped bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off,
         for comparison)."""
         arrays = self.model.fast_arrays()
-        if arrays is None or os.environ.get("TRIPOD_FAST", "1") == "0" or self.drive_by_angle:
+        if arrays is None or not switches.FAST or self.drive_by_angle:
             return None     # (driven by angle: omega is derived each step, in Python)
         fn = native.step_function()
         if fn is not None:
@@ -104,8 +104,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
                              -math.inf if p.lo is None else float(p.lo),
                              math.inf if p.hi is None else float(p.hi),
                              int(p.lo_open), int(p.hi_open)))
-        return {"address": address, "addresses": [a.ctypes.data for a in arrays],
-                "in_slots": in_slots,
+        return {"address": address, "argv": fast_argv(arrays), "in_slots": in_slots,
                 "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
                 "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
 
@@ -121,8 +120,9 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
-        self._fast = (f["address"], self._fast_dt, f["out_vrs"], f["in_vrs"],
-                      [float(getattr(self, n)) for n in _INPUTS], f["addresses"], f["in_slots"])
+        self._fast = FastStep(f["address"], f["argv"].ctypes.data, self._fast_outputs.ctypes.data,
+                              self._fast_dt, f["out_vrs"], f["in_vrs"],
+                              [float(getattr(self, n)) for n in _INPUTS], tuple(f["in_slots"]))
 
     def _fast_sync(self, k):
         """The native layer took k compiled steps: count them, take their outputs."""

@@ -4,6 +4,7 @@ import json
 import math
 import struct
 import zlib
+from typing import NamedTuple
 
 import numpy as np
 
@@ -13,6 +14,21 @@ from pythonfmu.enums import Fmi2Status
 from reduced_model.scene import INT_OUTPUTS, OUTPUTS, params_for
 
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
+
+
+class FastStep(NamedTuple):
+    """A compiled step a slave offers the native layer (its attribute ``_fast``), which reads
+    these fields by name (fmi2_python.c: fast_take) and runs it for the next steps of the same
+    size without entering Python.  Addresses are the slave's own arrays, kept alive by it."""
+    step: int            # int32_t step(double **args): 1 written, else failed
+    args: int            # address of its argument: the addresses of its arrays (uintp array)
+    outputs: int         # address of the outputs it writes (doubles, out_vrs' order)
+    dt: float            # the step size it was offered for [s]
+    out_vrs: list        # value references of its outputs
+    in_vrs: list         # value references of the inputs it takes (at most 8)
+    in_values: list      # their values now
+    in_slots: tuple = ()  # per input: (address the step reads it at, lowest, highest value,
+    #                       lowest excluded, highest excluded); empty: the slave takes them
 
 
 def register_table(slave, model, outputs=None):

@@ -39,7 +39,7 @@ def split_scene(overrides: dict) -> tuple[dict, dict]:
 
 def is_verification(contact: dict) -> bool:
     """No traverse and an ideal bearing: the limit Eqs. (18)-(27) describe."""
-    return (not contact["traverse"]) and contact["bearing"] == 0
+    return (not contact["traverse"]) and contact["bearing"] == scene_mod.BEARING_IDEAL
 
 
 def _o(a, p):
@@ -82,7 +82,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     else:
         ref = {k: (trav[f"order{k}"]["amplitude"], trav[f"order{k}"]["phase_deg"]) for k in ORDERS}
         against = "traverse"
-        tol = TOL_PHYSICAL if contact_sc["bearing"] == 0 else TOL_BEARING
+        tol = TOL_PHYSICAL if contact_sc["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING
     diff, ok = _judge(oc, ref, tol)
     diff27, _ = _judge(oc, eq27, {})
     st = rc["settle"]

@@ -57,7 +57,7 @@ def _bound(sv, Fx):
     th = abs(p["theta"]) if np.isscalar(p["theta"]) else max(map(abs, p["theta"]))
     w = abs(p["omega"]) if np.isscalar(p["omega"]) else max(map(abs, p["omega"]))
     spin = I / p["r_roller"] ** 2 * p["s"] * math.tan(th) * w ** 2
-    mu = p["mu_groove"] + (p["mu_needle"] if p["bearing"] >= 1 else 0.0)
+    mu = p["mu_groove"] + (p["mu_needle"] if p["bearing"] != scene_mod.BEARING_IDEAL else 0.0)
     return 1.05 * (mu * np.abs(Fx) + spin) + 1e-6   # (coast: Fx < 0)
 
 

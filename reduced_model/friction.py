@@ -1,4 +1,7 @@
-"""Friction law of Fig. 8 with the project's tanh form (model.md)."""
+"""Friction law of Fig. 8 with the project's tanh form (model.md), and the spin moment of the
+elliptical contact under it, Eqs. (14)-(16)."""
+import math
+
 import numpy as np
 
 
@@ -11,6 +14,18 @@ def mu_tanh(v, mu_s, v_st):
     if v_st <= 0.0:
         return mu_s * np.sign(v)
     return mu_s * np.tanh(3.0 * v / v_st)
+
+
+def spin_moment(mu, fn, a1, wn, vst):
+    """Spin moment [N m] of the roller-groove contact about its normal, Eqs. (14)-(16): the
+    contact's semi-major axis a = a1 f_n^(1/3) [m] (Eq. 15, a1 from hertz.hertz_point) and
+    3/8 mu f_n a, regularised in the spin rate wn [rad/s] like the sliding friction (tanh of
+    3 wn a / v_st); v_st = 0: Coulomb (tanh -> sign).  Scalars; the contact kernel compiles it
+    (contact.groove_contact), traverse.py steps with it, analytic_step.c mirrors it."""
+    a = a1 * fn ** (1.0 / 3.0)
+    t = math.tanh(3.0 * wn * a / vst) if vst > 0 else \
+        math.copysign(1.0, wn) if wn != 0 else 0.0
+    return 0.375 * mu * t * fn * a
 
 
 # The automatic v_st scales with the whirl and vanishes at rest; it never falls below this

@@ -54,6 +54,12 @@ def _fmt(v: float, p: Param) -> str:
 _A = frozenset({"analytic", "contact"})
 _C = frozenset({"contact"})
 
+# the values `bearing` and `integrator` take, named once (tripod_model/layout.py hands them to
+# the kernel as BEAR_* and INT_*; everything else compares against these names)
+BEARING_IDEAL, BEARING_LUMPED, BEARING_RESOLVED = 0, 1, 2
+(INTEGRATOR_EULER, INTEGRATOR_EXTRAPOLATED, INTEGRATOR_EXPLICIT, INTEGRATOR_ADAPTIVE,
+ INTEGRATOR_DEFAULT) = range(5)
+
 PARAMS: tuple[Param, ...] = (
     # --- scene: the paper's test conditions (section 3.1) ---
     Param("theta", 10 * DEG, "rad", 0.0, 45 * DEG, "joint angle", causality="input",
@@ -105,7 +111,7 @@ PARAMS: tuple[Param, ...] = (
           models=_C),
     Param("mu_rolling", 0.002, "1", 0.0, 0.1, "rolling friction coefficient of the needles, Eq. (12)",
           models=_C),
-    Param("bearing", 0, "1", 0, 2, "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved",
+    Param("bearing", BEARING_IDEAL, "1", BEARING_IDEAL, BEARING_RESOLVED, "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved",
           kind="int", models=_C),
     Param("traverse", True, "1", None, None,
           "roller free along the trunnion axis (contact point traverses the groove); in the "
@@ -123,7 +129,7 @@ PARAMS: tuple[Param, ...] = (
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C, auto_or_min=1e-7),
-    Param("integrator", 4, "1", 0, 4,
+    Param("integrator", INTEGRATOR_DEFAULT, "1", INTEGRATOR_EULER, INTEGRATOR_DEFAULT,
           "4 (default) generalized-alpha (implicit, Newton) with the ideal and lumped "
           "bearings, linearly implicit BDF2 with the roller and the needle row in one "
           "system with the needle-resolved bearing, 3 linearly implicit Euler extrapolated to 2nd "

@@ -14,6 +14,7 @@ import math
 import numpy as np
 
 from .orders import last_cycle_orders
+from .scene import BEARING_IDEAL, BEARING_RESOLVED
 
 ORDERS = (1, 3)
 REL_TOL = 1e-3      # |complex change| / amplitude: amplitude within 0.1 %, phase within 0.06 deg
@@ -27,7 +28,7 @@ REL_TOL_RESOLVED = 1e-2   # needle-resolved bearing: its chaotic row moves order
 def tolerance_for(scene: dict) -> float:
     """The cycle-to-cycle tolerance a scene can meet: REL_TOL, or the needle row's chaos floor
     REL_TOL_RESOLVED with the resolved bearing (bearing = 2)."""
-    return REL_TOL_RESOLVED if scene.get("bearing", 0) == 2 else REL_TOL
+    return REL_TOL_RESOLVED if scene.get("bearing", BEARING_IDEAL) == BEARING_RESOLVED else REL_TOL
 
 
 def _complex(o):

@@ -34,6 +34,7 @@ from types import SimpleNamespace
 
 import numpy as np
 
+from .friction import spin_moment
 from .hertz import hertz_point
 from .orders import order_spectrum
 from .scene import BY_NAME, check_traverse_mu, pressing_load
@@ -211,13 +212,8 @@ class Traverse:
     def _beta_at(self, p, fn, bi, dphi, spin):
         """f_b / f_n, T2, where the drive gives b_inertia bi [N], dphi and spin [rad/s]."""
         b = bi
-        if self._sm:
-            a = self.a1 * fn ** (1.0 / 3.0)                 # Eq. (15)
-            wn = dphi + spin * p
-            # v_st = 0 (a straight joint's automatic v_st): Coulomb, tanh -> sign
-            t = math.tanh(3.0 * wn * a / self.vst) if self.vst > 0 else \
-                math.copysign(1.0, wn) if wn != 0 else 0.0
-            b -= 0.375 * self.mu * t * fn * a * p / self.r
+        if self._sm:   # the spin moment, Eqs. (14)-(16), against the spin wn [rad/s]
+            b -= spin_moment(self.mu, fn, self.a1, dphi + spin * p, self.vst) * p / self.r
         return b / fn
 
     def _share(self, s, B):
@@ -364,6 +360,22 @@ class Traverse:
         self._rows = [tuple(r) for r in np.column_stack(
             [self.Fz, self.Fz_mod, self.Fx, self.Fy, np.abs(slip)]).tolist()]
         self._scale = self.n / (2.0 * math.pi)
+
+    @property
+    def rows(self):
+        """The periodic table's rows (Fz, Fz_mod, Fx, Fy [N], slip speed [m/s]) at n + 1
+        equally spaced whirl angles over a cycle (what at interpolates)."""
+        return self._rows
+
+    @property
+    def scale(self):
+        """Table points per radian of whirl angle [1/rad]."""
+        return self._scale
+
+    @property
+    def spin_moment_on(self):
+        """Whether the spin moment, Eqs. (14)-(16), enters T2."""
+        return self._sm
 
     def at(self, x):
         """(Fz, Fz_mod, Fx, Fy, slip speed) at whirl angle x [rad] (scalar), N and m/s: linear

@@ -36,3 +36,51 @@ def test_layers_point_down():
     bad = [f"{p} imports {m}" for folder, banned in above.items()
            for p, mods in _imports(folder) for m in mods if m in banned]
     assert not bad, bad
+
+
+MAX_MODULE_LINES = 500   # a module a newcomer reads in one sitting (the C binary aside)
+MAX_PARAMS = 12          # more: the arguments belong in a record (layout.Work, Drive, ...)
+
+
+def test_no_module_in_fmu_src_over_500_lines():
+    big = [f"{p.relative_to(ROOT)} ({n} lines)" for p in sorted((ROOT / "fmu_src").rglob("*.py"))
+           if (n := len(p.read_text().splitlines())) > MAX_MODULE_LINES]
+    assert not big, big
+
+
+def test_no_function_takes_more_than_12_parameters():
+    many = []
+    for folder in ("fmu_src", "reduced_model", "harness", "driveline", "benchmarks"):
+        for p, n in _functions(folder):
+            a = n.args
+            k = (len(a.posonlyargs) + len(a.args) + len(a.kwonlyargs) + (a.vararg is not None)
+                 + (a.kwarg is not None))
+            if k > MAX_PARAMS:
+                many.append(f"{p}:{n.lineno} {n.name} ({k})")
+    assert not many, many
+
+
+def test_bearings_and_integrators_compared_by_name_only():
+    # the values of `bearing` and `integrator` are named in reduced_model/scene.py (and as
+    # P's floats in tripod_model/layout.py); a comparison with a bare number elsewhere hides
+    # which bearing or integrator it means
+    def names_switch(node):
+        if isinstance(node, ast.Subscript):
+            s = node.slice
+            return (isinstance(s, ast.Constant) and s.value in ("bearing", "integrator")) or \
+                (isinstance(s, ast.Name) and s.id in ("P_BEAR", "P_INTEG"))
+        if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "get":
+            return bool(node.args) and isinstance(node.args[0], ast.Constant) and \
+                node.args[0].value in ("bearing", "integrator")
+        return False
+    bad = []
+    for folder in ("fmu_src", "reduced_model", "harness", "driveline"):
+        for p in sorted((ROOT / folder).rglob("*.py")):
+            for n in ast.walk(ast.parse(p.read_text())):
+                if isinstance(n, ast.Compare):
+                    sides = [n.left, *n.comparators]
+                    if any(names_switch(s) for s in sides) and any(
+                            isinstance(s, ast.Constant) and isinstance(s.value, (int, float))
+                            and not isinstance(s.value, bool) for s in sides):
+                        bad.append(f"{p.relative_to(ROOT)}:{n.lineno}")
+    assert not bad, bad

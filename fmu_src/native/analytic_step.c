@@ -84,15 +84,12 @@ static void housing_into(double *o, const double fx[3], const double fy[3], doub
     o[F_ROLLER] = F;
 }
 
-/* X: whirl angles [rad] (advanced in place)/* X: whirl angles [rad] (advanced in place), T: the table's rows (Fz, Fz_mod, Fx, Fy, slip
+/* X: whirl angles [rad] (advanced in place), T: the table's rows (Fz, Fz_mod, Fx, Fy, slip
    speed) at n + 1 equally spaced angles over a cycle, OP: the operating point (above), OUT: the
    outputs (N, m/s).  1: outputs written; 2: a non-finite output (nothing written); 3: a bad roller count. */
-int32_t tripod_analytic_step(double *X, double *T, double *OP, double *OUT, double *u4,
-                             double *u5, double *u6, double *u7, double *u8, double *u9,
-                             double *u10, double *u11, double *u12, double *u13)
+int32_t tripod_analytic_step(double **args)
 {
-    (void)u4; (void)u5; (void)u6; (void)u7; (void)u8; (void)u9; (void)u10; (void)u11;
-    (void)u12; (void)u13;
+    double *X = args[0], *T = args[1], *OP = args[2], *OUT = args[3];
     int nr = (int)OP[N_ROLLERS];
     double fz[3] = {0.0, 0.0, 0.0}, fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0}, o[OUT_LEN];
     if (nr < 1 || nr > 3) return 3;                   /* the slave offers 1 to 3 rollers */
@@ -233,7 +230,8 @@ static double normal_force(const Op *o, double p)
     return d > 0 ? o->K * pow(d, 1.5) : 0.0;
 }
 
-/* T2: Traverse._beta_at */
+/* T2: Traverse._beta_at, with the spin moment of Eqs. (14)-(16) as
+   reduced_model/friction.py: spin_moment */
 static double beta_at(const Op *o, double p, double fn, const Drive *d)
 {
     double b = d->bi;
@@ -318,12 +316,9 @@ static double trapezoid_step(const Op *o, double rhs0, double s, double h, const
    operating point (above; the key is updated in place when the inputs moved beyond rounding),
    OUT: the outputs.  1: written; 2: a non-finite output (nothing written: X, S, M untouched);
    3: a bad roller count. */
-int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, double *u4,
-                              double *u5, double *u6, double *u7, double *u8, double *u9,
-                              double *u10, double *u11, double *u12, double *u13)
+int32_t tripod_analytic_march(double **args)
 {
-    (void)u4; (void)u5; (void)u6; (void)u7; (void)u8; (void)u9; (void)u10; (void)u11;
-    (void)u12; (void)u13;
+    double *X = args[0], *S = args[1], *M = args[2], *OUT = args[3];
     int nr = (int)M[M_N_ROLLERS];
     if (nr < 1 || nr > 3) return 3;
     double key[N_IN];
@@ -374,7 +369,8 @@ int32_t tripod_analytic_march(double *X, double *S, double *M, double *OUT, doub
         double Fz = -fn * (p * sin(d0.phi) + beta * cos(d0.phi));
         double Fx = fn * (sqrt(1.0 - p * p) + p * p - p * d0.xi);
         double Fy = -(Fx * sin(d0.xi) + Fz * cos(d0.xi) * sin(d0.phi)) / (cos(d0.xi) * cos(d0.phi));
-        double Fz_mod = Fx > 1e-9 * pmax(o.F, 1.0) ? Fz * o.F / Fx : 0.0;
+        /* reduced_model/thrust.py: fz_mod */
+        double Fz_mod = Fx * o.F > 1e-9 * pmax(o.F * o.F, 1.0) ? Fz * o.F / Fx : 0.0;
         x1[i] = x + wh * (double)n;
         st[i][S_S] = s;
         st[i][S_P] = p;

@@ -434,11 +434,7 @@ typedef struct {
 
 /* the slave's compiled step (fmu_src/tripod_model/fast.py: Y, P, OP, OUT, then work arrays);
    1 = outputs written, anything else = failed (a non-finite output, or an exception) */
-#define FAST_ARGS 14
-#define FAST_OUT 3
-typedef int32_t (*FastStep)(double *, double *, double *, double *, double *, double *,
-                            double *, double *, double *, double *, double *, double *,
-                            double *, double *);
+typedef int32_t (*FastStep)(double **);   /* slavekit.FastStep: step(args) */
 
 typedef struct {
     char *name, *resources, *module, *guid, *bridge_name;
@@ -466,9 +462,10 @@ typedef struct {
        attribute _fast), run for the next steps of the same size at unchanged inputs without
        entering Python; the slave counts them when Python is next entered (_fast_sync). */
     FastStep fast;                /* NULL: every step goes through Python */
-    double *fast_p[FAST_ARGS];    /* its arguments; fast_p[FAST_OUT] the outputs */
+    double **fast_args;           /* its argument: the slave's array of its arrays' addresses */
+    double *fast_outputs;         /* the outputs it writes (the slave's array) */
     double fast_dt;               /* the step size it was offered for [s] */
-    int fast_fresh;               /* fast_p[FAST_OUT] holds the outputs of the last step */
+    int fast_fresh;               /* fast_outputs holds the outputs of the last step */
     int fast_said;                /* the log has said once that the fast path runs */
     long fast_pending;            /* fast steps the slave has not counted yet */
     int *fast_out;                /* per value reference: its place in the outputs, or -1 */
@@ -808,9 +805,12 @@ static void fast_sync(Inst *c)
 }
 
 /* After a step through Python: take the fast step the slave offers, if any.  The slave's
-   _fast is None or (address, step size, output value references, input value references,
-   their values, the FAST_ARGS array addresses[, per input (address where the compiled step
-   takes it, lowest, highest value, lowest excluded, highest excluded)]).  With the GIL. */
+   _fast is None or a slavekit.FastStep, read here by its field names: step (the function's
+   address), args (the address of its argument, the array of its arrays' addresses), outputs
+   (the address of the outputs it writes), dt (the step size), out_vrs and in_vrs (the value
+   references of its outputs and inputs), in_values (the inputs' values) and in_slots (per
+   input: the address where the compiled step takes it, lowest, highest value, lowest
+   excluded, highest excluded; empty: new inputs go to the slave).  With the GIL. */
 static void fast_take(Inst *c)
 {
     fast_off(c);
@@ -826,11 +826,11 @@ static void fast_take(Inst *c)
     if (!c->fast_out) c->fast_out = malloc((size_t)c->n_vars * sizeof *c->fast_out);
     if (!c->fast_in) c->fast_in = calloc((size_t)c->n_vars, sizeof *c->fast_in);
     if (!c->fast_in_value) c->fast_in_value = calloc((size_t)c->n_vars, sizeof(double));
-    PyObject *it[7] = {NULL};
-    ssize_t n_items = PySequence_Size(f);
-    for (int i = 0; i < 7 && i < n_items; ++i) it[i] = PySequence_GetItem(f, i);
-    int ok = c->fast_out && c->fast_in && c->fast_in_value && it[0] && it[1] && it[2] &&
-             it[3] && it[4] && it[5];
+    static const char *const field[8] = {"step", "dt", "out_vrs", "in_vrs", "in_values",
+                                         "args", "in_slots", "outputs"};
+    PyObject *it[8] = {NULL};
+    int ok = c->fast_out && c->fast_in && c->fast_in_value;
+    for (int i = 0; ok && i < 8; ++i) ok = (it[i] = PyObject_GetAttrString(f, field[i])) != NULL;
     FastStep fn = NULL;
     if (ok) {
         fn = (FastStep)(intptr_t)PyLong_AsLong(it[0]);
@@ -850,7 +850,7 @@ static void fast_take(Inst *c)
                 c->fast_in_value[vr] = PyFloat_AsDouble(PyList_GetItem(it[4], i));
                 c->fast_in_vr[c->n_fast_in++] = vr;
                 c->fast_in_slot[i] = NULL;
-                PyObject *t = it[6] ? PySequence_GetItem(it[6], i) : NULL;
+                PyObject *t = i < PySequence_Size(it[6]) ? PySequence_GetItem(it[6], i) : NULL;
                 if (t) {
                     PyObject *e[5];
                     for (int j = 0; j < 5; ++j) e[j] = PySequence_GetItem(t, j);
@@ -867,11 +867,11 @@ static void fast_take(Inst *c)
                 }
             }
         }
-        for (int i = 0; ok && i < FAST_ARGS; ++i)
-            c->fast_p[i] = (double *)(intptr_t)PyLong_AsLong(PyList_GetItem(it[5], i));
-        ok = !PyErr_Occurred() && fn;
+        c->fast_args = (double **)(intptr_t)PyLong_AsLong(it[5]);
+        c->fast_outputs = (double *)(intptr_t)PyLong_AsLong(it[7]);
+        ok = !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs;
     }
-    for (int i = 0; i < 7; ++i) xdecref(it[i]);
+    for (int i = 0; i < 8; ++i) xdecref(it[i]);
     Py_DecRef(f);
     if (!ok) {
         PyErr_Clear();
@@ -1173,7 +1173,7 @@ static fmi2Status get_values(Inst *c, int kind, const fmi2ValueReference vr[], s
         size_t i = 0;
         while (i < nvr && vr[i] < (fmi2ValueReference)c->n_vars && c->fast_out[vr[i]] >= 0) ++i;
         if (i == nvr) {
-            for (i = 0; i < nvr; ++i) ((fmi2Real *)out)[i] = c->fast_p[FAST_OUT][c->fast_out[vr[i]]];
+            for (i = 0; i < nvr; ++i) ((fmi2Real *)out)[i] = c->fast_outputs[c->fast_out[vr[i]]];
             return fmi2OK;
         }
     }
@@ -1512,9 +1512,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         GIL_END
     }
     if (c->fast && same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
-        double **p = c->fast_p;
-        int32_t ok = c->fast(p[0], p[1], p[2], p[3], p[4], p[5], p[6], p[7], p[8], p[9], p[10],
-                             p[11], p[12], p[13]);
+        int32_t ok = c->fast(c->fast_args);
         c->fast_pending++;            /* the state has moved, whatever the outcome */
         if (ok == 1) {
             c->fast_fresh = 1;

@@ -7,13 +7,13 @@ import math
 from .jit import inline, njit
 from . import ring
 from .needles import needle_forces
-from .contact import groove_contact, row_damping, row_load
+from .contact import (groove_contact, row_damping, row_load, row_rolling_resistance,
+    row_sliding_friction, row_stiffness)
 from .motion import line_kinematics, roller_motion, trunnion_axial
 from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_AXIAL,
-    P_FRICN, P_INTEG, P_IS, P_IT, P_KWR, P_LT, P_M, P_MU, P_MUN, P_MUR, P_QSUM, P_R, P_RB,
-    P_ROLLR, P_S, P_VST, R_FN, R_FX, R_FY, R_FZ, R_G, R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP,
-    R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD,
-    Y_W, Y_WD)
+    P_FRICN, P_INTEG, P_IS, P_IT, P_M, P_MU, P_QSUM, P_R, P_ROLLR, P_S, P_VST, R_FN, R_FX, R_FY,
+    R_FZ, R_G, R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D,
+    Y_B2, Y_B2D, Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
 
 
 @njit
@@ -106,24 +106,16 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     Fr, kr = row_load(P, Y[Y_E])
     q = P[P_QSUM] * abs(Fr)       # sum of the needle loads (> F_r: they fan out)
     if P[P_FRICN] > 0.5 and q > 0.0:
-        # axial sliding of the roller on the needles, mu_needle, tanh law
-        gn = math.tanh(3.0 * (ud - L[L_VAX]) / P[P_VST])
-        b[0] -= P[P_MUN] * q * gn
+        f, hk = row_sliding_friction(P, q, ud, L[L_VAX], h)
+        b[0] -= f
         if P[P_INTEG] != INT_EXPLICIT:
-            A[0, 0] += h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - gn * gn)
+            A[0, 0] += hk
     if P[P_ROLLR] > 0.5 and q > 0.0:
-        # Eq. (12): rolling force mu_r P per needle, acting on the bore (radius r_bore)
-        # against the roller's spin relative to the trunnion
-        vr = (om - L[L_SPIN]) * P[P_RB]
-        grl = math.tanh(3.0 * vr / P[P_VST])
-        b[1] -= P[P_MUR] * q * P[P_RB] * grl
+        mr, hk = row_rolling_resistance(P, q, om, L[L_SPIN], h)
+        b[1] -= mr
         if P[P_INTEG] != INT_EXPLICIT:
-            A[1, 1] += h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - grl * grl)
-    # tangent stiffness of the row: across the load (w) and in tilt (line contacts of
-    # length l: radial stiffness times l^2/12)
-    kw = kr * P[P_KWR]
-    kt2 = kr * P[P_LT]
-    kt1 = kt2 * P[P_KWR]
+            A[1, 1] += hk
+    kw, kt1, kt2 = row_stiffness(P, kr)
     cw, c1, c2 = row_damping(P, kw, m), row_damping(P, kt1, It), row_damping(P, kt2, It)
     b[2] -= kw * (Y[Y_W] + h * Y[Y_WD]) + cw * Y[Y_WD]
     b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1 + c1 * Y[Y_B1D]

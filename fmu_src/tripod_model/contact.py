@@ -6,10 +6,11 @@ Forces in res are on the roller; the outputs report those on the groove (kernel.
 """
 import math
 
+from reduced_model import friction
 from .jit import inline, njit
-from .layout import (P_A1, P_CLR, P_FRIC, P_HC, P_K, P_KN, P_MU, P_R, P_RG, P_SPIN, P_VST, P_ZROW, R_FN, R_FX,
-    R_FY, R_FZ, R_G, R_LEN, R_MX, R_MY, R_MZ, R_NX, R_NY, R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE,
-    R_VTX, R_VTY, R_VTZ)
+from .layout import (P_A1, P_CLR, P_FRIC, P_HC, P_K, P_KN, P_KWR, P_LT, P_MU, P_MUN, P_MUR, P_R, P_RB, P_RG,
+    P_SPIN, P_VST, P_ZROW, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX, R_MY, R_MZ, R_NX, R_NY,
+    R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ)
 
 
 @inline
@@ -28,13 +29,8 @@ def tanh_friction(mu, fn, vt, vst):
     return g, mu * fn * 3.0 / vst * (1.0 - g * g)
 
 
-@inline
-def spin_moment(mu, fn, a1, wn, vst):
-    """Spin moment [N m] of the elliptical contact about its normal, Eqs. (14)-(16): the
-    contact's semi-major axis a = a1 f_n^(1/3) (Eq. 15) and 3/8 mu f_n a, regularised in the
-    spin rate wn [rad/s] like the sliding friction."""
-    a = a1 * fn ** (1.0 / 3.0)
-    return 0.375 * mu * math.tanh(3.0 * wn * a / vst) * fn * a
+# the spin moment, Eqs. (14)-(16): reduced_model.friction.spin_moment, compiled inline
+spin_moment = inline(friction.spin_moment)
 
 
 @njit
@@ -127,6 +123,36 @@ def row_load(P, e):
         return 0.0, 0.0
     Fr = P[P_KN] * g ** (10.0 / 9.0)
     return (Fr if e < 0.0 else -Fr), 10.0 / 9.0 * Fr / g
+
+
+@inline
+def row_sliding_friction(P, q, ud, vax, h):
+    """Lumped row: the needles' sliding friction on the roller's slide along the trunnion
+    [N] (mu_needle, tanh law, on the slide rate ud less the trunnion's own vax [m/s]) under
+    the needle loads q [N], and h [s] times its slope [N/m] (the implicit step's term)."""
+    g = math.tanh(3.0 * (ud - vax) / P[P_VST])
+    return P[P_MUN] * q * g, h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - g * g)
+
+
+@inline
+def row_rolling_resistance(P, q, om, spin, h):
+    """Lumped row: Eq. (12)'s rolling force mu_r per needle load, acting on the bore (radius
+    r_bore) against the roller's spin om relative to the trunnion's [rad/s]: its moment
+    [N m] under the needle loads q [N], and h [s] times its slope [N m s/rad / s]."""
+    vr = (om - spin) * P[P_RB]
+    g = math.tanh(3.0 * vr / P[P_VST])
+    return (P[P_MUR] * q * P[P_RB] * g,
+            h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - g * g))
+
+
+@inline
+def row_stiffness(P, kr):
+    """Lumped row: its tangent stiffness across the load kw [N/m] and in tilt about e1, e2
+    kt1, kt2 [N m/rad] from the radial one kr [N/m] (line contacts of length l: tilt = radial
+    x l^2/12)."""
+    kw = kr * P[P_KWR]
+    kt2 = kr * P[P_LT]
+    return kw, kt2 * P[P_KWR], kt2
 
 
 @inline

@@ -4,7 +4,7 @@ adaptive_steps.
 """
 import math
 
-from .jit import njit
+from .jit import inline, njit
 from .linalg import solve_small
 from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row_terms, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x, row_damping
@@ -53,19 +53,32 @@ def substep(Y, P, drive, h, W, NW):
         lumped_radial_step(Y, h, m, res[R_FX] + Fr, kh + kr, row_damping(P, kh + kr, m))
 
 
+@inline
+def _whole_and_halves(Yh, Y1, P, drive, h, W, NW):
+    """One linearly implicit Euler step of h [s] on Y1 and two of h/2 on Yh (both start from
+    the same state): the two estimates of one extrapolated step."""
+    substep(Y1, P, drive, h, W, NW)
+    substep(Yh, P, drive, 0.5 * h, W, NW)
+    substep(Yh, P, drive, 0.5 * h, W, NW)
+
+
+@inline
+def _richardson(Y, Yh, Y1):
+    """Y = 2 Yh - Y1: the two halves' result extrapolated against the whole step's, which
+    cancels the first-order error of both (second order, still L-stable)."""
+    for i in range(Y.shape[0]):
+        Y[i] = 2.0 * Yh[i] - Y1[i]
+
+
 @njit
 def extrapolated_step(Y, P, drive, h, W, NW):
     """One substep of h [s] extrapolated (Richardson) from one linearly implicit Euler step of
     h (in W.Y1) and two of h/2: second order, L-stable (integrator 1)."""
-    ny = Y.shape[0]
     Y1 = W.Y1
-    for i in range(ny):
+    for i in range(Y.shape[0]):
         Y1[i] = Y[i]
-    substep(Y1, P, drive, h, W, NW)
-    substep(Y, P, drive, 0.5 * h, W, NW)
-    substep(Y, P, drive, 0.5 * h, W, NW)
-    for i in range(ny):
-        Y[i] = 2.0 * Y[i] - Y1[i]
+    _whole_and_halves(Y, Y1, P, drive, h, W, NW)
+    _richardson(Y, Y, Y1)
 
 
 @njit
@@ -99,15 +112,12 @@ def adaptive_steps(Y, P, drive, T, h0, W, NW):
         for i in range(ny):
             Y1[i] = Y[i]
             Y2[i] = Y[i]
-        substep(Y1, P, drive, hh, W, NW)
-        substep(Y2, P, drive, 0.5 * hh, W, NW)
-        substep(Y2, P, drive, 0.5 * hh, W, NW)
+        _whole_and_halves(Y2, Y1, P, drive, hh, W, NW)
         err = step_error(Y2, Y1, P)
         fac = 0.9 / math.sqrt(max(err, 1e-12))   # local error of the whole step ~ h^2
         fac = min(4.0, max(0.2, fac))
         if err <= 1.0:
-            for i in range(ny):
-                Y[i] = 2.0 * Y2[i] - Y1[i]
+            _richardson(Y, Y2, Y1)
             t += hh
             hs[H_TAKEN] += 1.0
             if not last:            # a step cut short to land on T says nothing of hc

@@ -5,8 +5,9 @@ boundary).  Ideal and lumped bearing, one roller or a joint of three (JointModel
 arrays as rows of one array each); the needle-resolved bearing steps through Python.
 
 ContactModel.step (model.py) keeps the operating point in OP and publishes the addresses of
-the arrays; the native layer (fmu_src/native/fmi2_python.c, fast_step) calls ``step`` with
-them; the slave (TripodRoller.py) reconciles its counters when Python is next entered.
+the arrays (layout.FAST_ARGS); the slave offers ``step`` with them as a slavekit.FastStep, the
+native layer (fmu_src/native/fmi2_python.c) calls it, and the slave (TripodRoller.py)
+reconciles its counters when Python is next entered.
 """
 import math
 
@@ -26,8 +27,11 @@ from reduced_model.thrust import fz_mod
 _housing = njit(housing_forces)
 _fz_mod = njit(fz_mod)
 
-_d = types.CPointer(types.float64)
-SIGNATURE = types.int32(*([_d] * 14))
+# int32_t step(double **args): args[i] the array layout.FAST_ARGS[i] names
+SIGNATURE = types.int32(types.CPointer(types.CPointer(types.float64)))
+(_Y, _P, _OP, _OUT, _L, _RES, _Y1, _Y2, _G, _A, _B, _HS, _GW, _OUTV) = (
+    K.FAST_ARGS.index(n) for n in ("Y", "P", "OP", "OUT", "L", "res", "Y1", "Y2", "G", "A", "b",
+                                   "hs", "GW", "out"))
 
 
 @njit
@@ -85,15 +89,19 @@ def _roller(Y, P, OP, W, out):
 
 
 @cfunc(SIGNATURE, nopython=True, cache=True)
-def step(pY, pP, pOP, pOUT, pL, pres, pY1, pY2, pG, pA, pb, phs, pGW, pout):
+def step(args):
     """One communication step at the inputs in OP (their operating point derived again when
     they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output (nothing
-    written; the state has moved, as in the Python step).
+    written; the state has moved, as in the Python step).  args: the arrays' addresses in
+    layout.FAST_ARGS's order.
 
     OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays).  OP is then a header
     row, whose inputs (where the native layer writes a master's values) every roller takes,
     over the n rollers' own OP rows; every other array holds the rollers' arrays one after the
     other.  The outputs are roller 1's and the joint's (JointModel.step)."""
+    pY, pP, pOP, pOUT, pL, pres = args[_Y], args[_P], args[_OP], args[_OUT], args[_L], args[_RES]
+    pY1, pY2, pG, pA, pb, phs = args[_Y1], args[_Y2], args[_G], args[_A], args[_B], args[_HS]
+    pGW, pout = args[_GW], args[_OUTV]
     head = carray(pOP, (OP_LEN,))
     n = int(head[OP_NROLL])
     dst = carray(pOUT, (N_OUT,))

@@ -2,18 +2,18 @@
 1993) with Newton on the roller's velocity unknowns, and its restarts when a master's inputs
 jump (docs/integrators.md).
 """
-import math
 
 from .jit import inline, njit
 from .linalg import solve_small
-from .contact import groove_contact, groove_stiffness_x, row_damping, row_load
+from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
+    row_rolling_resistance, row_sliding_friction, row_stiffness)
 from .euler import adaptive_steps
 from .motion import line_kinematics, roller_motion, tilt_drag
 from .layout import (BEAR_LUMPED, BEAR_RESOLVED, H_ACC, H_FALLBACK, H_GA, H_TAKEN, INT_DEFAULT, L_AAX, L_AAY,
     L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_INTEG, P_IS, P_IT,
-    P_KWR, P_LT, P_M, P_MUN, P_MUR, P_QSUM, P_R, P_RB, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ,
-    R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1,
-    Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD, Y_X)
+    P_M, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
+    V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM,
+    Y_U, Y_UD, Y_W, Y_WD, Y_X)
 
 
 # generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
@@ -78,12 +78,10 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         Fr, kr = row_load(P, Y[Y_E])
         q = P[P_QSUM] * abs(Fr)
         if P[P_FRICN] > 0.5 and q > 0.0:
-            Q[0] -= P[P_MUN] * q * math.tanh(3.0 * (Y[Y_UD] - L[L_VAX]) / P[P_VST])
+            Q[0] -= row_sliding_friction(P, q, Y[Y_UD], L[L_VAX], 0.0)[0]
         if P[P_ROLLR] > 0.5 and q > 0.0:
-            vr = (Y[Y_OM] - L[L_SPIN]) * P[P_RB]
-            Q[1] -= P[P_MUR] * q * P[P_RB] * math.tanh(3.0 * vr / P[P_VST])
-        kw, kt2 = kr * P[P_KWR], kr * P[P_LT]
-        kt1 = kt2 * P[P_KWR]
+            Q[1] -= row_rolling_resistance(P, q, Y[Y_OM], L[L_SPIN], 0.0)[0]
+        kw, kt1, kt2 = row_stiffness(P, kr)
         kx = kr + groove_stiffness_x(P, res, c)     # radial: the row and the groove
         Q[2] = (fx * e2x + fy * e2y + fz * e2z - kw * Y[Y_W]
                 - row_damping(P, kw, m) * Y[Y_WD])

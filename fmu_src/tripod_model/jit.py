@@ -13,9 +13,10 @@ import os
 import sys
 import types
 
+from reduced_model import switches
 from .native import source_hash   # the sources' content hash (no numba there)
 
-ENABLED = os.environ.get("TRIPOD_NUMBA", "1") != "0"    # False: plain Python on purpose
+ENABLED = switches.NUMBA    # False: plain Python on purpose
 try:
     if not ENABLED:
         raise ImportError
@@ -25,7 +26,7 @@ except ImportError:   # numba is optional: the kernel runs as Python, slower
     _nb = None
     HAVE_NUMBA = False
 
-CACHE_DIR = os.environ.get("TRIPOD_NUMBA_CACHE") or os.path.join(
+CACHE_DIR = switches.NUMBA_CACHE or os.path.join(
     os.path.expanduser("~"), ".cache", "tripod-thrust",
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
 

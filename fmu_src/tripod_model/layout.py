@@ -4,6 +4,8 @@ model can be set up and stepped through a prebuilt kernel without importing numb
 """
 from collections import namedtuple
 
+from reduced_model import scene
+
 # --- parameter vector layout (float64 array P) ---
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
@@ -14,14 +16,16 @@ from collections import namedtuple
 # step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
 # P_ZROW: row_damping [1]; P_DF: the pressing load's relative change at this communication
 # point (oppoint.derive; the lumped row's offset moves with it)
-# --- the bearings and integrators: the numbers the parameters `bearing` and `integrator` take
-# (reduced_model/scene.py), named here once; code tests P[P_BEAR], P[P_INTEG] against these
-BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED = 0.0, 1.0, 2.0
-INT_EULER = 0.0          # linearly implicit Euler
-INT_EXTRAPOLATED = 1.0   # the same, Richardson-extrapolated at the fixed substep (euler.py)
-INT_EXPLICIT = 2.0       # explicit (symplectic) Euler: no friction Jacobian, for comparison
-INT_ADAPTIVE = 3.0       # extrapolated, substep by its own error estimate (euler.adaptive_steps)
-INT_DEFAULT = 4.0        # generalized-alpha (ideal, lumped: genalpha.py); BDF2 (resolved: bdf2.py)
+# --- the bearings and integrators: the values of the parameters `bearing` and `integrator`
+# as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEAR],
+# P[P_INTEG] against these
+BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED = (float(b) for b in (
+    scene.BEARING_IDEAL, scene.BEARING_LUMPED, scene.BEARING_RESOLVED))
+INT_EULER = float(scene.INTEGRATOR_EULER)                # linearly implicit Euler
+INT_EXTRAPOLATED = float(scene.INTEGRATOR_EXTRAPOLATED)  # Richardson-extrapolated (euler.py)
+INT_EXPLICIT = float(scene.INTEGRATOR_EXPLICIT)   # explicit (symplectic) Euler, for comparison
+INT_ADAPTIVE = float(scene.INTEGRATOR_ADAPTIVE)   # extrapolated, substep by its error estimate
+INT_DEFAULT = float(scene.INTEGRATOR_DEFAULT)     # generalized-alpha (ideal, lumped); BDF2 (resolved)
 # --- state vector layout (float64 array Y) ---
 # whirl angle, slide along the trunnion axis u, its rate, absolute spin rate about the axis,
 # radial offset of the roller from the trunnion axis along x (lumped bearing), its rate;
@@ -70,6 +74,10 @@ N_F = 11   # floats per needle in the state vector
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
 # --- the communication step as a C function (fast.py) ---
+# its one argument: the addresses of these arrays, in this order (model.ContactModel's OP, the
+# FMU's outputs OUT, then the roller's work arrays and its output vector out; a joint: each
+# array the rollers' rows stacked, JointModel.fast_arrays); slavekit.FastStep offers it
+FAST_ARGS = ("Y", "P", "OP", "OUT", "L", "res", "Y1", "Y2", "G", "A", "b", "hs", "GW", "out")
 # the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque, the
 # plunge speed OP_VP and the step dt; what they set (pressing load per roller, pressing offset,
 # substep and count); the inputs it was derived at (OP_KEY: six slots, theta, omega, F_press,

@@ -95,7 +95,7 @@ class ContactModel:
         self.substeps = 0
         self._OP = np.zeros(K.OP_LEN)   # inputs and operating point of a step (oppoint.py)
         self._OP[K.OP_KEY] = np.nan      # none derived yet
-        self._addresses = None     # of the arrays the prebuilt kernel steps (native.py)
+        self._argv = None     # the prebuilt kernel's argument: its arrays' addresses (native.py)
         self._fout = np.zeros(K.N_OUT)   # its output slot for the FMU (unused here)
         self._started = False
         self._x0, self._x0_for = 0.0, None   # resolved bearing: pressing offset, at load
@@ -244,10 +244,10 @@ class ContactModel:
         (oppoint.derive); the resolved bearing's pressing offset is then the model's."""
         fn = native.step_function() if self.NW is None else None
         if fn is not None:
-            if self._addresses is None:
+            if self._argv is None:
                 arrays = self.fast_arrays()
-                self._addresses = [a.ctypes.data for a in arrays[:3] + (self._fout,) + arrays[3:]]
-            if fn(*self._addresses) == 0:
+                self._argv = fast_argv(arrays[:3] + (self._fout,) + arrays[3:])
+            if fn(self._argv.ctypes.data) == 0:
                 raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
                                          "(a division by zero)")
             return
@@ -314,8 +314,15 @@ class ContactModel:
                 "plunge": o[K.O_PL]}
 
 
-# the arrays of fast.step's arguments but OUT, in their order
+# the model's arrays of layout.FAST_ARGS but OUT (the FMU's), in that order
 _FAST_ARRAYS = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "_hs", "_GW", "out")
+
+
+def fast_argv(arrays):
+    """fast.step's argument for these arrays (layout.FAST_ARGS's order): their addresses in an
+    array the caller keeps alive as long as it calls the step with it."""
+    assert len(arrays) == len(K.FAST_ARGS)
+    return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
 
 
 def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1e-4,

@@ -11,14 +11,18 @@ import re
 import json
 import os
 
+from reduced_model import switches
+
 _DIR = os.path.dirname(os.path.abspath(__file__))
 LIB, META = "_step.so", "_step.json"     # next to this file, in the FMU only
 _HASH = None
 _STEP = False   # not looked up yet
 
 
-# modules of the reduced model the compiled kernel takes in (fast.py: the housing frame)
-_ELSEWHERE = ("reduced_model.housing",)
+# modules of the reduced model the compiled kernel takes in (fast.py: the housing frame and
+# Fz_mod; oppoint.py, compiled into the step: v_st, the pressing load, the slip amplitudes)
+_ELSEWHERE = ("reduced_model.housing", "reduced_model.thrust", "reduced_model.friction",
+              "reduced_model.scene", "reduced_model.sliding")
 
 
 def _compiled_elsewhere():
@@ -52,7 +56,8 @@ def source_hash() -> str:
 
 
 def step_function():
-    """The prebuilt step as a ctypes function (fast.step's C signature), or None."""
+    """The prebuilt step as a ctypes function (fast.step's C signature: int32_t f(double **)),
+    or None."""
     global _STEP
     if _STEP is False:
         _STEP = _load()
@@ -60,8 +65,8 @@ def step_function():
 
 
 def _load():
-    if os.environ.get("TRIPOD_AOT", "1") == "0" or os.environ.get("TRIPOD_NUMBA", "1") == "0":
-        return None   # TRIPOD_NUMBA=0 asks for plain Python: no compiled kernel at all
+    if not switches.AOT:
+        return None   # (TRIPOD_NUMBA=0 asks for plain Python: no compiled kernel at all)
     try:
         with open(os.path.join(_DIR, META)) as f:
             meta = json.load(f)
@@ -71,7 +76,7 @@ def _load():
     except (OSError, KeyError, ValueError, AttributeError):
         return None
     fn.restype = ctypes.c_int32
-    fn.argtypes = [ctypes.c_void_p] * 14
+    fn.argtypes = [ctypes.c_void_p]   # fast.step's one argument: its arrays' addresses
     return fn
 
 

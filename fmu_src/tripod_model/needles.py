@@ -291,32 +291,28 @@ def _finish_systems(Y, NW, n, cpl, frame, o):
 @njit
 def _contacts(Y, NW, vst, h, hk, cpl, pose):
     """Every needle's contacts (trunnion, bore, next needle jn, axial stops) into the needles'
-    systems, UN[j], BN[j], PB[j] and the roller's (RS: b, A in columns 0, 1..6; MR).  pose:
-    needle_forces' scalars o .. om_tr (needle_forces clears and finishes the systems around
-    this loop)."""
+    and the roller's systems (RS: b, A in columns 0, 1..6; MR); pose: needle_forces' o .. om_tr."""
     (o1, o2, o3, vo1, vo2, vo3, ob1, ob2, ob3, wr1, wr2, wr3, d_tr, dd_tr, om_tr) = pose
     roller = (o1, o2, o3, vo1, vo2, vo3, wr1, wr2, wr3)
-    SP, FN, AN, UN, ND, MOM, PM, BN, PB = NW.SP, NW.FN, NW.AN, NW.UN, NW.ND, NW.MOM, NW.PM, NW.BN, NW.PB
-    NP, RS, MR, gn, gn2 = NW.NP, NW.RS, NW.MR, NW.gn, NW.gn2
-    y0 = Y_LEN
-    bR, AR6 = RS[:, 0], RS[:, 1:7]
+    SP, FN, AN, UN, ND, MOM, PM = NW.SP, NW.FN, NW.AN, NW.UN, NW.ND, NW.MOM, NW.PM
+    BN, PB, NP, gn, gn2 = NW.BN, NW.PB, NW.NP, NW.gn, NW.gn2
+    bR, AR6, MR = NW.RS[:, 0], NW.RS[:, 1:7], NW.MR
     n, ns = int(NP[N_N]), int(NP[N_NS])
     rn, Rt, Rb, hw, dc, zax = NP[N_RN], NP[N_RT], NP[N_RBR], NP[N_HW], NP[N_DC], NP[N_ZAX]
     Cs, mn, mu, mur, fric = NP[N_CS], NP[N_MN], NP[N_MU], NP[N_MUR], NP[N_FRIC] > 0.5
-    ms = mn / ns   # the share of a needle's mass on one sphere: sets the contact damping
     rollr = NP[N_ROLLR] > 0.5 and mur > 0.0
-    c = (rn, Cs, ms, mu, mur, vst, h, hk)   # one tuple argument: numba inlines calls of < 30
-    cn = 1.0 if cpl else C_NEEDLE   # one system (cpl): no split, so no scaled tangents
-    cr_ = 1.0 if cpl else C_ROLLER
+    c = (rn, Cs, mn / ns, mu, mur, vst, h, hk)   # one tuple (numba inlines calls of < 30)
+    # one system (cpl): no split, so no scaled tangents
+    cn, cr_ = (1.0, 1.0) if cpl else (C_NEEDLE, C_ROLLER)
     rt = Rt + rn   # square roots only within these bounds (1e-12 wider, beyond rounding)
     rt2, dc2 = rt * rt * (1.0 + 1e-12), dc * dc * (1.0 + 1e-12)
     for j in range(n):
-        q = y0 + N_F * j
-        p1, p2, p3, v1, v2, v3 = Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7]
-        w1, w2, w3 = Y[q + 8], Y[q + 9], Y[q + 10]
-        body = (p1, p2, p3, v1, v2, v3, w1, w2, w3)
+        q = Y_LEN + N_F * j
+        body = (Y[q], Y[q + 1], Y[q + 2], Y[q + 5], Y[q + 6], Y[q + 7], Y[q + 8], Y[q + 9],
+                Y[q + 10])
+        p1, p2, p3, v3 = body[0], body[1], body[2], body[5]
         jn = j + 1 if j + 1 < n else 0
-        qn = y0 + N_F * jn
+        qn = Y_LEN + N_F * jn
         Aj, Fj, Mj = AN[j], FN[j], MOM[j]
         pair = False   # j touches jn: UN[j] holds S = sum kq g g^T until _pair_blocks
         for k in range(ns):

@@ -41,6 +41,19 @@ def _rate_amplitude(P, theta, omega):
     return math.hypot(A if P[P_PITCH] > 0.5 else 0.0, B if P[P_ROLL] > 0.5 else 0.0)
 
 
+def _accuracy_bound(P, theta, w, vst, n_transition):
+    """The substep [s] accuracy asks for at whirl rate w >= 0 [rad/s]: at most 1e-4 s, at
+    least 2000 a whirl cycle and, n_transition > 0, that many across the friction transition
+    (V through +/- v_st at up to 2 w sqrt(A^2+B^2))."""
+    h = 1e-4
+    if w > 0:
+        h = min(h, 2 * math.pi / w / 2000.0)
+        R = _rate_amplitude(P, theta, w) if n_transition > 0 else 0.0
+        if R > 0:
+            h = min(h, vst / (2 * w * R) / n_transition)
+    return h
+
+
 def ga_step_size(P, theta, omega, F, vst):
     """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing).
 
@@ -57,13 +70,8 @@ def ga_step_size(P, theta, omega, F, vst):
     The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
     step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
     """
-    h = 1e-4
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
-    if w > 0:
-        h = min(h, 2 * math.pi / w / 2000.0)
-        R = _rate_amplitude(P, theta, w)
-        if R > 0:
-            h = min(h, vst / (2 * w * R) / 20.0)
+    h = _accuracy_bound(P, theta, w, vst, 20.0)
     if F > 0:
         rho = P[P_RG] - P[P_R] + (F / P[P_K]) ** (2.0 / 3.0)
         w_g = math.sqrt(F / (P[P_M] * rho))
@@ -91,13 +99,8 @@ def substep(P, theta, omega, F, vst, stiff):
         return P[P_HSUB]
     if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
         return ga_step_size(P, theta, omega, F, vst)
-    h = 1e-4
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
-    if w > 0:
-        h = min(h, 2 * math.pi / w / 2000.0)
-        R = _rate_amplitude(P, theta, w) if stiff else 0.0
-        if R > 0:
-            h = min(h, vst / (2 * w * R) / 80.0)
+    h = _accuracy_bound(P, theta, w, vst, 80.0 if stiff else 0.0)
     if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] == BEAR_RESOLVED:
         return max(min(h, row_substep(P, F)), 1e-7)
     if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
@@ -196,5 +199,5 @@ def derive(P, OP):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "ga_step_size", "substep", "groove_offset", "lumped_offset",
+             "_rate_amplitude", "_accuracy_bound", "ga_step_size", "substep", "groove_offset", "lumped_offset",
              "derive")
