@@ -1,7 +1,7 @@
 """The generalized-alpha step stepped from Python, the way a general multibody engine runs it:
 an implicit fixed step whose Newton iterations call back for the forces.
 
-For the side-by-side of `tripod-thrust bench` (issue 7: our integrators against explicit
+For the side-by-side of `tripod-thrust bench` (our integrators against explicit
 stepping and against such an engine at equal order-3 error).  It runs the very step of the
 default integrator (genalpha.ga_step, its plain-Python source) and only the force evaluations
 (genalpha._ga_residual -> ga_forces) are compiled: a lower bound of what a Python force callback

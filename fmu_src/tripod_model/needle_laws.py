@@ -230,8 +230,8 @@ def bore_gap(P1, P2, P3, o1, o2, o3, ob1, ob2, ob3, hw, Rb, rn):
 @inline
 def bore_law(S, q, rb, delta, body, roller, c, fric):
     """A needle sphere (centre S = P, offset q from the bore axis; the needle body = (p, v, w)
-    flat) in the roller bore (roller = (o, vo, wr) flat: its centre o moving vo, wr): the same laws as trunnion_law on the
-    relative slip.  Returns the force on the needle F [N], n, the needle's and the roller's
+    flat) in the roller bore (roller = (o, vo, wr) flat: its centre o moving vo, wr): the same
+    laws as trunnion_law on the relative slip.  Returns the force on the needle F [N], n, the needle's and the roller's
     arms r, R [m], the tangent stiffness kn [N/m], both points' normal speeds [m/s], the
     shared coef and the secant iso (each body scales them, see C_NEEDLE), f [N] and the
     rolling moment and its tangent."""
@@ -261,8 +261,8 @@ def bore_law(S, q, rb, delta, body, roller, c, fric):
 @inline
 def neighbour_law(S, Q, dist, delta, body, other, c, fric):
     """A sphere S = P of one needle (body = (p, v, w) flat) on the same sphere of the next
-    needle (other = (pn, vn, wn) flat; Q = its sphere centre - P): the same laws, each needle damped with half
-    the sphere's mass.  Returns the force on the first F [N], n, both arms r, R [m], kp, coef,
+    needle (other = (pn, vn, wn) flat; Q = its sphere centre - P): the same laws, each needle
+    damped with half the sphere's mass.  Returns the force on the first F [N], n, both arms r, R [m], kp, coef,
     w and f [N]."""
     rn, Cs, ms, mu, mur, vst, h, hk = c
     P1, P2, P3 = S
