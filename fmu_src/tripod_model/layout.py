@@ -7,10 +7,11 @@ from collections import namedtuple
 from reduced_model import scene
 
 # --- parameter vector layout (float64 array P) ---
+# a new slot: its name before P_LEN (the numbering follows; *_ takes the unused rest)
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
  P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_VP, P_HC, P_ZROW, P_DF,
- P_LEN) = range(38)
+ P_LEN, *_) = range(128)
 # P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
 # what the operating point derived from them (oppoint.py); P_VP: the plunge speed [m/s] of the
 # step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
