@@ -1,5 +1,6 @@
-/* The analytic FMU's communication step in C, for the native layer's fast path (issue 13: the
-   analytic FMU near the bare FMI boundary).  What TripodRollerAnalytic._advance does at
+/* The analytic FMU's communication step in C, for the native layer's fast path (the analytic
+   FMU near the bare FMI boundary).  What AnalyticModel.step (reduced_model/analytic_model.py)
+   and its outputs do at
    unchanged inputs: every roller's whirl angle advances by omega h, and the outputs follow from
    the traverse model's periodic table (reduced_model/traverse.py, Traverse.at: linear
    interpolation) or from Eqs. (18)-(27) (reduced_model/thrust.py, Thrust.at).  The same
@@ -9,8 +10,8 @@
    Once a master moves the inputs, tripod_analytic_march steps the roller's slide in time at
    each step's inputs, as reduced_model/traverse.py's Traverse.march does (T2-T6 of its header:
    the same operations in the same order, libm's scalar functions as Python's math module), and
-   derives the operating point from the inputs the native layer wrote (TripodRollerAnalytic.
-   _prepare, Traverse.__init__).
+   derives the operating point from the inputs the native layer wrote (AnalyticModel.prepare,
+   Traverse.__init__).
 
    The slave fills OP by the names tripod_analytic_layout() gives, so this file is the one
    place the layout is written. */
@@ -383,7 +384,7 @@ int32_t tripod_analytic_march(double **args)
         fx[i] = Fx;
         fy[i] = Fy;
     }
-    /* TripodRollerAnalytic._write_outputs */
+    /* AnalyticModel.outputs */
     o_[FZ] = st[0][S_FZ];
     o_[FZ_MOD] = st[0][S_FZ_MOD];
     o_[FX] = st[0][S_FX];
