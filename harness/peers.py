@@ -146,7 +146,7 @@ class _TrunnionMotion:
         return np.array([W[2, 1], W[0, 2], W[1, 0]])
 
 
-def _exudyn_roller(mbs, m, motion):
+def _exudyn_roller(mbs, m, tmotion):
     """The driven trunnion, the roller on its cylindrical joint and the groove's loads in the
     Exudyn system mbs; returns the sensors of the roller's position, velocity and angular
     velocity (global, every step)."""
@@ -155,16 +155,16 @@ def _exudyn_roller(mbs, m, motion):
         MarkerBodyRigid, SensorNode
     from exudyn.rigidBodyUtilities import RigidBodyInertia
     P = m.P
-    q0, R0, w0, v0 = motion.pose(0.0)[:3], motion.rot(0.0), motion.ang_vel(0.0), motion.rate(0.0)[:3]
+    q0, R0, w0, v0 = tmotion.pose(0.0)[:3], tmotion.rot(0.0), tmotion.ang_vel(0.0), tmotion.rate(0.0)[:3]
     trunnion = mbs.CreateRigidBody(inertia=RigidBodyInertia(1.0, np.diag([1e-3] * 3)),
                                    referencePosition=q0, referenceRotationMatrix=R0,
                                    initialVelocity=v0, initialAngularVelocity=w0)
     mg = mbs.AddMarker(MarkerBodyRigid(bodyNumber=mbs.CreateGround(),
-                                       localHT=exu.HT(rotation=motion.J0)))
+                                       localHT=exu.HT(rotation=tmotion.J0)))
     mbs.AddObject(GenericJoint(
         markerNumbers=[mg, mbs.AddMarker(MarkerBodyRigid(bodyNumber=trunnion))],
-        constrainedAxes=[1] * 6, offsetUserFunction=lambda mbs, t, i, par: list(motion.pose(t)),
-        offsetUserFunction_t=lambda mbs, t, i, par: list(motion.rate(t))))
+        constrainedAxes=[1] * 6, offsetUserFunction=lambda mbs, t, i, par: list(tmotion.pose(t)),
+        offsetUserFunction_t=lambda mbs, t, i, par: list(tmotion.rate(t))))
     a0 = R0[:, 2]
     wr0 = w0 + (m.Y[LY.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
     roller = mbs.CreateRigidBody(
