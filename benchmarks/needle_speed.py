@@ -86,9 +86,10 @@ def substep_profile(m, reps=1000):
     NW, L = m.NW, m._L
     h = m._OP[LY.OP_H]
     n = m.n_needle_bodies
-    e1 = np.array([1 - L[0] ** 2, -L[0] * L[1], -L[0] * L[2]])
+    a = L[LY.L_AX:LY.L_AZ + 1]    # the trunnion axis; e1 its normal toward the pressing x
+    e1 = np.array([1 - a[0] ** 2, -a[0] * a[1], -a[0] * a[2]])
     e1 /= np.linalg.norm(e1)
-    e2 = np.cross(L[:3], e1)
+    e2 = np.cross(a, e1)
     Y = m.Y.copy()
 
     def timed(f, *a):   # the best of 5 rounds: on a shared machine the others carry its load
@@ -166,7 +167,7 @@ def main():
         m.step(1e-4, m.p["theta"], m.p["omega"], m.p["F_press"])
     adaptive = m.p["integrator"] == 3
     per_cycle = m.substeps / CYCLES
-    attempts = (m._hs[1] + m._hs[2]) / CYCLES if adaptive else per_cycle
+    attempts = (m._hs[LY.H_TAKEN] + m._hs[LY.H_REJECTED]) / CYCLES if adaptive else per_cycle
     evals = 3 if m.p["integrator"] in (1, 3) else 1
     checks = contact_checks(m)
     rate = attempts * CYCLES * evals * checks / r["wall"]

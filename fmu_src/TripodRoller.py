@@ -15,6 +15,7 @@ from reduced_model import switches
 from reduced_model.scene import BY_NAME, check_value, params_for
 from slavekit import DataState, FastStep, Guarded, StateError, register_table, same_layout
 from tripod_model import native
+from tripod_model.layout import H_TAKEN
 from tripod_model.model import JointModel, fast_argv
 
 _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
@@ -116,7 +117,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
             return
         for i, name in enumerate(f["names"]):
             self._fast_outputs[i] = out[name]
-        self._fast_hs1 = [r._hs[1] for r in self.model.rollers]
+        self._fast_hs1 = [r._hs[H_TAKEN] for r in self.model.rollers]
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast_dt = self.model.rollers[0].step_dt
@@ -129,7 +130,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         for r, hs1 in zip(self.model.rollers, self._fast_hs1):
             r.fast_synced(k, self._fast_dt, hs1)
         self._steps[0] += k
-        self._fast_hs1 = [r._hs[1] for r in self.model.rollers]
+        self._fast_hs1 = [r._hs[H_TAKEN] for r in self.model.rollers]
         for name, v in zip(self._fast_args["names"], self._fast_outputs.tolist()):
             setattr(self, name, v)
 

@@ -58,8 +58,9 @@ def reference(params, n_rollers, state, inputs, steps, h):
     DT / 10, accelerations afresh."""
     r = _model(params, n_rollers, max_substep=h / 10)
     r.set_state(state)
+    from tripod_model.layout import H_GA   # (on the path _model put it)
     for roller in r.rollers:
-        roller._hs[3] = 0.0
+        roller._hs[H_GA] = 0.0
     return response(r, inputs, steps, sub=10)
 
 

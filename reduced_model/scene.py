@@ -111,8 +111,8 @@ PARAMS: tuple[Param, ...] = (
           models=_C),
     Param("mu_rolling", 0.002, "1", 0.0, 0.1, "rolling friction coefficient of the needles, Eq. (12)",
           models=_C),
-    Param("bearing", BEARING_IDEAL, "1", BEARING_IDEAL, BEARING_RESOLVED, "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved",
-          kind="int", models=_C),
+    Param("bearing", BEARING_IDEAL, "1", BEARING_IDEAL, BEARING_RESOLVED,
+          "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved", kind="int", models=_C),
     Param("traverse", True, "1", None, None,
           "roller free along the trunnion axis (contact point traverses the groove); in the "
           "analytic model: the reduced traverse model (false: Eqs. 18-27 alone)",

@@ -55,13 +55,13 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.001)
     assert kernel.derive_op(r.P, r._OP) == 0.0               # a load change alone: no slip jump
     assert r.P[LY.P_DF] == pytest.approx(1e-3, rel=1e-3)  # (its own size)
-    hs3 = r._hs[3]
+    hs3 = r._hs[LY.H_GA]
     genalpha.inputs_jumped(r.P, r._hs, 0.0)
-    assert r._hs[3] == hs3                               # small: no restart (ideal bearing)
+    assert r._hs[LY.H_GA] == hs3                               # small: no restart (ideal bearing)
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.1)
     assert kernel.derive_op(r.P, r._OP) == 0.0
     genalpha.inputs_jumped(r.P, r._hs, 0.0)
-    assert r._hs[3] == genalpha.GA_STEP_IN                      # a load step: the adaptive one
+    assert r._hs[LY.H_GA] == genalpha.GA_STEP_IN                      # a load step: the adaptive one
 
 
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])

@@ -1,7 +1,6 @@
 /* The analytic FMU's communication step in C, for the native layer's fast path (the analytic
-   FMU near the bare FMI boundary).  What AnalyticModel.step (reduced_model/analytic_model.py)
-   and its outputs do at
-   unchanged inputs: every roller's whirl angle advances by omega h, and the outputs follow from
+   FMU near the bare FMI boundary).  What AnalyticModel.step and .outputs
+   (reduced_model/analytic_model.py) do at unchanged inputs: every roller's whirl angle advances by omega h, and the outputs follow from
    the traverse model's periodic table (reduced_model/traverse.py, Traverse.at: linear
    interpolation) or from Eqs. (18)-(27) (reduced_model/thrust.py, Thrust.at).  The same
    operations in the same order as that Python, so both paths give the same bits

@@ -432,8 +432,9 @@ typedef struct {
     char *category, *message;
 } Msg;
 
-/* the slave's compiled step (fmu_src/tripod_model/fast.py: Y, P, OP, OUT, then work arrays);
-   1 = outputs written, anything else = failed (a non-finite output, or an exception) */
+/* the slave's compiled step (slavekit.FastStep; fmu_src/tripod_model/fast.py, or the analytic
+   FMU's analytic_step.c): its one argument the addresses of its arrays; 1 = outputs written,
+   anything else = failed (a non-finite output, or an exception) */
 typedef int32_t (*FastStep)(double **);   /* slavekit.FastStep: step(args) */
 
 typedef struct {

@@ -5,7 +5,7 @@ boundary).  Ideal and lumped bearing, one roller or a joint of three (JointModel
 arrays as rows of one array each); the needle-resolved bearing steps through Python.
 
 ContactModel.step (model.py) keeps the operating point in OP and publishes the addresses of
-the arrays (layout.FAST_ARGS); the slave offers ``step`` with them as a slavekit.FastStep, the
+the arrays (at layout's FA_ places); the slave offers ``step`` with them as a slavekit.FastStep, the
 native layer (fmu_src/native/fmi2_python.c) calls it, and the slave (TripodRoller.py)
 reconciles its counters when Python is next entered.
 """
@@ -27,11 +27,8 @@ from reduced_model.thrust import fz_mod
 _housing = njit(housing_forces)
 _fz_mod = njit(fz_mod)
 
-# int32_t step(double **args): args[i] the array layout.FAST_ARGS[i] names
+# int32_t step(double **args): args[K.FA_Y] the state's address, ... (layout's FA_ places)
 SIGNATURE = types.int32(types.CPointer(types.CPointer(types.float64)))
-(_Y, _P, _OP, _OUT, _L, _RES, _Y1, _Y2, _G, _A, _B, _HS, _GW, _OUTV) = (
-    K.FAST_ARGS.index(n) for n in ("Y", "P", "OP", "OUT", "L", "res", "Y1", "Y2", "G", "A", "b",
-                                   "hs", "GW", "out"))
 
 
 @njit
@@ -93,15 +90,16 @@ def step(args):
     """One communication step at the inputs in OP (their operating point derived again when
     they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output (nothing
     written; the state has moved, as in the Python step).  args: the arrays' addresses in
-    layout.FAST_ARGS's order.
+    layout's FA_ places.
 
     OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays).  OP is then a header
     row, whose inputs (where the native layer writes a master's values) every roller takes,
     over the n rollers' own OP rows; every other array holds the rollers' arrays one after the
     other.  The outputs are roller 1's and the joint's (JointModel.step)."""
-    pY, pP, pOP, pOUT, pL, pres = args[_Y], args[_P], args[_OP], args[_OUT], args[_L], args[_RES]
-    pY1, pY2, pG, pA, pb, phs = args[_Y1], args[_Y2], args[_G], args[_A], args[_B], args[_HS]
-    pGW, pout = args[_GW], args[_OUTV]
+    pY, pP, pOP, pOUT = args[K.FA_Y], args[K.FA_P], args[K.FA_OP], args[K.FA_OUT]
+    pL, pres, pY1, pY2 = args[K.FA_L], args[K.FA_RES], args[K.FA_Y1], args[K.FA_Y2]
+    pG, pA, pb, phs = args[K.FA_G], args[K.FA_A], args[K.FA_B], args[K.FA_HS]
+    pGW, pout = args[K.FA_GW], args[K.FA_OUTV]
     head = carray(pOP, (OP_LEN,))
     n = int(head[OP_NROLL])
     dst = carray(pOUT, (N_OUT,))

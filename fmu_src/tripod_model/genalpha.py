@@ -184,7 +184,7 @@ def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
 @inline
 def _ga_accept(Y, GW, h, w, nv, hs, co):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
-    converged a1 (GW[W_A]); a1 kept in hs[5:] for the next step."""
+    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step."""
     ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -208,7 +208,7 @@ def ga_step(Y, P, drive, h, W):
     """One generalized-alpha step of h [s] on Y (ideal or lumped bearing; Chung & Hulbert
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
-    is steep over v_st).  hs[5:11] carry the algorithmic accelerations from step to step
+    is steep over v_st).  hs[H_ACC:] carry the algorithmic accelerations from step to step
     (hs[H_GA] = 1 when valid; 2 after a restart step; 0: first step or after a fallback, from the
     forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).
     Returns False and leaves Y untouched when Newton does not converge.  W: the work arrays

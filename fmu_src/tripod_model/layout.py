@@ -75,10 +75,12 @@ N_F = 11   # floats per needle in the state vector
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
 # --- the communication step as a C function (fast.py) ---
-# its one argument: the addresses of these arrays, in this order (model.ContactModel's OP, the
-# FMU's outputs OUT, then the roller's work arrays and its output vector out; a joint: each
-# array the rollers' rows stacked, JointModel.fast_arrays); slavekit.FastStep offers it
-FAST_ARGS = ("Y", "P", "OP", "OUT", "L", "res", "Y1", "Y2", "G", "A", "b", "hs", "GW", "out")
+# its one argument: the addresses of these arrays, at these places (the state Y, P, the
+# operating point OP, the FMU's outputs OUT, the roller's work arrays of layout.Work and its
+# output vector out; a joint: each array the rollers' rows stacked, JointModel.fast_arrays);
+# slavekit.FastStep offers it
+(FA_Y, FA_P, FA_OP, FA_OUT, FA_L, FA_RES, FA_Y1, FA_Y2, FA_G, FA_A, FA_B, FA_HS, FA_GW, FA_OUTV,
+ FA_LEN) = range(15)
 # the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque, the
 # plunge speed OP_VP and the step dt; what they set (pressing load per roller, pressing offset,
 # substep and count); the inputs it was derived at (OP_KEY: six slots, theta, omega, F_press,

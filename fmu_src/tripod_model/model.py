@@ -314,14 +314,14 @@ class ContactModel:
                 "plunge": o[K.O_PL]}
 
 
-# the model's arrays of layout.FAST_ARGS but OUT (the FMU's), in that order
+# the model's arrays at layout's FA_ places but OUT (the FMU's), in their order
 _FAST_ARRAYS = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "_hs", "_GW", "out")
 
 
 def fast_argv(arrays):
-    """fast.step's argument for these arrays (layout.FAST_ARGS's order): their addresses in an
+    """fast.step's argument for these arrays (at layout's FA_ places): their addresses in an
     array the caller keeps alive as long as it calls the step with it."""
-    assert len(arrays) == len(K.FAST_ARGS)
+    assert len(arrays) == K.FA_LEN
     return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
 
 
@@ -392,7 +392,8 @@ class JointModel:
         self.p = p
         self.rollers = [ContactModel(params, phase=2 * math.pi * i / 3)
                         for i in range(p["n_rollers"])]
-        self._stacks = self._stack() if len(self.rollers) > 1 and p["bearing"] != K.BEAR_RESOLVED else None
+        self._stacks = (self._stack() if len(self.rollers) > 1 and p["bearing"] != K.BEAR_RESOLVED
+                        else None)
 
     def _stack(self):
         """The rollers' arrays as rows of one array each (fast.step steps them as a joint in
