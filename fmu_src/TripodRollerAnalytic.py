@@ -135,6 +135,11 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 if m[0] is not None:
                     same_layout(m[0], 0.0, f"march[{i}][0]")
                 same_layout(m[1], 0.0, f"march[{i}][1]")
+                # p is the friction's share along the slide: |p| <= mu_groove (T3)
+                if not abs(m[1]) <= scene["mu_groove"]:
+                    raise StateError(f"march[{i}][1]: p = {m[1]!r} outside the allowed range "
+                                     f"[-mu_groove, mu_groove] = [-{scene['mu_groove']:g}, "
+                                     f"{scene['mu_groove']:g}]")
                 if m[2] is not None:
                     same_layout(m[2], [0.0] * 5, f"march[{i}][2]")
             if len(st["march"]) != n:

@@ -299,6 +299,51 @@ class Traverse:
                 break
         return z
 
+    def _slip_step(self, rhs0, s, h, bi, dphi, spin, p0):
+        """(s1 [m/s], p1 [1]) of one trapezoidal step of T4 from slip s and p0 over h [s], the
+        march's first choice: T3 and T4 together as Newton on the slip vector (s, t), t >= 0
+        across the slide, where _step nests T3's inversion (and T2's fixed point) inside its
+        Newton and costs three to four times as much.  The friction mu tanh(k |v|) v / |v|
+        (k = 3 / v_st) gives p = -mu g s / |v| and |f_b| / f_n = mu g t / |v|; the residuals
+        are T4, rho_c p - h/2 s - rhs0, and T2's demand, mu g t / |v| - |beta(p)| (capped as
+        _share caps it), with the friction's Jacobian exact and beta's weak dependence on p
+        left out of it.  None when it does not settle within 30 iterations to 1e-9 v_st (the
+        start from rest, a few steps after a jump; the caller takes _step): the two agree
+        within 1e-9 of the thrust's scale (tests/test_traverse.py)."""
+        rho, mu, k = self.rho_c, self.mu, 3.0 / self.vst
+        kt = 0.5 * h
+        cap = mu * (1.0 - 1e-9)
+        tol = 1e-9 * self.vst
+        t = 0.0
+        if p0 != 0.0:   # the last step's slip angle
+            t = abs(s * min(abs(self._beta_at(p0, self._fn(p0), bi, dphi, spin)), cap) / p0)
+        for _ in range(30):
+            v = math.sqrt(s * s + t * t)
+            gv, dg, us, ut = k, k, 0.0, 0.0      # the friction's slope at v = 0
+            if v > 0.0:
+                g = math.tanh(k * v)
+                gv, dg, us, ut = g / v, k * (1.0 - g * g), s / v, t / v
+            p = -mu * gv * s
+            B = min(abs(self._beta_at(p, self._fn(p), bi, dphi, spin)), cap)
+            a11 = mu * (gv * (1.0 - us * us) + dg * us * us)
+            a22 = mu * (gv * (1.0 - ut * ut) + dg * ut * ut)
+            a12 = mu * (dg - gv) * us * ut
+            r1 = rho * p - kt * s - rhs0
+            r2 = mu * gv * t - B
+            j11 = -rho * a11 - kt
+            j12 = -rho * a12
+            det = j11 * a22 - j12 * a12          # < 0: the friction's Jacobian is semi-definite
+            if not det < 0.0:
+                return None
+            ds = (j12 * r2 - a22 * r1) / det
+            dt = (a12 * r1 - j11 * r2) / det
+            s += ds
+            t = abs(t + dt)
+            if abs(ds) < tol and abs(dt) < tol:
+                v = math.sqrt(s * s + t * t)
+                return s, -mu * (math.tanh(k * v) / v if v > 0.0 else k) * s
+        return None
+
     def _cycle(self, s0):
         """One whirl cycle of T4, rho_c dp/dt = s - V', by the trapezoidal rule in s (never
         singular: d(rho_c p - h s / 2)/ds <= -h / 2): the slide slip s [m/s] and p [1] at
@@ -400,7 +445,8 @@ class Traverse:
         """The slide stepped in time at this operating point, for inputs that move (T4 is an
         ODE in time; the table is its periodic solution): from slide slip s [m/s] and p [1]
         (s None: at rest on the groove bottom, p = 0) at whirl angle x [rad] over dt [s], by
-        the table's trapezoidal rule in substeps of at most the table's spacing.  Works on
+        the table's trapezoidal rule in substeps of at most the table's spacing (each solved
+        by _slip_step, or _step where that does not settle).  Works on
         Traverse(scene, periodic=False).  Returns (s, p, x at the end, the outputs there as
         ``at`` gives them).  Scalar libm math throughout: the analytic FMU's compiled march
         (fmu_src/native/analytic_step.c) is this, bit for bit (tests/test_fast.py)."""
@@ -415,8 +461,12 @@ class Traverse:
             phi, xi, V1, dphi, spin, bi = self._drive_on(x + wh * (i + 1), SCALAR)
             if self.held:
                 rhs0 = self.rho_c * p + 0.5 * h * (s - V0 - V1)
-                s = self._step(rhs0, s, h, lambda z, g: self._p_at(z, bi, dphi, spin, g), p)
-                p = self._p_at(s, bi, dphi, spin, p)
+                sp = self._slip_step(rhs0, s, h, bi, dphi, spin, p)
+                if sp is None:
+                    s = self._step(rhs0, s, h, lambda z, g: self._p_at(z, bi, dphi, spin, g), p)
+                    p = self._p_at(s, bi, dphi, spin, p)
+                else:
+                    s, p = sp
             V0 = V1
         if not self.held:
             s, p = V0, 0.0

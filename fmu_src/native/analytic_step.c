@@ -7,7 +7,8 @@
    (tests/test_fast.py); compiled with -ffp-contract=off for that.
 
    Once a master moves the inputs, tripod_analytic_march steps the roller's slide in time at
-   each step's inputs, as reduced_model/traverse.py's Traverse.march does (T2-T6 of its header:
+   each step's inputs, as reduced_model/traverse.py's Traverse.march does (T2-T6 of its header,
+   _slip_step first and _step where that does not settle:
    the same operations in the same order, libm's scalar functions as Python's math module), and
    derives the operating point from the inputs the native layer wrote (AnalyticModel.prepare,
    Traverse.__init__).
@@ -311,6 +312,53 @@ static double trapezoid_step(const Op *o, double rhs0, double s, double h, const
     return z;
 }
 
+/* T3 and T4 together, Newton on the slip vector: Traverse._slip_step (the march's first
+   choice; 0 where it does not settle, and the caller takes trapezoid_step) */
+static int slip_step(const Op *o, double rhs0, double s, double h, const Drive *d, double p0,
+                     double *s1, double *p1)
+{
+    double rho = o->rho, mu = o->mu, k = 3.0 / o->vst;
+    double kt = 0.5 * h;
+    double cap = mu * (1.0 - 1e-9);
+    double tol = 1e-9 * o->vst;
+    double t = 0.0;
+    if (p0 != 0.0)   /* the last step's slip angle */
+        t = fabs(s * pmin(fabs(beta_at(o, p0, normal_force(o, p0), d)), cap) / p0);
+    for (int it = 0; it < 30; ++it) {
+        double v = sqrt(s * s + t * t);
+        double gv = k, dg = k, us = 0.0, ut = 0.0;   /* the friction's slope at v = 0 */
+        if (v > 0.0) {
+            double g = tanh(k * v);
+            gv = g / v;
+            dg = k * (1.0 - g * g);
+            us = s / v;
+            ut = t / v;
+        }
+        double p = -mu * gv * s;
+        double B = pmin(fabs(beta_at(o, p, normal_force(o, p), d)), cap);
+        double a11 = mu * (gv * (1.0 - us * us) + dg * us * us);
+        double a22 = mu * (gv * (1.0 - ut * ut) + dg * ut * ut);
+        double a12 = mu * (dg - gv) * us * ut;
+        double r1 = rho * p - kt * s - rhs0;
+        double r2 = mu * gv * t - B;
+        double j11 = -rho * a11 - kt;
+        double j12 = -rho * a12;
+        double det = j11 * a22 - j12 * a12;
+        if (!(det < 0.0)) return 0;
+        double ds = (j12 * r2 - a22 * r1) / det;
+        double dt = (a12 * r1 - j11 * r2) / det;
+        s += ds;
+        t = fabs(t + dt);
+        if (fabs(ds) < tol && fabs(dt) < tol) {
+            v = sqrt(s * s + t * t);
+            *s1 = s;
+            *p1 = -mu * (v > 0.0 ? tanh(k * v) / v : k) * s;
+            return 1;
+        }
+    }
+    return 0;
+}
+
 /* X: whirl angles [rad] (advanced in place), S: per roller the march state (S_LEN: slide slip
    s [m/s], p [1], then its outputs Fz, Fz_mod, Fx, Fy [N], slip speed [m/s]), M: the march's
    operating point (above; the key is updated in place when the inputs moved beyond rounding),
@@ -354,8 +402,14 @@ int32_t tripod_analytic_march(double **args)
             drive_on(&o, x + wh * (double)(j + 1), &d1);
             if (o.held) {
                 double rhs0 = o.rho * p + 0.5 * h * (s - d0.V - d1.V);
-                s = trapezoid_step(&o, rhs0, s, h, &d1, p);
-                p = p_at(&o, s, &d1, p);
+                double s1, p1;
+                if (slip_step(&o, rhs0, s, h, &d1, p, &s1, &p1)) {
+                    s = s1;
+                    p = p1;
+                } else {
+                    s = trapezoid_step(&o, rhs0, s, h, &d1, p);
+                    p = p_at(&o, s, &d1, p);
+                }
             }
             d0 = d1;
         }
