@@ -35,6 +35,45 @@ def test_the_lumped_bearing_takes_an_input_step(lumped_10hz, name, factor):
     assert T.case({"bearing": 1}, 1, 10, name, factor, lumped_10hz) < 1.0
 
 
+@pytest.fixture(scope="module")
+def resolved_10hz():
+    return T.settle({"bearing": 2}, 1, 10)
+
+
+@pytest.mark.parametrize("name,factor", [("omega", 1.10), ("theta", 0.90)])
+def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, factor):
+    # the needle-resolved row, one roller settled at 10 Hz: with BDF2's history across the
+    # step at its steady substep these missed the reference by 5.3 % and 6.1 % of order 3.
+    # The row is chaotic: undisturbed, the default already strays 2.0 % from the same
+    # reference, and the references at h/10 and h/20 differ by up to 1.6 %; so the bound is
+    # that floor plus 1.5 % (measured after the fix 1.9 % and 2.4 %; the issue's 1 % lies
+    # below what the reference itself settles to)
+    assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz) < 3.5
+
+
+def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps():
+    # the mechanism: a step input counts down h/4, h/4, h/2 over the next communication
+    # steps (bdf2.BDF_STEP_IN); a ramp's small change leaves the steady substep
+    import sys
+    sys.path.insert(0, str(T.ROOT / "fmu_src"))
+    from tripod_model import bdf2, layout as LY
+    m = T._model({"bearing": 2}, 1)
+    w = 2 * math.pi * 10
+    r = m.rollers[0]
+    for _ in range(3):
+        m.step(1e-4, T.THETA, w, 0.0, T.TORQUE)
+    taken = []
+    for k in range(5):
+        before = r._hs[LY.H_TAKEN]
+        m.step(1e-4, T.THETA, w * (1.001 if k == 0 else 1.101), 0.0, T.TORQUE)
+        taken.append(r._hs[LY.H_TAKEN] - before)
+    steady = taken[0]                 # the ramp's small step (jump 0.004 < BDF_JUMP_STEP)
+    assert steady == pytest.approx(math.ceil(1e-4 / r.substep(
+        T.THETA, w * 1.001, m.pressing(0.0, T.TORQUE), r.v_st(T.THETA, w * 1.001))), abs=1)
+    assert taken[1:] == pytest.approx([4 * steady, 4 * steady, 2 * steady, steady], abs=4)
+    assert r._hs[LY.H_GA] == 1.0 and bdf2.BDF_STEP_IN < 0.0
+
+
 def test_the_integrator_restarts_where_the_inputs_jumped():
     # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
     import sys

@@ -14,8 +14,7 @@ import math
 from numba import carray, cfunc, types
 
 from . import layout as K
-from .genalpha import inputs_jumped
-from .kernel import derive_op, run_substeps
+from .kernel import derive_op, inputs_moved, run_substeps
 from .jit import njit
 
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, # noqa: F401
@@ -80,7 +79,7 @@ def joint_into(out, n, s, F, dst):
 @njit
 def _roller(Y, P, OP, W, out):
     """One roller's step at the inputs in its OP (W: its work arrays, layout.Work)."""
-    inputs_jumped(P, W.hs, derive_op(P, OP))
+    inputs_moved(P, W.hs, derive_op(P, OP))
     run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0]), OP[OP_H],
                  0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 

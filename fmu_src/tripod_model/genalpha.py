@@ -275,8 +275,9 @@ def inputs_jumped(P, hs, jump):
       switched between the paths from step to step and lost 0.65 % of its peak.)
     - A small one (a master's ramp, every step): one GA_RESTART step; the lumped bearing
       takes a small load change so too (its row's offset moves with the load).
-    The other integrators are L-stable one-step methods or BDF2: they land on the new inputs'
-    slip without overshoot."""
+    (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
+    has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
+    land on the new inputs' slip without overshoot.)"""
     if P[P_INTEG] != INT_DEFAULT or P[P_BEAR] == BEAR_RESOLVED or hs[H_GA] <= 0.0 or jump < 0.0:
         return
     lumped = P[P_BEAR] == BEAR_LUMPED

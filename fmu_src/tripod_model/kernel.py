@@ -8,6 +8,7 @@ direction, y = trunnion axis (nominal).  Forces are reported from the roller on 
 from . import oppoint
 from .jit import compiled_copies, njit
 from .assembly import resolved_forces
+from . import bdf2, genalpha
 from .bdf2 import bdf2_steps
 from .contact import groove_contact
 from .euler import adaptive_steps, extrapolated_step, substep
@@ -21,6 +22,19 @@ from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAU
 # the operating point at OP's inputs (oppoint.derive), compiled with the callees it names;
 # oppoint itself stays plain Python (jit.compiled_copies leaves it untouched)
 derive_op = compiled_copies(oppoint, oppoint.FUNCTIONS).derive
+
+
+@njit
+def inputs_moved(P, hs, jump):
+    """The inputs changed at this communication point (oppoint.derive's ``jump``): the default
+    integrator takes it as its module says (genalpha.inputs_jumped, bdf2.inputs_jumped); the
+    others are one-step methods that need nothing."""
+    if P[P_INTEG] != INT_DEFAULT:
+        return
+    if P[P_BEAR] == BEAR_RESOLVED:
+        bdf2.inputs_jumped(P, hs, jump)
+    else:
+        genalpha.inputs_jumped(P, hs, jump)
 
 
 @njit

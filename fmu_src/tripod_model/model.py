@@ -251,9 +251,9 @@ class ContactModel:
                 raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
                                          "(a division by zero)")
             return
-        from . import genalpha, kernel
+        from . import kernel
         OP = self._OP
-        genalpha.inputs_jumped(self.P, self._hs, kernel.derive_op(self.P, OP))
+        kernel.inputs_moved(self.P, self._hs, kernel.derive_op(self.P, OP))
         if self.NW is not None and self._x0_for != OP[K.OP_F]:
             self._x0 = self.pressing_offset(OP[K.OP_F])     # the row's static offset (numpy)
             self._x0_for = OP[K.OP_F]
