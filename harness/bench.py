@@ -182,6 +182,11 @@ STEP_COST_CASES = {
         ("TripodRollerAnalytic", dict(MASTER_START, n_rollers=3), MASTER_INPUTS),
     "the whole joint (n_rollers = 3) under that master: contact FMU":
         ("TripodRoller", dict(MASTER_START, n_rollers=3), MASTER_INPUTS),
+    # a launch against the paper's scene, both three rollers at fixed inputs
+    "the whole joint (n_rollers = 3) at the paper's scene: contact FMU":
+        ("TripodRoller", {"n_rollers": 3}, ()),
+    "the whole joint (n_rollers = 3) at a launch's 3000 N m and 25 deg: contact FMU":
+        ("TripodRoller", {"n_rollers": 3, "torque": 3000.0, "theta": math.radians(25.0)}, ()),
 }
 
 
