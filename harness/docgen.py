@@ -205,7 +205,7 @@ def _example_rows():
 
 
 def _transients_rows():
-    return ["ideal"] * 6 + ["lumped"] * 6 + ["needle-resolved"]
+    return ["ideal"] * 6 + ["lumped"] * 6 + ["ideal, 3000 N m, 25 deg"] * 3 + ["needle-resolved"]
 
 
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)

@@ -28,15 +28,15 @@ def _model(params, n_rollers, **extra):
                                "contact"))
 
 
-def settle(params, n_rollers, f, cycles=2):
-    """The model after ``cycles`` whirl cycles at f [Hz], and order 3 of Fz_joint over the last
-    [N]."""
+def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE):
+    """The model after ``cycles`` whirl cycles at f [Hz], theta [rad] and torque [N m], and
+    order 3 of Fz_joint over the last [N]."""
     m = _model(params, n_rollers)
     w = 2 * math.pi * f
     n = int(round(cycles / f / DT))
     y, x = [], []
     for _ in range(n):
-        o = m.step(DT, THETA, w, 0.0, TORQUE)
+        o = m.step(DT, theta, w, 0.0, torque)
         y.append(o["Fz_joint"])
         x.append(o["whirl_angle"])
     x, y = np.array(x), np.array(y)
@@ -64,12 +64,15 @@ def reference(params, n_rollers, state, inputs, steps, h):
     return response(r, inputs, steps, sub=10)
 
 
-def case(params, n_rollers, f, name, factor, base):
+def case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE):
+    """The largest deviation of Fz_joint [% of order 3] in the 20 steps after the input
+    ``name`` steps by ``factor`` from the settled ``base`` (settle's, at the same f [Hz],
+    theta [rad], torque [N m]), against the reference from the same state."""
     m, a3 = base
     st = m.get_state()
-    h = m.rollers[0].substep(THETA, 2 * math.pi * f, m.pressing(0.0, TORQUE),
-                             m.rollers[0].v_st(THETA, 2 * math.pi * f))
-    inputs = {"theta": THETA, "omega": 2 * math.pi * f, "torque": TORQUE}
+    h = m.rollers[0].substep(theta, 2 * math.pi * f, m.pressing(0.0, torque),
+                             m.rollers[0].v_st(theta, 2 * math.pi * f))
+    inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
     inputs[name] *= factor
     y = response(m, inputs, 20)
     m.set_state(st)
