@@ -67,7 +67,7 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps():
         before = r._hs[LY.H_TAKEN]
         m.step(1e-4, T.THETA, w * (1.001 if k == 0 else 1.101), 0.0, T.TORQUE)
         taken.append(r._hs[LY.H_TAKEN] - before)
-    steady = taken[0]                 # the ramp's small step (jump 0.004 < BDF_JUMP_STEP)
+    steady = taken[0]                 # the ramp's small step (jump 0.004 < GA_JUMP_STEP)
     assert steady == pytest.approx(math.ceil(1e-4 / r.substep(
         T.THETA, w * 1.001, m.pressing(0.0, T.TORQUE), r.v_st(T.THETA, w * 1.001))), abs=1)
     assert taken[1:] == pytest.approx([4 * steady, 4 * steady, 2 * steady, steady], abs=4)

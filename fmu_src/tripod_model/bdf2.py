@@ -6,21 +6,21 @@ from .jit import njit
 from .assembly import hold_slide, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x
 from .euler import extrapolated_step
+from .genalpha import GA_JUMP_STEP, GA_LOAD_RELAX
 from .motion import tilt_drag
 from .rowsolve import coupled_solve
 from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_IS, P_IT, P_M, P_TRAV,
     V_POS, V_VEL, Y_LEN, Y_X)
 
-# A step input (the slip's amplitude moved by more than BDF_JUMP_STEP v_st, or the pressing load
-# by more than BDF_LOAD_STEP of itself): the history across the jump and the substep that
+# A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
+# amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
+# GA_LOAD_RELAX of itself): the history across the jump and the substep that
 # resolves the row's steady running (about 3 us) leave the row's response to it 5-12 % of
 # order 3 off a fine reference (one roller, 10 Hz: omega and theta +-10 %); the next three
 # communication steps in substeps of h/4, h/4, h/2 (BDF2's step ratio stays within 2) bring
 # every step within 1 % beyond the 2 % the undisturbed row already strays from the same
 # reference (its chaos; benchmarks/transients.py, docs/integrators.md).  hs[H_GA] counts
 # them down: -3, -4 (h/4), -5 (h/2).
-BDF_JUMP_STEP = 0.2
-BDF_LOAD_STEP = 0.02
 BDF_STEP_IN = -3.0
 
 
@@ -29,7 +29,7 @@ def inputs_jumped(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
     the slip's amplitude over v_st, -1 for none; P[P_DF] the pressing load's relative change):
     a step input takes the next three communication steps in finer substeps (BDF_STEP_IN)."""
-    if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > BDF_JUMP_STEP or P[P_DF] > BDF_LOAD_STEP):
+    if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > GA_JUMP_STEP or P[P_DF] > GA_LOAD_RELAX):
         hs[H_GA] = BDF_STEP_IN
 
 
