@@ -22,10 +22,10 @@ LAUNCH = "ideal, 3000 N m, 25 deg"
 LAUNCH_THETA, LAUNCH_TORQUE = math.radians(25.0), 3000.0
 
 
-def floor(params, nr, f, base):
+def floor(params, nr, f, base, **kw):
     """The same deviation with no step at all: how far the default and its reference part
     anyway (the row's chaos with the needle-resolved bearing) [% of order 3]."""
-    return case(params, nr, f, "omega", 1.0, base)
+    return case(params, nr, f, "omega", 1.0, base, **kw)
 
 
 def main(argv=None):
@@ -55,7 +55,7 @@ def main(argv=None):
             kw = {"theta": LAUNCH_THETA, "torque": LAUNCH_TORQUE}
             base = settle({}, 3, f, **kw)
             devs = [case({}, 3, f, name, fac, base, **kw) for name in INPUTS for fac in SIZES]
-            rows.append((LAUNCH, 3, f, base[1], case({}, 3, f, "omega", 1.0, base, **kw), devs))
+            rows.append((LAUNCH, 3, f, base[1], floor({}, 3, f, base, **kw), devs))
             print(f"launch 3 rollers {f:3d} Hz: worst {max(devs):.2f} %", file=sys.stderr)
     if not (a.quick or a.no_resolved):
         # the needle-resolved bearing (46 needles x 7 spheres, BDF2), slow to settle: one

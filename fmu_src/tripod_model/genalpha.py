@@ -9,8 +9,8 @@ from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
     row_rolling_resistance, row_sliding_friction, row_stiffness)
 from .euler import adaptive_steps
 from .motion import line_kinematics, roller_motion, tilt_drag
-from .layout import (BEAR_LUMPED, BEAR_RESOLVED, H_ACC, H_FALLBACK, H_GA, H_TAKEN, INT_DEFAULT, L_AAX, L_AAY,
-    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_INTEG, P_IS, P_IT,
+from .layout import (BEAR_LUMPED, H_ACC, H_FALLBACK, H_GA, H_TAKEN, L_AAX, L_AAY,
+    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_IS, P_IT,
     P_M, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
     V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM,
     Y_U, Y_UD, Y_W, Y_WD, Y_X)
@@ -278,7 +278,7 @@ def inputs_jumped(P, hs, jump):
     (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
     has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
     land on the new inputs' slip without overshoot.)"""
-    if P[P_INTEG] != INT_DEFAULT or P[P_BEAR] == BEAR_RESOLVED or hs[H_GA] <= 0.0 or jump < 0.0:
+    if hs[H_GA] <= 0.0 or jump < 0.0:
         return
     lumped = P[P_BEAR] == BEAR_LUMPED
     if P[P_DF] > GA_LOAD_RELAX or jump > (GA_JUMP_RELAX if lumped else GA_JUMP_STEP):

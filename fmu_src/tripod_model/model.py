@@ -287,7 +287,7 @@ class ContactModel:
                 "hs": self._hs.copy(), "Y2": self._Y2.copy(),   # Y2: BDF2's previous state
                 "ND": None if self.NW is None else self.NW.ND.copy(),
                 # the inputs the state was stepped at: a restore followed by other inputs is a
-                # jump (genalpha.inputs_jumped), the same inputs are none
+                # jump (kernel.inputs_moved), the same inputs are none
                 "inputs": np.append(self._OP[K.OP_KEY:K.OP_KEY + 4], self._OP[K.OP_KEY + 5]),
                 "time": self.time, "substeps": self.substeps, "started": self._started}
 

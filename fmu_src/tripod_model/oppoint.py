@@ -153,7 +153,7 @@ def derive(P, OP):
     largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
     [N m] is given (not 0; < 0 coast), else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
     the inputs did not move, else how far they moved the driven slip (its amplitude's change
-    over v_st; 0 for a load change alone): genalpha.inputs_jumped restarts the integrator."""
+    over v_st; 0 for a load change alone): kernel.inputs_moved restarts the integrator."""
     theta, omega, Fp, tq, dt = OP[OP_THETA], OP[OP_W], OP[OP_FP], OP[OP_TQ], OP[OP_DT]
     vp = OP[OP_VP]
     same = (theta == OP[OP_KEY] and omega == OP[OP_KEY + 1] and Fp == OP[OP_KEY + 2]
