@@ -168,6 +168,12 @@ PARAMS: tuple[Param, ...] = (
           "Hunt-Crossley damping of the roller-groove contact: f_n = K delta^1.5 (1 + 1.5 "
           "contact_damping d delta/dt), never pulling; 0 = the paper's law (no damping)",
           models=_C),
+    Param("running_clearance", 0.0, "m", 0.0, 0.01,
+          "flank-to-flank play of the track with the roller centred: the flanks are two arcs "
+          "of radius r_groove, running_clearance / 2 - (r_groove - r_roller) off the track's "
+          "mid-plane; 0 = from the geometry, 2 (r_groove - r_roller) (one cylinder, the "
+          "paper's groove); below that the roller would touch both flanks (refused)",
+          models=_C),
 )
 
 BY_NAME = {p.name: p for p in PARAMS}
@@ -375,6 +381,11 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
     if scene["r_groove"] <= scene["r_roller"]:
         raise ValueError(f"r_groove = {scene['r_groove']:g} m must exceed r_roller = "
                          f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
+    c, c0 = scene.get("running_clearance", 0.0), 2.0 * (scene["r_groove"] - scene["r_roller"])
+    if c != 0.0 and c < c0:
+        raise ValueError(f"running_clearance = {c:g} m is below 2 (r_groove - r_roller) = "
+                         f"{c0:g} m, where the roller would touch both flanks (range 0 (from "
+                         f"the geometry) or [{c0:g}, 0.01] m)")
     if scene.get("n_rollers", 1) not in (1, 3):
         raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
     if model == "analytic" and scene["traverse"]:

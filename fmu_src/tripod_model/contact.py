@@ -8,7 +8,7 @@ import math
 
 from reduced_model import friction
 from .jit import inline, njit
-from .layout import (P_A1, P_CLR, P_FRIC, P_HC, P_K, P_KN, P_KWR, P_LT, P_MU, P_MUN, P_MUR, P_R, P_RB, P_RG,
+from .layout import (P_A1, P_CLR, P_FLANK, P_FRIC, P_HC, P_K, P_KN, P_KWR, P_LT, P_MU, P_MUN, P_MUR, P_R, P_RB, P_RG,
     P_SPIN, P_VST, P_ZROW, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX, R_MY, R_MZ, R_NX, R_NY,
     R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ)
 
@@ -33,9 +33,20 @@ def tanh_friction(mu, fn, vt, vst):
 spin_moment = inline(friction.spin_moment)
 
 
+@inline
+def flank_centre(P, cx):
+    """x [m] of the centre of the flank arc that faces a roller centred at x = cx [m]: the
+    track's two flanks are arcs of radius r_groove whose centres sit P_FLANK = running_clearance
+    / 2 - (r_groove - r_roller) either side of its mid-plane (P_FLANK = 0: one cylinder, the
+    paper's groove).  With P_FLANK >= 0 (scene.validate) the facing flank is the only one the
+    roller can touch."""
+    return P[P_FLANK] if cx >= 0.0 else -P[P_FLANK]
+
+
 @njit
 def groove_contact(c, v, wr, P, res):
-    """Roller (sphere) in groove (concave cylinder along z): Hertz normal force, tanh friction
+    """Roller (sphere) on the facing flank of the groove (a concave cylinder along z, or two
+    arcs apart: flank_centre): Hertz normal force, tanh friction
     on the full 3-D slip at the contact point, spin moment Eq. (16).
 
     c: roller centre [m], v: its velocity [m/s], wr: roller angular velocity [rad/s] (each
@@ -47,8 +58,9 @@ def groove_contact(c, v, wr, P, res):
     vx, vy, vz = v
     wx, wy, wz = wr
     r = P[P_R]
-    rho = math.sqrt(cx * cx + cy * cy)
-    nx = cx / rho
+    dx = cx - flank_centre(P, cx)             # from the facing flank's arc centre
+    rho = math.sqrt(dx * dx + cy * cy)
+    nx = dx / rho
     ny = cy / rho
     delta = rho + r - P[P_RG]                 # penetration, model.md
     for i in range(R_LEN):
@@ -160,7 +172,8 @@ def groove_stiffness_x(P, res, c):
     """Tangent stiffness [N/m] of the groove's Hertz contact along x: d f_n / d delta (Eq. 10,
     n = 3/2) times n_x^2, the roller's centre at c [m]."""
     cx, cy = c[0], c[1]
-    delta = math.sqrt(cx * cx + cy * cy) + P[P_R] - P[P_RG]
+    dx = cx - flank_centre(P, cx)
+    delta = math.sqrt(dx * dx + cy * cy) + P[P_R] - P[P_RG]
     if delta > 0.0:
         return 1.5 * res[R_FN] / delta * res[R_NX] * res[R_NX]
     return 0.0

@@ -11,12 +11,13 @@ from reduced_model import scene
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
  P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_VP, P_HC, P_ZROW, P_DF,
- P_LEN, *_) = range(128)
+ P_FLANK, P_LEN, *_) = range(128)
 # P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
 # what the operating point derived from them (oppoint.py); P_VP: the plunge speed [m/s] of the
 # step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
 # P_ZROW: row_damping [1]; P_DF: the pressing load's relative change at this communication
-# point (oppoint.derive; the lumped row's offset moves with it)
+# point (oppoint.derive; the lumped row's offset moves with it); P_FLANK: how far each flank's arc
+# centre sits off the track's mid-plane [m] (contact.flank_centre; 0: one cylinder)
 # --- the bearings and integrators: the values of the parameters `bearing` and `integrator`
 # as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEAR],
 # P[P_INTEG] against these

@@ -71,6 +71,9 @@ class ContactModel:
         P[K.P_HSUB] = p["max_substep"]
         P[K.P_HC] = p["contact_damping"]
         P[K.P_ZROW] = p["row_damping"]
+        # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
+        c = p["running_clearance"]
+        P[K.P_FLANK] = 0.5 * c - (p["r_groove"] - p["r_roller"]) if c > 0.0 else 0.0
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == K.BEAR_RESOLVED else 0
         # None unless the needles are resolved: the kernel is then compiled without them

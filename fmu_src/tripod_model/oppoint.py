@@ -17,7 +17,7 @@ from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP, OP_H, OP_KEY,
     OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, P_BEAR, P_CLR, P_DF, P_FRIC,
     P_FRICN, P_HMAX, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU, P_MUN, P_PITCH,
-    P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
+    P_FLANK, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
 
 
 def amplitudes(P, theta, omega):
@@ -132,9 +132,11 @@ def row_substep(P, F):
 
 def groove_offset(P, F):
     """x position of the trunnion axis [m] that presses the roller at the groove bottom with F
-    [N] (Hertz approach): the pressing offset of the ideal bearing.  F < 0 (coast) presses it
-    on the other flank, at -x; F = 0 leaves it touching the drive flank."""
-    x = P[P_RG] - P[P_R] + (abs(F) / P[P_K]) ** (2.0 / 3.0)
+    [N] (Hertz approach): the pressing offset of the ideal bearing, on the flank whose arc
+    centre is P_FLANK off the mid-plane (contact.flank_centre).  F < 0 (coast) presses it on
+    the other flank, at -x, running_clearance plus twice the approach away; F = 0 leaves it
+    touching the drive flank."""
+    x = P[P_FLANK] + P[P_RG] - P[P_R] + (abs(F) / P[P_K]) ** (2.0 / 3.0)
     return -x if F < 0.0 else x
 
 
