@@ -24,7 +24,7 @@ LAUNCH_THETA, LAUNCH_TORQUE = math.radians(25.0), 3000.0
 
 def floor(params, nr, f, base, **kw):
     """The same deviation with no step at all: how far the default and its reference part
-    anyway (the row's chaos with the needle-resolved bearing) [% of order 3]."""
+    anyway (with the needle-resolved bearing: its steady substep's own error) [% of order 3]."""
     return case(params, nr, f, "omega", 1.0, base, **kw)
 
 

@@ -44,12 +44,12 @@ def resolved_10hz():
 def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, factor):
     # the needle-resolved row, one roller settled at 10 Hz: with BDF2's history across the
     # step at its steady substep these missed the reference by 5.3 % and 6.1 % of order 3.
-    # The row is chaotic: undisturbed, the default already strays 2.0 % from the same
-    # reference, and the references at h/10 and h/20 differ by up to 1.6 %; so the bound is
-    # that floor plus 1.5 % (the issue's 1 % lies below what the reference itself settles
-    # to).  Another CPU's rounding is another realization of the row: over seven (the settling
-    # whirl moved by 1e-12 to 1e-8) these ran 1.85-1.92 % and 1.86-2.69 %, the no-step floor
-    # 1.1-2.9 %
+    # Undisturbed, the default already misses the same reference by 2.0 % (its steady
+    # substep's own error at an event of the row, where the h/10 and h/20 references agree
+    # within 0.1 %), and after a step the references themselves part by 0.5-2.2 % (the row's
+    # chaos); so the bound is that floor plus 1.5 %.  Another CPU's rounding is another
+    # realization of the row: over seven (the settling whirl moved by 1e-12 to 1e-8) these
+    # ran 1.85-1.92 % and 1.86-2.69 %, the no-step floor 1.1-2.9 %
     assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz) < 3.5
 
 
