@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from reduced_model.orders import order_spectrum
-from reduced_model.scene import PARAMS, defaults, validate
+from reduced_model.scene import BY_NAME, PARAMS, check_value, defaults, validate
 
 from .fmus import ROOT
 
@@ -159,15 +159,30 @@ def revolution_orders(t, x, y, orders=(1, 3)):
     return out
 
 
+def start_values_by_model(start_values):
+    """{"contact": ..., "analytic": ...}: each FMU's share of ``start_values`` (a parameter goes
+    to the models that have it, scene.py), each checked against its model's ranges.  Raises
+    ValueError naming a parameter neither model has, or a value out of range."""
+    for name, value in start_values.items():
+        check_value(name, value)
+    out = {}
+    for model in ("contact", "analytic"):
+        out[model] = {k: v for k, v in start_values.items() if model in BY_NAME[k].models}
+        validate(out[model], model)
+    return out
+
+
 def runup_fmus(start_values, inputs, stop_time, dt=DT):
-    """Both FMUs through FMPy (fresh processes) along the input history ``inputs``; order 1 and
-    3 of Fz_joint per revolution of each FMU's own whirl_angle, and the difference of the
-    analytic FMU's order 3 from the contact FMU's [%]."""
+    """Both FMUs through FMPy (fresh processes) along the input history ``inputs``, each with
+    the start values its model has (start_values_by_model); order 1 and 3 of Fz_joint per
+    revolution of each FMU's own whirl_angle, and the difference of the analytic FMU's order 3
+    from the contact FMU's [%]."""
     from .fmus import ensure_fmu
     from .runs import run_fmu
     res = {}
+    by_model = start_values_by_model(start_values)
     for model, name in (("contact", "TripodRoller"), ("analytic", "TripodRollerAnalytic")):
-        r = run_fmu(ensure_fmu(name), start_values, stop_time=stop_time, output_interval=dt,
+        r = run_fmu(ensure_fmu(name), by_model[model], stop_time=stop_time, output_interval=dt,
                     outputs=["Fz_joint", "whirl_angle"], inputs=inputs)
         res[model] = revolution_orders(r["time"], r["whirl_angle"], r["Fz_joint"])
     rows = []

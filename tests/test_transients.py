@@ -135,6 +135,20 @@ def test_runup_command_tracks_orders_of_both_fmus(tmp_path):
     assert (tmp_path / "runup.png").stat().st_size > 0
 
 
+def test_runup_gives_each_fmu_the_parameters_its_model_has():
+    # a contact-only parameter (running_clearance; the analytic FMU has no such variable and
+    # FMPy refused the whole run) reaches the contact FMU only, shared ones (spin_inertia)
+    # both; a name neither has, or a value out of range, is refused by name before any run
+    sv = dict(T.RUNUP_START, running_clearance=1e-3, spin_inertia=False)
+    by = T.start_values_by_model(sv)
+    assert by["contact"] == sv
+    assert by["analytic"] == dict(T.RUNUP_START, spin_inertia=False)
+    with pytest.raises(ValueError, match="no_such"):
+        T.start_values_by_model({"no_such": 1.0})
+    with pytest.raises(ValueError, match="running_clearance"):
+        T.start_values_by_model({"running_clearance": 1e-4})
+
+
 def test_runup_refuses_a_bad_input_file(tmp_path, capsys):
     from harness.cli import main
     bad = tmp_path / "in.csv"
