@@ -19,8 +19,8 @@ from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_I
 # order 3 off a fine reference (one roller, 10 Hz: omega and theta +-10 %); the next three
 # communication steps in substeps of h/4, h/4, h/2 (BDF2's step ratio stays within 2) bring
 # every step within 1 % beyond the 2 % the undisturbed row already misses the same reference
-# by (the steady substep's own error at an event of the row; docs/benchmarks.md).  hs[H_GA] counts
-# them down: -3, -4 (h/4), -5 (h/2).
+# by (the steady substep's own error at an event of the row; docs/benchmarks.md).  hs[H_GA]
+# counts them down: -3, -4 (h/4), -5 (h/2).
 BDF_STEP_IN = -3.0
 
 

@@ -46,8 +46,8 @@ def flank_centre(P, cx):
 @njit
 def groove_contact(c, v, wr, P, res):
     """Roller (sphere) on the facing flank of the groove (a concave cylinder along z, or two
-    arcs apart: flank_centre): Hertz normal force, tanh friction
-    on the full 3-D slip at the contact point, spin moment Eq. (16).
+    arcs apart: flank_centre): Hertz normal force, tanh friction on the full 3-D slip at the
+    contact point, spin moment Eq. (16).
 
     c: roller centre [m], v: its velocity [m/s], wr: roller angular velocity [rad/s] (each
     (x, y, z)).  res (layout's R_ slots, on the roller): force [N], moment about c [N m],
