@@ -191,8 +191,8 @@ def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_pat
     and the contact point along the trunnion are the same to rounding (the coast symmetry's
     1e-8 of each signal with three rollers: positions round differently about a moved centre,
     and the stiff contact carries that over 3000 steps), and with the lumped bearing to the
-    Newton's tolerance.  The crossing is longer, not different:
-    the roller is held on the trunnion, which jumps across the clearance at the load's zero."""
+    Newton's tolerance.  The crossing spans more, nothing else: the roller goes with the
+    trunnion (held on it, or on the row), which jumps across the clearance at the load's zero."""
     inputs = {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}
     a, _ = run("TripodRoller", sv, tmp_path, "a", stop=0.3, inputs=inputs)
     b, info = run("TripodRoller", dict(sv, running_clearance=1e-3), tmp_path, "b", stop=0.3,
