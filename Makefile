@@ -1,8 +1,11 @@
 # The README's two commands: `make demo` and `make test`. Both set up .venv first.
 # The newest working Python 3.11-3.13 on the machine, or PY=...  (`command -v` alone is not
-# enough: a pyenv shim exists for every version but runs only the selected ones)
+# enough: a pyenv shim exists for every version but runs only the selected ones).  Found inside
+# an activated virtualenv, its base interpreter: a venv's Python may have no pip to bootstrap uv
 PY ?= $(shell for v in 3.13 3.12 3.11; do p=$$(command -v python$$v) && "$$p" -c 'import sys' \
-        >/dev/null 2>&1 && { echo "$$p"; break; }; done)
+        >/dev/null 2>&1 || continue; b=$$("$$p" -c 'import os, sys; print(os.path.join( \
+        sys.base_prefix, "bin", "python%d.%d" % sys.version_info[:2]))' 2>/dev/null); \
+        [ -x "$$b" ] && "$$b" -c 'import sys' >/dev/null 2>&1 && p=$$b; echo "$$p"; break; done)
 VENV := .venv
 BIN := $(VENV)/bin
 STAMP := $(VENV)/.installed
