@@ -13,7 +13,7 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
-from .runs import FmuRunError, default_dt, run_settled
+from .runs import FmuRunError, default_dt, run_settled, settle_request
 
 FMUS = {"contact": "TripodRoller", "analytic": "TripodRollerAnalytic"}
 COLUMNS = ("order1_amplitude", "order1_phase_deg", "order3_amplitude", "order3_phase_deg",
@@ -46,15 +46,38 @@ def points(grid: dict) -> list[dict]:
     return [dict(zip(names, combo)) for combo in itertools.product(*(grid[n] for n in names))]
 
 
+def point_values(base: dict, point: dict) -> dict:
+    """The start values of one grid point: base with the point's values, typed as the
+    parameter table declares them."""
+    sv = dict(base)
+    for k, v in point.items():
+        p = scene_mod.BY_NAME[k]
+        sv[k] = float(v) if p.kind == "real" else int(round(v))
+    return sv
+
+
+def check(grid: dict, base: dict, model: str, max_cycles: int | None) -> None:
+    """Refuse, before any run, what no grid point could run: a cycle cap out of range, a point
+    whose scene its model refuses (a cross-parameter rule, e.g. r_groove above r_roller), or
+    a whirl speed without cycles to analyse.  Raises ValueError naming the point."""
+    settle_request(1.0, ["Fz_mod"], max_cycles=max_cycles)
+    for point in points(grid):
+        sv = point_values(base, point)
+        at = ", ".join(f"{k} = {sv[k]:g}" for k in point)
+        try:
+            scene_mod.validate(sv, model)
+        except ValueError as e:
+            raise ValueError(f"grid point {at}: {e}") from None
+        if sv.get("omega", scene_mod.BY_NAME["omega"].default) <= 0:
+            raise ValueError(f"grid point {at}: omega must be > 0 for an order analysis")
+
+
 def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: float | None,
               signal: str = "Fz_mod") -> dict:
     """One grid point: simulate whole cycles until ``signal`` is periodic (or max_cycles), then
     orders 1 and 3 over the last whole cycle, the cycles used and the last cycle-to-cycle
     change (relative, complex; reduced_model.steady)."""
-    sv = dict(base)
-    for k, v in point.items():
-        p = scene_mod.BY_NAME[k]
-        sv[k] = float(v) if p.kind == "real" else int(round(v))
+    sv = point_values(base, point)
     omega = sv.get("omega", scene_mod.BY_NAME["omega"].default)
     row = {**point, **{c: math.nan for c in COLUMNS[:-1]}, "error": ""}
     try:
@@ -85,9 +108,9 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact",
     scheduler (e.g. "tcp://10.0.0.5:8786").  Rows come back in grid order.
     """
     import dask
-    fmu = str(ensure_fmu(FMUS[model]))       # build once, before any worker starts
     base = dict(base or {})
-    scene_mod.validate(base, "contact" if model == "contact" else "analytic")
+    check(grid, base, model, max_cycles)
+    fmu = str(ensure_fmu(FMUS[model]))       # build once, before any worker starts
     pts = points(grid)
     if scheduler and scheduler != "sync":
         from distributed import Client, progress as dprogress

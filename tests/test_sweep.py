@@ -52,6 +52,22 @@ def test_grid_parsing_and_cli(tmp_path):
     assert (tmp_path / "sweep_order3.png").stat().st_size > 10_000
 
 
+def test_a_grid_no_point_of_which_could_run_is_refused_before_any_run(capsys):
+    # each of these ran every point and reported each as failed (exit 1); now one line names
+    # the reason, exit 2, before a worker starts
+    from harness.cli import main
+    with pytest.raises(ValueError, match=r"max-cycles = 2: allowed range \[3, 1000\]"):
+        sw.sweep({"theta": [0.1]}, {}, max_cycles=2, scheduler="sync", progress=False)
+    with pytest.raises(ValueError, match=r"grid point running_clearance = 0.0001: "
+                                         r"running_clearance = 0.0001 m is below"):
+        sw.sweep({"running_clearance": [1e-4, 1e-3]}, {}, scheduler="sync", progress=False)
+    with pytest.raises(ValueError, match="omega must be > 0"):
+        sw.sweep({"omega": [0.0, 10.0]}, {}, scheduler="sync", progress=False)
+    assert main(["sweep", "--grid", "r_groove=0.0185:0.0195:3", "--out", "unused"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "r_groove = 0.0185 m must exceed r_roller" in err
+
+
 def test_a_fast_whirl_is_sampled_finely_enough_to_settle():
     # the analytic FMU is periodic by construction; at 600 rad/s a 1e-4 s step holds 105
     # samples a cycle and the cycle-to-cycle change of order 3 stayed at 0.5 % (interpolation):
