@@ -278,6 +278,7 @@ def cmd_stress(args) -> int:
 def cmd_runup(args) -> int:
     from harness import transients as T
     sv = dict(T.RUNUP_START, **overrides_from(args))
+    _dt(args)
     if args.input:
         inputs = T.read_input_csv(args.input)
         stop = inputs["time"][-1]

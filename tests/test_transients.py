@@ -155,6 +155,10 @@ def test_runup_refuses_a_bad_input_file(tmp_path, capsys):
     bad.write_text("time,speed\n0,1\n1,2\n")
     assert main(["runup", "--input", str(bad), "--out", str(tmp_path)]) == 2
     assert "column 'speed' is no input" in capsys.readouterr().err
+    # a communication step that is no step: refused by name (it reached the FMU's doStep,
+    # whose failure was the only message)
+    assert main(["runup", "--dt", "-1", "--out", str(tmp_path)]) == 2
+    assert "dt = -1.0: allowed range (0, inf) s" in capsys.readouterr().err
 
 
 def test_launch_from_standstill_both_fmus_agree():
