@@ -219,6 +219,8 @@ def cmd_sweep(args) -> int:
 def cmd_bench(args) -> int:
     from pathlib import Path
     from harness import bench
+    if not 1 <= args.runs <= 1000:
+        raise ValueError(f"--runs = {args.runs}: allowed range [1, 1000]")
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
     if args.peer:

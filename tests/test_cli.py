@@ -105,3 +105,11 @@ def test_bad_communication_step_one_line():
     p = run("compare", "--dt", "0")
     lines = p.stderr.strip().splitlines()
     assert p.returncode == 2 and len(lines) == 1 and "dt = 0" in lines[0] and "(0, inf) s" in lines[0]
+
+
+def test_bad_bench_run_count_one_line(tmp_path):
+    # --runs 0 ended in a statistics traceback (no median of no runs)
+    p = run("bench", "--runs", "0", "--out", str(tmp_path))
+    lines = p.stderr.strip().splitlines()
+    assert p.returncode == 2 and lines == ["tripod-thrust bench: error: --runs = 0: allowed "
+                                           "range [1, 1000]"]
