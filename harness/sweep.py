@@ -109,6 +109,8 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact",
     """
     import dask
     base = dict(base or {})
+    if not 1 <= workers <= 1024:
+        raise ValueError(f"--workers = {workers}: allowed range [1, 1024]")
     check(grid, base, model, max_cycles)
     fmu = str(ensure_fmu(FMUS[model]))       # build once, before any worker starts
     pts = points(grid)

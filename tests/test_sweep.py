@@ -63,6 +63,8 @@ def test_a_grid_no_point_of_which_could_run_is_refused_before_any_run(capsys):
         sw.sweep({"running_clearance": [1e-4, 1e-3]}, {}, scheduler="sync", progress=False)
     with pytest.raises(ValueError, match="omega must be > 0"):
         sw.sweep({"omega": [0.0, 10.0]}, {}, scheduler="sync", progress=False)
+    with pytest.raises(ValueError, match=r"--workers = 0: allowed range \[1, 1024\]"):
+        sw.sweep({"theta": [0.1]}, {}, workers=0, progress=False)     # (dask took 0 as "all")
     assert main(["sweep", "--grid", "r_groove=0.0185:0.0195:3", "--out", "unused"]) == 2
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and "r_groove = 0.0185 m must exceed r_roller" in err
