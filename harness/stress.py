@@ -87,6 +87,10 @@ def cases(quick=False):
     add("torque reversal 300 -> -300 N m over 0.2 s, lumped bearing", {"bearing": 1},
         {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.3, 1e-4,
         True)
+    add("torque reversal 300 -> -300 N m over 0.1 s, needle-resolved bearing, running "
+        "clearance 1 mm", {"bearing": 2, "running_clearance": 1e-3},
+        {"time": [0.0, 0.03, 0.13, 0.15], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.15,
+        1e-4, True)
     add("tip-out at a launch's torque: 3000 -> -3000 N m over 0.2 s, running clearance 1 mm, "
         "20 deg", {"n_rollers": 3, "theta": 20 * DEG, "running_clearance": 1e-3},
         {"time": [0.0, 0.05, 0.25, 0.3], "torque": [3000.0, 3000.0, -3000.0, -3000.0]}, 0.3,
