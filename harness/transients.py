@@ -143,16 +143,27 @@ def read_input_csv(path):
 
 def revolution_orders(t, x, y, orders=(1, 3)):
     """Per whole revolution of the whirl angle x [rad] (from 0): its mean speed [Hz] (angle over
-    time, the window's speed changes within it in a run-up) and the orders' (amplitude [unit of
-    y], phase [deg]) of y resampled uniformly in angle, phase referred to the revolution's start."""
+    time, the window's speed changes within it in a run-up; negative in reverse whirl) and the
+    orders' (amplitude [unit of y], phase [deg]) of y resampled uniformly in the angle
+    travelled, phase referred to the revolution's start.  Reverse whirl (x falling) counts the
+    revolutions of -x; a whirl that changes direction is refused (no revolution to count
+    across the turn)."""
+    x = np.asarray(x, dtype=float)
+    s = -1.0 if x[-1] < x[0] else 1.0
+    u = s * x
+    back = np.flatnonzero(np.diff(u) < 0.0)
+    if back.size:
+        raise ValueError(f"the whirl changes direction at t = {t[back[0] + 1]:g} s: order "
+                         "tracking per revolution needs the whirl one way (split the history "
+                         "there)")
     out = []
     k = 1
-    while k * 2 * math.pi <= x[-1]:
+    while k * 2 * math.pi <= u[-1]:
         a, b = (k - 1) * 2 * math.pi, k * 2 * math.pi
         xs = a + 2 * math.pi * np.arange(720) / 720
-        amp, ph = order_spectrum(np.interp(xs, x, y), 1, orders)
-        ta, tb = np.interp([a, b], x, t)
-        out.append({"revolution": k, "speed_hz": 1.0 / (tb - ta),
+        amp, ph = order_spectrum(np.interp(xs, u, y), 1, orders)
+        ta, tb = np.interp([a, b], u, t)
+        out.append({"revolution": k, "speed_hz": s / (tb - ta),
                     **{f"order{o}": float(m) for o, m in zip(orders, amp)},
                     **{f"order{o}_deg": float(p) for o, p in zip(orders, ph)}})
         k += 1

@@ -135,6 +135,26 @@ def test_runup_command_tracks_orders_of_both_fmus(tmp_path):
     assert (tmp_path / "runup.png").stat().st_size > 0
 
 
+def test_orders_per_revolution_in_reverse_whirl():
+    # a reverse-gear history (whirl angle falling) gave "no whole revolution": it counts the
+    # revolutions of the angle travelled, its speed negative; a signal of orders 1 and 3 in
+    # that angle reads the same per revolution as forward (resampled at 720 points a
+    # revolution from 2000 samples: within 1e-3); a whirl that turns back is refused
+    import numpy as np
+    t = np.linspace(0.0, 0.4, 4001)
+    u = 2 * math.pi * 5.0 * t                       # 5 Hz, two whole revolutions
+    y = 2.0 * np.sin(3 * u + 0.5) + np.sin(u)
+    fwd, rev = T.revolution_orders(t, u, y), T.revolution_orders(t, -u, y)
+    assert len(fwd) == len(rev) == 2
+    for f, r in zip(fwd, rev):
+        assert r["speed_hz"] == pytest.approx(-5.0) and f["speed_hz"] == pytest.approx(5.0)
+        assert r["order3"] == pytest.approx(2.0, rel=1e-3)
+        assert r["order1"] == pytest.approx(1.0, rel=1e-3)
+        assert r["order3_deg"] == pytest.approx(f["order3_deg"], abs=1e-9)
+    with pytest.raises(ValueError, match="changes direction at t = 0.2"):
+        T.revolution_orders(t, np.where(t < 0.2, u, 2 * u[2000] - u), y)
+
+
 def test_runup_gives_each_fmu_the_parameters_its_model_has():
     # a contact-only parameter (running_clearance; the analytic FMU has no such variable and
     # FMPy refused the whole run) reaches the contact FMU only, shared ones (spin_inertia)
