@@ -7,19 +7,13 @@ the 20 communication steps after a step of +-1 % or +-10 % in omega, theta or to
 from __future__ import annotations
 
 import argparse
-import math
 import sys
 import time
 from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from harness.transients import DT, INPUTS, SIZES, case, settle  # noqa: E402
-
-
-
-
-LAUNCH = "ideal, 3000 N m, 25 deg"
-LAUNCH_THETA, LAUNCH_TORQUE = math.radians(25.0), 3000.0
+from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,  # noqa: E402
+                                SIZES, case, settle)
 
 
 def floor(params, nr, f, base, **kw):
@@ -55,7 +49,7 @@ def main(argv=None):
             kw = {"theta": LAUNCH_THETA, "torque": LAUNCH_TORQUE}
             base = settle({}, 3, f, **kw)
             devs = [case({}, 3, f, name, fac, base, **kw) for name in INPUTS for fac in SIZES]
-            rows.append((LAUNCH, 3, f, base[1], floor({}, 3, f, base, **kw), devs))
+            rows.append((LAUNCH_ROW, 3, f, base[1], floor({}, 3, f, base, **kw), devs))
             print(f"launch 3 rollers {f:3d} Hz: worst {max(devs):.2f} %", file=sys.stderr)
     if not (a.quick or a.no_resolved):
         # the needle-resolved bearing (46 needles x 7 spheres, BDF2), slow to settle: one

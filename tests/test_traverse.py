@@ -188,9 +188,9 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
         runs.append((np.array(rows), fell_back[0]))
     (a, fell), (b, _) = runs
     d = np.abs(a - b)
-    first = Traverse(dict(s0, omega=s0["omega"] * 0.8), periodic=False)   # the lowest v_st
-    assert d[:, 0].max() <= 2e-6 * first.vst
-    assert d[:, 1].max() <= 2e-6 * first.mu
+    slowest = Traverse(dict(s0, omega=s0["omega"] * 0.8), periodic=False)   # the lowest v_st
+    assert d[:, 0].max() <= 2e-6 * slowest.vst
+    assert d[:, 1].max() <= 2e-6 * slowest.mu
     for col in (2, 3):                       # Fz, Fx
         assert d[:, col].max() <= 2e-6 * np.abs(b[:, col]).max()
     assert fell <= 10                       # the Newton on the slip vector takes nearly all
