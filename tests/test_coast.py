@@ -180,11 +180,15 @@ def test_the_flanks_sit_the_running_clearance_apart(c):
         assert res[layout.R_PX] * F > 0          # on its own flank
 
 
+# the generalized-alpha Newton stops at its tolerance, not at rounding: the lumped bearing's
+# runs part by that much (measured 7.7e-6 of contact_y), and so may any run where a decision
+# taken at a tolerance flips on rounding
+NEWTON_REL = 5e-5
+
+
 @pytest.mark.parametrize("sv,rel", [
-    ({"n_rollers": 3}, 1e-8),       # measured 2.2e-9 (Fz_joint)
-    # the generalized-alpha Newton stops at its tolerance, not at rounding (measured 7.7e-6,
-    # contact_y)
-    ({"bearing": 1}, 5e-5)], ids=["three-rollers", "lumped"])
+    ({"n_rollers": 3}, 1e-8),       # measured 2.2e-9 (Fz_joint) away from the load's zero
+    ({"bearing": 1}, NEWTON_REL)], ids=["three-rollers", "lumped"])
 def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_path):
     """Through a torque reversal 300 -> -300 N m, running clearance 1 mm against
     the geometry's 0.4 mm: each flank is the same arc, moved across the track, so every force
@@ -192,7 +196,11 @@ def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_pat
     1e-8 of each signal with three rollers: positions round differently about a moved centre,
     and the stiff contact carries that over 3000 steps), and with the lumped bearing to the
     Newton's tolerance.  The crossing spans more, nothing else: the roller goes with the
-    trunnion (held on it, or on the row), which jumps across the clearance at the load's zero."""
+    trunnion (held on it, or on the row), which jumps across the clearance at the load's zero.
+    Within 2 ms of that zero the bound is the Newton's for both: the load's step there is taken
+    by the error-controlled adaptive substeps (genalpha.GA_STEP_IN), whose accept and reject
+    decisions, and the Newton's stops, can flip on rounding (three rollers: 2.4e-9 of Fz_joint
+    there through the FMU, 2.7e-8 in a run in process that reaches the zero at other loads)."""
     inputs = {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}
     a, _ = run("TripodRoller", sv, tmp_path, "a", stop=0.3, inputs=inputs)
     b, info = run("TripodRoller", dict(sv, running_clearance=1e-3), tmp_path, "b", stop=0.3,
@@ -200,8 +208,12 @@ def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_pat
     assert b is not None, info
     names = ("Fx", "Fy", "Fz", "Fz_joint", "contact_y", "T_housing") + (
         ("Fx_2", "Fz_3") if sv.get("n_rollers") == 3 else ())
+    crossing = np.abs(a["time"] - 0.15) <= 2e-3     # the torque's zero: 300 -> -300 over 0.2 s
+    assert crossing.sum() >= 40
     for k in names:
-        assert np.max(np.abs(a[k] - b[k])) <= rel * np.max(np.abs(a[k])), k
+        d, scale = np.abs(a[k] - b[k]), np.max(np.abs(a[k]))
+        assert np.max(d[~crossing]) <= rel * scale, k
+        assert np.max(d[crossing]) <= max(rel, NEWTON_REL) * scale, k
 
 
 def test_a_running_clearance_below_the_grooves_is_refused(tmp_path):

@@ -14,7 +14,7 @@ import math
 from numba import carray, cfunc, types
 
 from . import layout as K
-from .kernel import derive_op, inputs_moved, run_substeps
+from .kernel import copy_op, derive_op, inputs_moved, run_substeps
 from .jit import njit
 
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, # noqa: F401
@@ -77,9 +77,10 @@ def joint_into(out, n, s, F, dst):
 
 
 @njit
-def _roller(Y, P, OP, W, out):
-    """One roller's step at the inputs in its OP (W: its work arrays, layout.Work)."""
-    inputs_moved(P, W.hs, derive_op(P, OP))
+def _roller(Y, P, OP, W, out, jump):
+    """One roller's step at the inputs in its OP, its operating point derived (oppoint.derive:
+    jump), W its work arrays (layout.Work)."""
+    inputs_moved(P, W.hs, jump)
     run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0]), OP[OP_H],
                  0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 
@@ -107,12 +108,13 @@ def step(args):
         W = K.Work(carray(pL, (K.L_LEN,)), carray(pres, (K.R_LEN,)), carray(pY1, (K.Y_LEN,)),
                    carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
                    carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
-        _roller(carray(pY, (K.Y_LEN,)), carray(pP, (K.P_LEN,)), head, W, out)
+        P1 = carray(pP, (K.P_LEN,))
+        _roller(carray(pY, (K.Y_LEN,)), P1, head, W, out, derive_op(P1, head))
         if not outputs_into(out, head[OP_F], dst):
             return 2
         # (the same output array seen as one row: no reshape, whose helper the prebuilt
         # library does not carry)
-        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, carray(pP, (K.P_LEN,))[K.P_S],
+        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, P1[K.P_S],
                                head[OP_F], dst) else 2
     OP = carray(pOP, (n + 1, OP_LEN))
     Y, P = carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN))
@@ -122,12 +124,18 @@ def step(args):
     b, hs = carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN))
     GW, out = carray(pGW, (n, K.NV + 8, K.NV)), carray(pout, (n, K.O_LEN))
     total = 0.0   # left to right, as JointModel.step
+    jump = -1.0
     for i in range(n):
         row = OP[i + 1]
         for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
             row[j] = head[j]
+        # the rollers share their parameters (JointModel): one derive serves them all
+        if i == 0:
+            jump = derive_op(P[0], row)
+        else:
+            copy_op(P[0], OP[1], P[i], row)
         _roller(Y[i], P[i], row, K.Work(L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i]),
-                out[i])
+                out[i], jump)
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
         return 2

@@ -9,7 +9,7 @@ from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
     row_rolling_resistance, row_sliding_friction, row_stiffness)
 from .euler import adaptive_steps
 from .motion import line_kinematics, roller_motion, tilt_drag
-from .layout import (BEAR_LUMPED, H_ACC, H_FALLBACK, H_GA, H_TAKEN, L_AAX, L_AAY,
+from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_TAKEN, L_AAX, L_AAY,
     L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_IS, P_IT,
     P_M, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
     V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM,
@@ -48,6 +48,11 @@ GA_STEP_IN = -3.0      # hs[H_GA]: a step input: the next two communication step
 GA_STEP_IN_2 = -4.0    # hs[H_GA]: the second of them
 GA_JUMP_STEP = 0.2     # the slip amplitude's change over v_st above which that is taken
 GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is taken
+# hs[H_GA] after a restart step: the next regular step takes its accelerations from the forces
+# at the restart's end (GA_RESTART puts the forces at t_{n+1}, so its last Newton evaluation is
+# that: kept in hs[H_FACC:]; GA_AFTER_RESTART_AFRESH where the drive has moved since: anew)
+GA_AFTER_RESTART = 3.0
+GA_AFTER_RESTART_AFRESH = 2.0
 
 
 @njit
@@ -182,9 +187,10 @@ def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
 
 
 @inline
-def _ga_accept(Y, GW, h, w, nv, hs, co):
+def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
-    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step."""
+    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces of the last
+    residual evaluation (at the converged a1)."""
     ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -198,9 +204,16 @@ def _ga_accept(Y, GW, h, w, nv, hs, co):
         hs[H_ACC + i] = a1
     Y[Y_X] += h * w
     hs[H_TAKEN] += 1.0
-    # whose history the accelerations are: a restart step's (2) serve a restart at the next
-    # jump, a regular step takes its own from the forces after it (ga_step)
-    hs[H_GA] = 2.0 if co[1] != GA_STEP[1] else 1.0
+    # whose history the accelerations are: a restart step's serve a restart at the next jump,
+    # a regular step takes its own from the forces after it (ga_step).  A restart step's forces
+    # are at t_f = t_{n+1} (alpha_f = 0), the state just written, bit for bit: the regular step
+    # takes those (GA_AFTER_RESTART) instead of evaluating them again
+    if co[1] != GA_STEP[1]:
+        for i in range(nv):
+            hs[H_FACC + i] = Q[i] / GW[W_M, i]
+        hs[H_GA] = GA_AFTER_RESTART
+    else:
+        hs[H_GA] = 1.0
 
 
 @njit
@@ -222,13 +235,17 @@ def ga_step(Y, P, drive, h, W):
         Yf[i] = Y[i]
     co = GA_RESTART if hs[H_GA] < 0.0 else GA_STEP
     # accelerations from the forces: at the first step, after a fallback, and for a regular
-    # step after a restart step (hs[H_GA] = 2: the history belongs to the other coefficients; the
-    # slip is on the new inputs' value by now)
-    if hs[H_GA] == 0.0 or (hs[H_GA] == 2.0 and co[1] == GA_STEP[1]):
-        nv = ga_forces(Y, P, drive, L, res, Q, GW[W_M])
+    # step after a restart step (the history belongs to the other coefficients; the slip is on
+    # the new inputs' value by now): those the restart step left, or anew
+    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
+    regular = co[1] == GA_STEP[1]
+    if regular and hs[H_GA] == GA_AFTER_RESTART:
+        for i in range(nv):
+            hs[H_ACC + i] = hs[H_FACC + i]
+    elif hs[H_GA] == 0.0 or (regular and hs[H_GA] == GA_AFTER_RESTART_AFRESH):
+        ga_forces(Y, P, drive, L, res, Q, GW[W_M])
         for i in range(nv):
             hs[H_ACC + i] = Q[i] / GW[W_M, i]
-    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
     ga = co[2]
     for i in range(nv):
         GW[W_A0, i] = hs[H_ACC + i]
@@ -251,7 +268,7 @@ def ga_step(Y, P, drive, h, W):
             if dv > GA_NTOL * vs:
                 conv = False
         if conv:
-            _ga_accept(Y, GW, h, drive.w, nv, hs, co)
+            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
             return True
         if it % 3 == 2 or lam < 1.0:
             fresh = False       # slow convergence: a Jacobian at the current iterate
@@ -280,6 +297,8 @@ def inputs_jumped(P, hs, jump):
     land on the new inputs' slip without overshoot.)"""
     if hs[H_GA] <= 0.0 or jump < 0.0:
         return
+    if hs[H_GA] == GA_AFTER_RESTART:   # the forces it kept were the old drive's
+        hs[H_GA] = GA_AFTER_RESTART_AFRESH
     lumped = P[P_BEAR] == BEAR_LUMPED
     if P[P_DF] > GA_LOAD_RELAX or jump > (GA_JUMP_RELAX if lumped else GA_JUMP_STEP):
         hs[H_GA] = GA_STEP_IN

@@ -21,7 +21,8 @@ from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAU
 
 # the operating point at OP's inputs (oppoint.derive), compiled with the callees it names;
 # oppoint itself stays plain Python (jit.compiled_copies leaves it untouched)
-derive_op = compiled_copies(oppoint, oppoint.FUNCTIONS).derive
+_op = compiled_copies(oppoint, oppoint.FUNCTIONS)
+derive_op, copy_op = _op.derive, _op.copy_derived
 
 
 @njit

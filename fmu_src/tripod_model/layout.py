@@ -57,9 +57,11 @@ V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # H_SUB: the adaptive substep (BDF2: the previous substep) [s]; H_TAKEN, H_REJECTED: substeps
 # counted; H_GA: the generalized-alpha history's state (genalpha.py; BDF2: its previous state
 # valid); H_FALLBACK: steps handed to the adaptive substeps; H_ACC..: the algorithmic
-# accelerations of the NV unknowns (generalized-alpha)
+# accelerations of the NV unknowns (generalized-alpha); H_FACC..: their accelerations from the
+# forces at the end of a restart step (genalpha.GA_AFTER_RESTART)
 H_SUB, H_TAKEN, H_REJECTED, H_GA, H_FALLBACK, H_ACC = range(6)
-H_LEN = H_ACC + NV
+H_FACC = H_ACC + NV
+H_LEN = H_FACC + NV
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN) = range(11)
 # generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own

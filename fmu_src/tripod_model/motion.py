@@ -6,7 +6,7 @@ direction, y = trunnion axis (nominal).
 """
 import math
 
-from .jit import njit
+from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH, L_KVP, L_KW,
     L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_AXIAL, P_BEAR, P_PITCH, P_ROLL, P_S, P_VP,
     P_YAW, Y_B1D, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
@@ -24,11 +24,22 @@ def trunnion_line(x, theta, s, pitch, roll):
     (sense chosen so that the slip on the loaded +x flank is V = v1 + v2, model.md).
     Returns (Qz, ax, ay, az); Q = (x0, 0, Qz) with x0 the pressing offset.
     """
-    T = math.tan(theta)
+    return _line_at(x, math.tan(theta), _roll_ratio(theta), s, pitch, roll)
+
+
+@inline
+def _roll_ratio(theta):
+    """e / s of the roll, Eq. (5): the trunnion's eccentricity over the spider radius."""
+    return (1.0 - math.cos(theta)) / (2.0 * math.cos(theta))
+
+
+@inline
+def _line_at(x, T, k, s, pitch, roll):
+    """trunnion_line with T = tan(theta) and k = _roll_ratio(theta) given (line_kinematics
+    evaluates the line at three angles of one theta)."""
     phi = math.atan(T * math.sin(x)) if pitch else 0.0
     xi = 0.0
     if roll:
-        k = (1.0 - math.cos(theta)) / (2.0 * math.cos(theta))   # e / s
         xi = math.asin(k * math.sin(2.0 * x))
     cp = math.cos(phi)
     return s * math.tan(phi), math.sin(xi) * cp, math.cos(xi) * cp, math.sin(phi)
@@ -71,9 +82,10 @@ def line_kinematics(x, w, theta, P, L):
     s = P[P_S]
     pitch = P[P_PITCH] > 0.5
     roll = P[P_ROLL] > 0.5
-    q0, a0x, a0y, a0z = trunnion_line(x, theta, s, pitch, roll)
-    qp, apx, apy, apz = trunnion_line(x + HX, theta, s, pitch, roll)
-    qm, amx, amy, amz = trunnion_line(x - HX, theta, s, pitch, roll)
+    T, k = math.tan(theta), _roll_ratio(theta)
+    q0, a0x, a0y, a0z = _line_at(x, T, k, s, pitch, roll)
+    qp, apx, apy, apz = _line_at(x + HX, T, k, s, pitch, roll)
+    qm, amx, amy, amz = _line_at(x - HX, T, k, s, pitch, roll)
     i1 = w / (2.0 * HX)
     i2 = w * w / (HX * HX)
     L[L_AX] = a0x

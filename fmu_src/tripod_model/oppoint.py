@@ -20,6 +20,13 @@ from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP
     P_FLANK, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
 
 
+# The fewest substeps a whirl cycle: about 2000, a resolution floor for the driven motion.
+# 1960, not 2000: a scene that sits on it (the default, 10 Hz at 1e-4 s steps: 2 substeps)
+# keeps its count while a master moves omega up by up to 2 %; with 2000 a rise of 1e-3 took a
+# third substep, 1.5 times the cost.
+CYCLE_SUBSTEPS = 1960.0
+
+
 def amplitudes(P, theta, omega):
     """(A, B) [m/s], Eqs. (19)-(20) with pitch and roll on."""
     return amplitude_A(P[P_S], omega, theta, True), amplitude_B(P[P_R], omega, theta, True)
@@ -43,11 +50,11 @@ def _rate_amplitude(P, theta, omega):
 
 def _accuracy_bound(P, theta, w, vst, n_transition):
     """The substep [s] accuracy asks for at whirl rate w >= 0 [rad/s]: at most 1e-4 s, at
-    least 2000 a whirl cycle and, n_transition > 0, that many across the friction transition
-    (V through +/- v_st at up to 2 w sqrt(A^2+B^2))."""
+    least CYCLE_SUBSTEPS a whirl cycle and, n_transition > 0, that many across the friction
+    transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2))."""
     h = 1e-4
     if w > 0:
-        h = min(h, 2 * math.pi / w / 2000.0)
+        h = min(h, 2 * math.pi / w / CYCLE_SUBSTEPS)
         R = _rate_amplitude(P, theta, w) if n_transition > 0 else 0.0
         if R > 0:
             h = min(h, vst / (2 * w * R) / n_transition)
@@ -66,7 +73,7 @@ def ga_step_size(P, theta, omega, F, vst):
       integrators.md, but the ring an input step excites then strays 1.2 % from a fine
       reference, tests/test_transients.py);
     - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
-    - at least 2000 steps a whirl cycle, and at most 1e-4 s.
+    - at least CYCLE_SUBSTEPS steps a whirl cycle, and at most 1e-4 s.
     The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
     step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
     """
@@ -91,7 +98,7 @@ def substep(P, theta, omega, F, vst, stiff):
       3 mu F / v_st against its mass (groove, plus the needles' with the resolved bearing);
       the extrapolated step must stay near its asymptotic range: h * rate <= 1.5 keeps halving
       h below a 0.1 % change in order 3 (measured 0.07 % at 1.6, 0.06 % at 1.33);
-    - at least 2000 substeps a whirl cycle.
+    - at least CYCLE_SUBSTEPS substeps a whirl cycle.
     stiff = False: without the bounds that come from the stiff stick mode (the largest
     adaptive substep: the error estimate handles that mode).
     """
@@ -198,8 +205,24 @@ def derive(P, OP):
     return jump
 
 
+# what derive writes: a roller whose parameters and inputs are another's takes them by
+# copy_derived (a joint's rollers, fast.step: one derive a joint)
+OP_DERIVED = (OP_F, OP_N, OP_H, OP_X0, OP_KEY, OP_KEY + 1, OP_KEY + 2, OP_KEY + 3, OP_KEY + 4,
+              OP_KEY + 5)
+P_DERIVED = (P_DF, P_VST, P_VP, P_HMAX)
+
+
+def copy_derived(P, OP, P_to, OP_to):
+    """derive's results for P, OP into P_to, OP_to: what derive(P_to, OP_to) would write when
+    P_to equals P and OP_to's inputs OP's (it reads nothing else)."""
+    for i in P_DERIVED:
+        P_to[i] = P[i]
+    for i in OP_DERIVED:
+        OP_to[i] = OP[i]
+
+
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
              "_rate_amplitude", "_accuracy_bound", "ga_step_size", "substep", "groove_offset", "lumped_offset",
-             "derive")
+             "derive", "copy_derived")
