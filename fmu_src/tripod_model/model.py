@@ -414,6 +414,9 @@ class JointModel:
         for r in self.rollers:
             r._bind_work()
         stacks["_OP"][0, K.OP_NROLL] = n
+        # fast.step derives one operating point for all the rollers (oppoint.copy_derived):
+        # they differ in their whirl phase, which P does not hold, and in nothing else
+        assert all(np.array_equal(row, stacks["P"][0], equal_nan=True) for row in stacks["P"])
         return stacks
 
     def fast_arrays(self):
