@@ -105,6 +105,29 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     assert r._hs[LY.H_GA] == genalpha.GA_STEP_IN                      # a load step: the adaptive one
 
 
+@pytest.mark.parametrize("params", [{}, {"bearing": 1}], ids=["ideal", "lumped"])
+def test_the_step_after_a_restart_takes_the_restarts_forces(params):
+    # GA_RESTART has alpha_f = 0: its last Newton evaluation is at t_{n+1}, at the state the
+    # step then writes, so the accelerations it leaves for the regular step after it
+    # (hs[H_FACC:]) are those the forces give at that state, bit for bit; with one substep a
+    # communication step (2e-5 s at 10 Hz, 300 N m) the restart is the step's last
+    import sys
+    sys.path.insert(0, str(T.ROOT / "fmu_src"))
+    import numpy as np
+    from tripod_model import genalpha, layout as LY
+    m = T._model(params, 1)
+    w = 2 * math.pi * 10
+    for i in range(40):     # a ramp of +1e-4 a step: the cheap restart at every step
+        m.step(2e-5, T.THETA, w * (1 + 1e-4 * i), 0.0, T.TORQUE)
+    r = m.rollers[0]
+    assert r._OP[LY.OP_N] == 1 and r._hs[LY.H_GA] == genalpha.GA_AFTER_RESTART
+    drive = LY.Drive(r._OP[LY.OP_THETA], r._OP[LY.OP_W], r._OP[LY.OP_X0])
+    Q, M = np.zeros(LY.NV), np.zeros(LY.NV)
+    nv = genalpha.ga_forces(r.Y.copy(), r.P, drive, r._L.copy(), r._res.copy(), Q, M)
+    kept = r._hs[LY.H_FACC:LY.H_FACC + nv]
+    assert np.array_equal(kept, Q[:nv] / M[:nv]) and np.all(kept != 0.0)
+
+
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])
 def test_a_run_up_reads_the_settled_order_3(dt):
     # 2 -> 40 Hz in 0.5 s, three rollers, 300 N m, 8 deg, the master holding omega over each

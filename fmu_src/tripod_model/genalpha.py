@@ -208,12 +208,14 @@ def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     # a regular step takes its own from the forces after it (ga_step).  A restart step's forces
     # are at t_f = t_{n+1} (alpha_f = 0), the state just written, bit for bit: the regular step
     # takes those (GA_AFTER_RESTART) instead of evaluating them again
-    if co[1] != GA_STEP[1]:
+    if co[1] == GA_STEP[1]:
+        hs[H_GA] = 1.0
+    elif co[1] == 0.0:
         for i in range(nv):
             hs[H_FACC + i] = Q[i] / GW[W_M, i]
         hs[H_GA] = GA_AFTER_RESTART
-    else:
-        hs[H_GA] = 1.0
+    else:    # (a restart with alpha_f > 0 evaluates them elsewhere: anew)
+        hs[H_GA] = GA_AFTER_RESTART_AFRESH
 
 
 @njit
