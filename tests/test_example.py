@@ -98,11 +98,14 @@ def test_short_launch_both_tools(joint, tmp_path):
     for r in (a, b):
         assert all(np.isfinite(v).all() for v in r.values())
     t = a["time"]
-    for k in ("powertrain.acc_y", "joint.Fz_joint", "powertrain.theta"):
+    # the first step's transient, damped by the mounts (7 %, about 0.2 s an e-fold) and the
+    # joint's friction, down to a floor set by where the two runs switch the contact FMU's
+    # substep count (its integration error): in the last 0.1 s, of each signal's peak, the
+    # mount acceleration 6.6e-4 as built and 1.5-2.2e-3 with the count's thresholds moved by
+    # 0.5-2 %, Fz_joint 1.9e-5 (6.8e-5), theta 1.8e-7 (7.7e-7)
+    for k, rel in (("powertrain.acc_y", 5e-3), ("joint.Fz_joint", 1e-3), ("powertrain.theta", 1e-3)):
         d = np.abs(a[k] - b[k])
-        # the first step's transient, damped by the mounts (7 %, about 0.2 s an e-fold) and
-        # the joint's friction: below 1e-3 of the signal's peak in the last 0.1 s
-        assert d[t > 0.3].max() < 1e-3 * np.abs(a[k]).max(), k
+        assert d[t > 0.3].max() < rel * np.abs(a[k]).max(), k
     d = np.abs(a["joint.Fz_joint"] - b["joint.Fz_joint"])
     assert d[t > 0.3].max() <= d[t <= 0.1].max()      # the difference dies away
 
