@@ -128,6 +128,31 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
     assert np.array_equal(kept, Q[:nv] / M[:nv]) and np.all(kept != 0.0)
 
 
+@pytest.mark.parametrize("params", [{}, {"bearing": 1}], ids=["ideal", "lumped"])
+def test_what_a_joint_copies_from_one_derive_is_all_derive_writes(params):
+    # fast.step derives the first roller's operating point and copies it to the others
+    # (oppoint.copy_derived, by its lists OP_DERIVED and P_DERIVED): every slot derive changes
+    # must be on those lists, and the copy must be what derive would have written
+    import sys
+    sys.path.insert(0, str(T.ROOT / "fmu_src"))
+    import numpy as np
+    from tripod_model import kernel, oppoint
+    m = T._model(params, 3)
+    w = 2 * math.pi * 10
+    m.step(1e-4, T.THETA, w, 0.0, T.TORQUE)
+    a, b = m.rollers[0], m.rollers[1]
+    for r in (a, b):      # new values of every input and a new step
+        r.set_inputs(5e-5, 1.1 * T.THETA, 1.2 * w, 0.0, 1.3 * T.TORQUE, 0.01)
+    P0, OP0 = b.P.copy(), b._OP.copy()
+    kernel.derive_op(a.P, a._OP)
+    kernel.derive_op(b.P, b._OP)
+    assert set(np.flatnonzero(b.P != P0)) <= set(oppoint.P_DERIVED)
+    assert set(np.flatnonzero(b._OP != OP0)) <= set(oppoint.OP_DERIVED)
+    P1, OP1 = P0.copy(), OP0.copy()
+    kernel.copy_op(a.P, a._OP, P1, OP1)
+    assert np.array_equal(P1, b.P) and np.array_equal(OP1, b._OP)
+
+
 @pytest.mark.parametrize("dt", [1e-4, 2e-5])
 def test_a_run_up_reads_the_settled_order_3(dt):
     # 2 -> 40 Hz in 0.5 s, three rollers, 300 N m, 8 deg, the master holding omega over each
