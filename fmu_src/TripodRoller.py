@@ -105,13 +105,14 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
                              -math.inf if p.lo is None else float(p.lo),
                              math.inf if p.hi is None else float(p.hi),
                              int(p.lo_open), int(p.hi_open)))
+        # and where it takes the step size: a master's new one is derived at there too
         return {"address": address, "argv": fast_argv(arrays), "in_slots": in_slots,
-                "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
+                "dt_slot": OP.ctypes.data + OP.itemsize * L.OP_DT, "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
                 "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
 
     def _offer_fast(self, out):
         """After a step through Python: the outputs where the native layer reads them, and
-        the compiled step for the next steps at these inputs and this step size."""
+        the compiled step for the next steps (at any inputs in range and any step size)."""
         f = self._fast_args
         if f is None:
             return
@@ -120,15 +121,16 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         self._fast_hs1 = [r._hs[H_TAKEN] for r in self.model.rollers]
         # the step the operating point was derived for: a step_size that differs from it
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
-        self._fast_dt = self.model.rollers[0].step_dt
         self._fast = FastStep(f["address"], f["argv"].ctypes.data, self._fast_outputs.ctypes.data,
-                              self._fast_dt, f["out_vrs"], f["in_vrs"],
-                              [float(getattr(self, n)) for n in _INPUTS], tuple(f["in_slots"]))
+                              self.model.rollers[0].step_dt, f["out_vrs"], f["in_vrs"],
+                              [float(getattr(self, n)) for n in _INPUTS], tuple(f["in_slots"]),
+                              f["dt_slot"])
 
-    def _fast_sync(self, k):
-        """The native layer took k compiled steps: count them, take their outputs."""
+    def _fast_sync(self, k, elapsed):
+        """The native layer took k compiled steps over elapsed [s]: count them, take their
+        outputs."""
         for r, hs1 in zip(self.model.rollers, self._fast_hs1):
-            r.fast_synced(k, self._fast_dt, hs1)
+            r.fast_synced(k, elapsed, hs1)
         self._steps[0] += k
         self._fast_hs1 = [r._hs[H_TAKEN] for r in self.model.rollers]
         for name, v in zip(self._fast_args["names"], self._fast_outputs.tolist()):

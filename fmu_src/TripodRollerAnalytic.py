@@ -190,8 +190,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
 
     # --- the compiled steps (analytic_step.c) ------------------------------------------------
     def _offer_fast(self):
-        """After a step through Python: the compiled step for the next steps at these inputs
-        and this step size, with its arrays (the native layer's _fast)."""
+        """After a step through Python: the compiled step for the next steps (at these inputs,
+        or the march's at any; any step size), with its arrays (the native layer's _fast)."""
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
         m = self.model
@@ -233,15 +233,20 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                                                             self._fast_out)], dtype=np.uintp)
         vr = {v.name: ref for ref, v in self.vars.items()}
         self._fast_names = out_names
+        # where both steps take the step size: a master's new one is written there
+        self._fast_dt_at = op_names.index("dt")
         self._fast = FastStep(address, self._fast_argv.ctypes.data, self._fast_out.ctypes.data,
                               m.dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
-                              [float(getattr(self, n)) for n in _INPUTS], tuple(slots))
+                              [float(getattr(self, n)) for n in _INPUTS], tuple(slots),
+                              self._fast_op.ctypes.data + 8 * self._fast_dt_at)
 
-    def _fast_sync(self, k):
-        """The native layer took k compiled steps: take their whirl angles and outputs (and
-        the march's state and the inputs its operating point was derived for)."""
+    def _fast_sync(self, k, elapsed):
+        """The native layer took k compiled steps (over elapsed [s]): take their whirl angles
+        and outputs (and the march's state and the inputs its operating point was derived
+        for)."""
         self._steps[0] += k
         m = self.model
+        m.dt = float(self._fast_op[self._fast_dt_at])   # the last step's size
         state = None
         if m.march is not None:
             state = self._fast_state.reshape(len(m.march), -1).tolist()

@@ -18,8 +18,9 @@ _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 
 class FastStep(NamedTuple):
     """A compiled step a slave offers the native layer (its attribute ``_fast``), which reads
-    these fields by name (fmi2_python.c: fast_take) and runs it for the next steps of the same
-    size without entering Python.  Addresses are the slave's own arrays, kept alive by it."""
+    these fields by name (fmi2_python.c: fast_take) and runs it for the next steps (of the same
+    size, or of any size with a dt_slot) without entering Python.  Addresses are the slave's
+    own arrays, kept alive by it."""
     step: int            # int32_t step(double **args): 1 written, else failed
     args: int            # address of its argument: the addresses of its arrays (uintp array)
     outputs: int         # address of the outputs it writes (doubles, out_vrs' order)
@@ -29,6 +30,8 @@ class FastStep(NamedTuple):
     in_values: list      # their values now
     in_slots: tuple = ()  # per input: (address the step reads it at, lowest, highest value,
     #                       lowest excluded, highest excluded); empty: the slave takes them
+    dt_slot: int = 0     # address the step reads its step size [s] at (a master's new one is
+    #                       written there); 0: steps of dt only
 
 
 def register_table(slave, model, outputs=None):

@@ -58,18 +58,23 @@ def instance(sv):
     s.exitInitializationMode()
     return s
 
-def run(sv, dt, n, vary=()):
+def run(sv, dt, n, vary=(), spread=False):
     s = instance(sv)
     ys = np.empty((n, len(out_vr)))
     # inputs a master moves every step (by 1e-3 of their start values, slowly)
     in_vr = [vr[k].valueReference for k in vary]
     in0 = [float(sv.get(k, vr[k].start)) for k in vary]
+    # spread: a variable-step master's steps, drawn from [0.2 dt, 2 dt] (the same each run)
+    hs = (np.random.default_rng(7).uniform(0.2 * dt, 2 * dt, n) if spread
+          else np.full(n, dt)).tolist()
+    t = 0.0
     t0 = time.perf_counter()
     for i in range(n):
         if in_vr:
             f = 1.0 + 1e-3 * math.sin(1e-2 * i)
             s.setReal(in_vr, [f * v for v in in0])
-        s.doStep(i * dt, dt)
+        s.doStep(t, hs[i])
+        t += hs[i]
         ys[i] = s.getReal(out_vr)
     wall = time.perf_counter() - t0
     s.terminate()
@@ -79,11 +84,11 @@ def run(sv, dt, n, vary=()):
 res = []
 for case in req["cases"]:
     n = int(round(case["stop"] / case["dt"]))
-    vary = case.get("vary", ())
-    run(case["sv"], case["dt"], min(n, 200), vary)      # warm-up (numba cache load, imports)
+    vary, spread = case.get("vary", ()), case.get("spread", False)
+    run(case["sv"], case["dt"], min(n, 200), vary, spread)   # warm-up (numba cache, imports)
     walls, ys = [], None
     for _ in range(req["runs"]):
-        w, ys = run(case["sv"], case["dt"], n, vary)
+        w, ys = run(case["sv"], case["dt"], n, vary, spread)
         walls.append(w)
     res.append({"wall": statistics.median(walls), "walls": walls, "n": n,
                 "y": ys[:, 0].tolist()})
@@ -93,7 +98,8 @@ print(json.dumps(res))
 
 def time_runs(fmu, cases, runs=5, read=("Fz_mod",)):
     """In one fresh process: per case, median wall time of ``runs`` runs after a warm-up, and
-    the recorded signal.  cases: [{"sv": start values, "dt": comm step, "stop": s}]."""
+    the recorded signal.  cases: [{"sv": start values, "dt": comm step, "stop": s, "vary":
+    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead}]."""
     req = {"fmu": str(fmu), "cases": cases, "runs": runs, "read": list(read)}
     p = subprocess.run([sys.executable, "-c", _WORKER], input=json.dumps(req),
                        capture_output=True, text=True, timeout=7200)

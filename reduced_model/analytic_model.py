@@ -229,11 +229,11 @@ class AnalyticModel:
         compiled table step (tripod_analytic_step) takes, by name."""
         sc, th, tb = self.scene, self.thrust, self.table
         rows = tb.rows if tb is not None else [[0.0] * 5] * 2
-        op = {"w": sc["omega"] * self.dt, "n_rollers": len(self.x), "F": self.pressing_load(),
+        op = {"omega": sc["omega"], "n_rollers": len(self.x), "F": self.pressing_load(),
               "table": float(tb is not None), "scale": tb.scale if tb is not None else 0.0,
               "n": tb.n if tb is not None else 0,
               "A": th.A, "B": th.B, "muF": th.muF, "k": th.k, "th": th.th, "kspin": th.kspin,
-              "s": sc["s"], "vp": th.vp, "vpdt": sc["plunge_speed"] * self.dt}
+              "s": sc["s"], "vp": th.vp, "plunge_speed": sc["plunge_speed"], "dt": self.dt}
         return rows, op
 
     def fast_march_op(self, inputs):

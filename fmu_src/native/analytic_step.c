@@ -22,7 +22,8 @@
 #define PI 3.141592653589793   /* math.pi */
 #define V_ST_FLOOR 1e-6        /* reduced_model/friction.py: V_ST_FLOOR [m/s] */
 
-enum { W, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, S_PITCH, VP, VP_DT, OP_LEN };
+enum { OMEGA, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, S_PITCH, VP, PLUNGE_SPEED, DT,
+       OP_LEN };
 enum { FX, FY, FZ, FZ_MOD, DFX, SLIP, FZ_JOINT, FZ_2, FZ_3, WHIRL, FX_2, FY_2, FX_3, FY_3,
        F_HOUSING_X, F_HOUSING_Y, T_HOUSING, F_ROLLER, PLUNGE, OUT_LEN };
 #define N_IN 5   /* the march's inputs: theta, omega, F_press, torque, plunge speed */
@@ -39,7 +40,7 @@ enum { S_S, S_P, S_FZ, S_FZ_MOD, S_FX, S_FY, S_SLIP, S_LEN };   /* march state p
 /* "OP names | output names | march OP names | march state names", each in its array's order */
 const char *tripod_analytic_layout(void)
 {
-    return "w n_rollers F table scale n A B muF k th kspin s vp vpdt"
+    return "omega n_rollers F table scale n A B muF k th kspin s vp plunge_speed dt"
            "|Fx Fy Fz Fz_mod dFx slip_speed Fz_joint Fz_2 Fz_3 whirl_angle"
            " Fx_2 Fy_2 Fx_3 Fy_3 F_housing_x F_housing_y T_housing F_roller plunge"
            "|theta omega F_press torque plunge_speed key_theta key_omega key_F_press key_torque"
@@ -94,7 +95,8 @@ int32_t tripod_analytic_step(double **args)
     int nr = (int)OP[N_ROLLERS];
     double fz[3] = {0.0, 0.0, 0.0}, fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0}, o[OUT_LEN];
     if (nr < 1 || nr > 3) return 3;                   /* the slave offers 1 to 3 rollers */
-    for (int i = 0; i < nr; ++i) X[i] += OP[W];
+    double w = OP[OMEGA] * OP[DT];                    /* AnalyticModel.step */
+    for (int i = 0; i < nr; ++i) X[i] += w;
     if (OP[TABLE] != 0.0) {                           /* Traverse.at */
         long n = (long)OP[N];
         for (int i = 0; i < nr; ++i) {
@@ -141,7 +143,7 @@ int32_t tripod_analytic_step(double **args)
     o[FZ_2] = fz[1];
     o[FZ_3] = fz[2];
     o[WHIRL] = X[0];
-    o[PLUNGE] = OUT[PLUNGE] + OP[VP_DT];
+    o[PLUNGE] = OUT[PLUNGE] + OP[PLUNGE_SPEED] * OP[DT];
     housing_into(o, fx, fy, OP[S_PITCH], OP[F]);
     for (int q = 0; q < OUT_LEN; ++q)
         if (!isfinite(o[q])) return 2;

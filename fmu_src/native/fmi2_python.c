@@ -460,12 +460,14 @@ typedef struct {
     char **strings;               /* fmi2GetString results, valid until the next call */
     size_t n_strings;
     /* The fast path: a compiled step the slave offers after a step through Python (its
-       attribute _fast), run for the next steps of the same size at unchanged inputs without
+       attribute _fast), run for the next steps (of any size, with a dt slot) without
        entering Python; the slave counts them when Python is next entered (_fast_sync). */
     FastStep fast;                /* NULL: every step goes through Python */
     double **fast_args;           /* its argument: the slave's array of its arrays' addresses */
     double *fast_outputs;         /* the outputs it writes (the slave's array) */
-    double fast_dt;               /* the step size it was offered for [s] */
+    double fast_dt;               /* the step size it last took (first: was offered for) [s] */
+    double *fast_dt_slot;         /* where it reads its step size (NULL: steps of fast_dt only) */
+    double fast_elapsed;          /* the time its steps the slave has not counted yet took [s] */
     int fast_fresh;               /* fast_outputs holds the outputs of the last step */
     int fast_said;                /* the log has said once that the fast path runs */
     long fast_pending;            /* fast steps the slave has not counted yet */
@@ -658,6 +660,7 @@ static void release_slave(Inst *c)
     c->fast = NULL;
     c->fast_fresh = 0;
     c->fast_pending = 0;
+    c->fast_elapsed = 0.0;
     c->fast_in_dirty = 0;
     c->fast_in_for_slave = 0;
     c->n_fast_in = 0;
@@ -747,6 +750,13 @@ static int same_step(double h, double h0, double t)
     return fabs(h - h0) <= 64.0 * DBL_EPSILON * fmax(fabs(t), h0);
 }
 
+/* Whether the compiled step can take a step of h at time t: one is offered, and it takes
+   steps of any size (a dt slot) or h is its step up to rounding. */
+static int fast_fits(const Inst *c, double h, double t)
+{
+    return c->fast && (c->fast_dt_slot || same_step(h, c->fast_dt, t));
+}
+
 /* Whether x is a value the k-th input of the fast step may take (its range, as the slave's
    check_value: finite, within [lo, hi] or with an open end excluded).  Without a slot to
    write it to, the slave checks it. */
@@ -775,8 +785,10 @@ static void fast_sync(Inst *c)
     if (!c->slave) return;
     if (c->fast_pending > 0) {
         PyObject *m = PyObject_GetAttrString(c->slave, "_fast_sync");
-        PyObject *r = m ? PyObject_CallFunction(m, "(l)", c->fast_pending) : NULL;
+        PyObject *r = m ? PyObject_CallFunction(m, "(ld)", c->fast_pending, c->fast_elapsed)
+                        : NULL;
         c->fast_pending = 0;
+        c->fast_elapsed = 0.0;
         if (!r) {
             char *why = take_exception(c);
             logf_(c, fmi2Error, "counting the compiled steps: %s", why);
@@ -808,7 +820,8 @@ static void fast_sync(Inst *c)
 /* After a step through Python: take the fast step the slave offers, if any.  The slave's
    _fast is None or a slavekit.FastStep, read here by its field names: step (the function's
    address), args (the address of its argument, the array of its arrays' addresses), outputs
-   (the address of the outputs it writes), dt (the step size), out_vrs and in_vrs (the value
+   (the address of the outputs it writes), dt (the step size), dt_slot (where it reads its
+   step size: 0, steps of dt only; else any step size, written there), out_vrs and in_vrs (the value
    references of its outputs and inputs), in_values (the inputs' values) and in_slots (per
    input: the address where the compiled step takes it, lowest, highest value, lowest
    excluded, highest excluded; empty: new inputs go to the slave).  With the GIL. */
@@ -827,15 +840,16 @@ static void fast_take(Inst *c)
     if (!c->fast_out) c->fast_out = malloc((size_t)c->n_vars * sizeof *c->fast_out);
     if (!c->fast_in) c->fast_in = calloc((size_t)c->n_vars, sizeof *c->fast_in);
     if (!c->fast_in_value) c->fast_in_value = calloc((size_t)c->n_vars, sizeof(double));
-    static const char *const field[8] = {"step", "dt", "out_vrs", "in_vrs", "in_values",
-                                         "args", "in_slots", "outputs"};
-    PyObject *it[8] = {NULL};
+    static const char *const field[9] = {"step", "dt", "out_vrs", "in_vrs", "in_values",
+                                         "args", "in_slots", "outputs", "dt_slot"};
+    PyObject *it[9] = {NULL};
     int ok = c->fast_out && c->fast_in && c->fast_in_value;
-    for (int i = 0; ok && i < 8; ++i) ok = (it[i] = PyObject_GetAttrString(f, field[i])) != NULL;
+    for (int i = 0; ok && i < 9; ++i) ok = (it[i] = PyObject_GetAttrString(f, field[i])) != NULL;
     FastStep fn = NULL;
     if (ok) {
         fn = (FastStep)(intptr_t)PyLong_AsLong(it[0]);
         c->fast_dt = PyFloat_AsDouble(it[1]);
+        c->fast_dt_slot = (double *)(intptr_t)PyLong_AsLong(it[8]);
         for (long v = 0; v < c->n_vars; ++v) c->fast_out[v] = -1;
         for (ssize_t i = 0; ok && i < PyList_Size(it[2]); ++i) {
             long vr = PyLong_AsLong(PyList_GetItem(it[2], i));
@@ -872,7 +886,7 @@ static void fast_take(Inst *c)
         c->fast_outputs = (double *)(intptr_t)PyLong_AsLong(it[7]);
         ok = !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs;
     }
-    for (int i = 0; i < 8; ++i) xdecref(it[i]);
+    for (int i = 0; i < 9; ++i) xdecref(it[i]);
     Py_DecRef(f);
     if (!ok) {
         PyErr_Clear();
@@ -1507,20 +1521,24 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
-    if (c->fast && c->fast_in_for_slave &&
-        same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
+    if (fast_fits(c, communicationStepSize, currentCommunicationPoint) && c->fast_in_for_slave) {
         GIL_BEGIN                     /* new inputs: the slave takes them (or turns us off) */
         GIL_END
     }
-    if (c->fast && same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint)) {
+    if (fast_fits(c, communicationStepSize, currentCommunicationPoint)) {
+        /* a new step size: the step derives its operating point at it, as the model's own
+           step does (a step within the rounding of the last one is that one: same_step) */
+        if (!same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint))
+            *c->fast_dt_slot = c->fast_dt = communicationStepSize;
         int32_t ok = c->fast(c->fast_args);
         c->fast_pending++;            /* the state has moved, whatever the outcome */
+        c->fast_elapsed += c->fast_dt;
         if (ok == 1) {
             c->fast_fresh = 1;
             c->last_ok_time = currentCommunicationPoint + communicationStepSize;
             if (c->fast_said) return fmi2OK;
             c->fast_said = 1;
-            logf_(c, fmi2OK, "fmi2DoStep: from t = %g s, steps of this size run "
+            logf_(c, fmi2OK, "fmi2DoStep: from t = %g s, steps run "
                   "compiled, without entering Python", currentCommunicationPoint);
             return finish(c, fmi2OK);
         }

@@ -1,6 +1,6 @@
 """The contact model's communication step as a C function, for the FMU's native layer: a step
-at unchanged inputs (the same inputs and step size as the last one) runs without entering
-Python, so a doStep costs what the kernel costs (the contact FMU near the bare FMI
+after the first (at any inputs in range and any step size: its operating point is derived
+again when they change) runs without entering Python, so a doStep costs what the kernel costs (the contact FMU near the bare FMI
 boundary).  Ideal and lumped bearing, one roller or a joint of three (JointModel: the rollers'
 arrays as rows of one array each); the needle-resolved bearing steps through Python.
 

@@ -279,9 +279,9 @@ class ContactModel:
             return None
         return tuple(getattr(self, name) for name in _FAST_ARRAYS)
 
-    def fast_synced(self, k, dt, hs1_before):
-        """Count k steps of dt [s] that fast.step took (hs[H_TAKEN] was hs1_before)."""
-        self.time += k * dt
+    def fast_synced(self, k, elapsed, hs1_before):
+        """Count k steps over elapsed [s] that fast.step took (hs[H_TAKEN] was hs1_before)."""
+        self.time += elapsed
         self.substeps += int(self._hs[K.H_TAKEN] - hs1_before)
 
     def get_state(self) -> dict:
