@@ -19,6 +19,9 @@ from tripod_model.layout import H_TAKEN
 from tripod_model.model import JointModel, fast_argv
 
 _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
+# the inputs the compiled step takes from the native layer: those, and the shaft angle (held for
+# the layer, which derives omega from it when the whirl is driven by angle)
+_FAST_INPUTS = _INPUTS + ("shaft_angle",)
 
 
 def _have_numba():
@@ -76,8 +79,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         lumped bearing, the prebuilt kernel (native.py) or numba (TRIPOD_FAST=0 turns it off,
         for comparison)."""
         arrays = self.model.fast_arrays()
-        if arrays is None or not switches.FAST or self.drive_by_angle:
-            return None     # (driven by angle: omega is derived each step, in Python)
+        if arrays is None or not switches.FAST:
+            return None
         fn = native.step_function()
         if fn is not None:
             address = native.address(fn)
@@ -98,17 +101,23 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         OP = arrays[2].reshape(-1, L.OP_LEN)[0]
         slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ,
                  "plunge_speed": L.OP_VP}
+        self._fast_shaft = np.zeros(1)
         in_slots = []
-        for name in _INPUTS:
+        for name in _FAST_INPUTS:
             p = BY_NAME[name]
-            in_slots.append((OP.ctypes.data + OP.itemsize * slots[name],
+            in_slots.append((self._fast_shaft.ctypes.data if name == "shaft_angle" else
+                             OP.ctypes.data + OP.itemsize * slots[name],
                              -math.inf if p.lo is None else float(p.lo),
                              math.inf if p.hi is None else float(p.hi),
                              int(p.lo_open), int(p.hi_open)))
-        # and where it takes the step size: a master's new one is derived at there too
+        # where it takes the step size (a master's new one is derived at there too); driven by
+        # angle, what the layer derives omega from (TripodRoller._advance's formula)
+        by_angle = ((vr["shaft_angle"], vr["omega"], OUTPUT_NAMES.index("whirl_angle"))
+                    if self.drive_by_angle else ())
         return {"address": address, "argv": fast_argv(arrays), "in_slots": in_slots,
-                "dt_slot": OP.ctypes.data + OP.itemsize * L.OP_DT, "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
-                "in_vrs": [vr[n] for n in _INPUTS], "names": OUTPUT_NAMES}
+                "dt_slot": OP.ctypes.data + OP.itemsize * L.OP_DT, "by_angle": by_angle,
+                "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
+                "in_vrs": [vr[n] for n in _FAST_INPUTS], "names": OUTPUT_NAMES}
 
     def _offer_fast(self, out):
         """After a step through Python: the outputs where the native layer reads them, and
@@ -123,8 +132,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         # by the rounding of the master's times (reduced_model.scene.same_step) took that step
         self._fast = FastStep(f["address"], f["argv"].ctypes.data, self._fast_outputs.ctypes.data,
                               self.model.rollers[0].step_dt, f["out_vrs"], f["in_vrs"],
-                              [float(getattr(self, n)) for n in _INPUTS], tuple(f["in_slots"]),
-                              f["dt_slot"])
+                              [float(getattr(self, n)) for n in _FAST_INPUTS],
+                              tuple(f["in_slots"]), f["dt_slot"], f["by_angle"])
 
     def _fast_sync(self, k, elapsed):
         """The native layer took k compiled steps over elapsed [s]: count them, take their
@@ -137,13 +146,14 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
             setattr(self, name, v)
 
     def _fast_inputs(self, values):
-        """The master set inputs (_INPUTS order) while the fast path ran: the native layer
-        checked them against their ranges (_fast's last item) and wrote them where the compiled
-        step takes them (the model's OP); it hands them over before Python next sees the
-        instance, so the input variables are what a setReal would have made them."""
-        for name, v in zip(_INPUTS, values):
+        """The master set inputs (_FAST_INPUTS order; omega derived by the layer when driven by
+        angle) while the fast path ran: the native layer checked them against their ranges
+        and wrote them where the compiled step takes them (the model's OP); it hands them over
+        before Python next sees the instance, so the input variables are what a setReal (or
+        _advance) would have made them."""
+        for name, v in zip(_FAST_INPUTS, values):
             setattr(self, name, v)
-        self._checked = tuple(values)
+        self._checked = tuple(values[:len(_INPUTS)])
         return True
 
     def _fast_failed(self, current_time, code):

@@ -26,6 +26,10 @@ from slavekit import DataState, FastStep, Guarded, StateError, register_table, s
 _OUT = tuple(n for n, _, _ in OUTPUTS if n not in CONTACT_ONLY_OUTPUTS)
 FAST_LIB = "_analytic_step.so"    # in resources/, from fmu_src/native/analytic_step.c
 
+# the inputs the compiled steps take from the native layer: the model's, and the shaft angle
+# (held for the layer, which derives omega from it when the whirl is driven by angle)
+_FAST_INPUTS = _INPUTS + ("shaft_angle",)
+
 
 def _fast_library(resources):
     """(library, step function's address, OP names, output names, march function's address,
@@ -195,10 +199,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
         m = self.model
-        if self._fast_lib is None or len(m.x) > 3 or self.drive_by_angle or \
-                m.mirror or m.scene["omega"] < 0:
-            return          # (driven by angle: omega is derived each step, in Python; the
-            #                  compiled steps do drive at forward whirl)
+        if self._fast_lib is None or len(m.x) > 3 or m.mirror or m.scene["omega"] < 0:
+            return          # (the compiled steps do drive at forward whirl)
         import numpy as np
         if m.march is not None:
             _, _, _, out_names, address, op_names, state_names = self._fast_lib
@@ -217,15 +219,20 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                 self._fast_rows = np.array(rows)
             second = self._fast_rows
         self._fast_op = np.array([op[n] for n in op_names], dtype=float)
+        # where the native layer writes each input: the march's OP (at the table, none: new
+        # values go to _fast_inputs), the shaft angle where the layer keeps it for driving by
+        # angle (it derives omega from it, as _advance)
+        self._fast_shaft = np.zeros(1)
         slots = []
-        if m.march is not None:   # where the native layer writes each input (the march's OP)
-            for name in _INPUTS:
-                p = BY_NAME[name]
-                lo = ANALYTIC_LOWER.get(name, p.lo)    # drive and forward whirl only
-                slots.append((self._fast_op.ctypes.data + 8 * op_names.index(name),
-                              -math.inf if lo is None else float(lo),
-                              math.inf if p.hi is None else float(p.hi),
-                              int(p.lo_open), int(p.hi_open)))
+        for name in _FAST_INPUTS:
+            p = BY_NAME[name]
+            lo = ANALYTIC_LOWER.get(name, p.lo)    # drive and forward whirl only
+            at = (self._fast_shaft.ctypes.data if name == "shaft_angle" else
+                  self._fast_op.ctypes.data + 8 * op_names.index(name) if m.march is not None
+                  else 0)
+            slots.append((at, -math.inf if lo is None else float(lo),
+                          math.inf if p.hi is None else float(p.hi),
+                          int(p.lo_open), int(p.hi_open)))
         self._fast_x = np.array(m.x)
         self._fast_out = np.array([getattr(self, n) for n in out_names])
         # the step's argument: these arrays' addresses
@@ -235,10 +242,12 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self._fast_names = out_names
         # where both steps take the step size: a master's new one is written there
         self._fast_dt_at = op_names.index("dt")
+        by_angle = ((vr["shaft_angle"], vr["omega"], list(out_names).index("whirl_angle"))
+                    if self.drive_by_angle else ())
         self._fast = FastStep(address, self._fast_argv.ctypes.data, self._fast_out.ctypes.data,
-                              m.dt, [vr[n] for n in out_names], [vr[n] for n in _INPUTS],
-                              [float(getattr(self, n)) for n in _INPUTS], tuple(slots),
-                              self._fast_op.ctypes.data + 8 * self._fast_dt_at)
+                              m.dt, [vr[n] for n in out_names], [vr[n] for n in _FAST_INPUTS],
+                              [float(getattr(self, n)) for n in _FAST_INPUTS], tuple(slots),
+                              self._fast_op.ctypes.data + 8 * self._fast_dt_at, by_angle)
 
     def _fast_sync(self, k, elapsed):
         """The native layer took k compiled steps (over elapsed [s]): take their whirl angles
@@ -258,16 +267,16 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         m.plunge = self.plunge
 
     def _fast_inputs(self, values):
-        """The master set inputs (_INPUTS order) while the fast path ran: take them as setReal
-        would.  Once the slide is stepped in time the compiled march takes them (the native
-        layer wrote them into its OP: True); at the start's table, inputs moved only by
-        rounding keep the table (as the model's prepare does: True), others start the march
-        in Python."""
-        for name, v in zip(_INPUTS, values):
+        """The master set inputs (_FAST_INPUTS order; omega derived by the layer when driven
+        by angle) while the fast path ran: take them as setReal would.  Once the slide is
+        stepped in time the compiled march takes them (the native layer wrote them into its
+        OP: True); at the start's table, inputs moved only by rounding keep the table (as the
+        model's prepare does: True), others start the march in Python."""
+        for name, v in zip(_FAST_INPUTS, values):
             setattr(self, name, v)
         m = self.model
         return m.march is not None or (m.key is not None and
-                                       all(map(same_value, values, m.key)))
+                                       all(map(same_value, values[:len(_INPUTS)], m.key)))
 
     def _fast_failed(self, current_time, code):
         """A compiled step failed (2: a non-finite output)."""

@@ -32,6 +32,9 @@ class FastStep(NamedTuple):
     #                       lowest excluded, highest excluded); empty: the slave takes them
     dt_slot: int = 0     # address the step reads its step size [s] at (a master's new one is
     #                       written there); 0: steps of dt only
+    by_angle: tuple = ()  # whirl driven by angle: (shaft angle's vr, omega's vr, the whirl
+    #                       angle's place in out_vrs), both inputs among in_vrs: the layer
+    #                       sets omega = (shaft_angle - whirl_angle) / h before each step
 
 
 def register_table(slave, model, outputs=None):

@@ -219,6 +219,8 @@ s.enterInitializationMode()
 args = json.loads(sys.argv[2])
 for k, v in args["ints"].items():
     s.setInteger([vr[k]], [v])
+if args.get("angle"):
+    s.setBoolean([vr["drive_by_angle"]], [True])
 s.exitInitializationMode()
 names = ["Fz", "Fx", "Fz_joint", "whirl_angle", "plunge", "Fz_mod"]
 rng = np.random.default_rng(7)
@@ -228,6 +230,8 @@ for i in range(1500):
     if args["move"]:
         s.setReal([vr["theta"], vr["omega"], vr["torque"]],
                   [0.17 + 0.02 * np.sin(30 * t), 62.8 * (1 + 2 * t), 300.0 - 100 * t])
+    if args.get("angle"):   # the shaft angle the master integrates, for the step's end
+        s.setReal([vr["shaft_angle"]], [62.8 * ((t + h) + (t + h) ** 2)])
     s.doStep(t, h)
     t += h
     out.append(s.getReal([vr[n] for n in names]))
@@ -236,20 +240,26 @@ print(json.dumps(out))
 '''
 
 
-@pytest.mark.parametrize("fmu,ints,move", [
-    ("TripodRoller", {}, False), ("TripodRoller", {"n_rollers": 3, "bearing": 1}, True),
-    ("TripodRollerAnalytic", {"n_rollers": 3}, False), ("TripodRollerAnalytic", {}, True)],
-    ids=["contact", "contact-three-lumped-moving", "analytic-table-three", "analytic-march"])
-def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, move):
+@pytest.mark.parametrize("fmu,ints,move,angle", [
+    ("TripodRoller", {}, False, False),
+    ("TripodRoller", {"n_rollers": 3, "bearing": 1}, True, False),
+    ("TripodRoller", {"n_rollers": 3}, True, True),
+    ("TripodRollerAnalytic", {"n_rollers": 3}, False, False),
+    ("TripodRollerAnalytic", {}, True, False), ("TripodRollerAnalytic", {}, True, True)],
+    ids=["contact", "contact-three-lumped-moving", "contact-three-by-angle",
+         "analytic-table-three", "analytic-march", "analytic-by-angle"])
+def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, move, angle):
     """A master that changes the communication step at every step (uniform in 20-200 us):
     the compiled step takes each new size (it derives its operating point at it, as the
     model's own step does), so every step after the first runs compiled, and the outputs are
     the Python step's bit for bit (before, each new size went through Python: 2.8x the cost
-    of the contact FMU's fixed step, 12x the analytic FMU's)."""
+    of the contact FMU's fixed step, 12x the analytic FMU's).  Driven by angle (a run-up's
+    shaft angle set for each step's end), the layer derives omega as the slave's step does."""
     runs = {}
     for fast in ("0", "1"):
         p = subprocess.run([sys.executable, "-c", _VARYING, str(ensure_fmu(fmu)),
-                            json.dumps({"ints": ints, "move": move})], capture_output=True,
+                            json.dumps({"ints": ints, "move": move, "angle": angle})],
+                           capture_output=True,
                            text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
         assert p.returncode == 0, p.stderr[-3000:]
         steps = [m for m in p.stdout.splitlines() if "communication steps:" in m]
@@ -257,7 +267,53 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     (slow, slow_steps), (fast, fast_steps) = runs["0"], runs["1"]
     assert slow.shape == fast.shape == (1500, 6) and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 2]) > 1.0           # Fz_joint moves
+    if angle:   # the whirl follows the master's angle (to rounding: 1e-9 rad of up to 15 rad)
+        tt = np.cumsum(np.random.default_rng(7).uniform(2e-5, 2e-4, 1500))
+        assert np.allclose(fast[:, 3], 62.8 * (tt + tt ** 2), rtol=0, atol=1e-9)
     assert "communication steps: 0 compiled, 1500 through Python" in slow_steps[0], slow_steps
     # Python takes the first step only (the inputs move from it on: the analytic FMU's march
     # starts there)
     assert "communication steps: 1499 compiled, 1 through Python" in fast_steps[0], fast_steps
+
+
+_ANGLE_JUMP = r'''
+import json, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
+vr = {v.name: v.valueReference for v in md.modelVariables}
+s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="test")
+s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.setBoolean([vr["drive_by_angle"]], [True])
+s.exitInitializationMode()
+dt, w = 1e-4, 62.8
+for i in range(50):   # compiled after the first step
+    s.setReal([vr["shaft_angle"]], [w * (i + 1) * dt])
+    s.doStep(i * dt, dt)
+before = s.getReal([vr["Fz"], vr["whirl_angle"]])
+s.setReal([vr["shaft_angle"]], [w * 50 * dt + 2.0])   # 2 rad in one step: omega 2e4 rad/s
+try:
+    s.doStep(50 * dt, dt)
+    status = "OK"
+except Exception as e:
+    status = type(e).__name__
+after = s.getReal([vr["Fz"], vr["whirl_angle"]])
+print(json.dumps({"status": status, "before": before, "after": after}))
+'''
+
+
+@pytest.mark.parametrize("fmu", ["TripodRoller", "TripodRollerAnalytic"])
+def test_driving_by_angle_out_of_omega_range_is_refused_on_the_compiled_path(fmu):
+    """Driven by angle, a shaft angle that asks for an omega out of its range within one
+    step (2 rad in 100 us: 2e4 rad/s against 1e4) while the steps run compiled: the layer
+    hands the step to the slave, which refuses it naming omega and its range; the outputs stay
+    those of the last good step."""
+    p = subprocess.run([sys.executable, "-c", _ANGLE_JUMP, str(ensure_fmu(fmu))],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    assert r["status"] != "OK" and r["after"] == r["before"], r
+    assert "run compiled" in p.stdout, p.stdout[-2000:]
+    assert "omega" in p.stdout and "allowed range" in p.stdout, p.stdout[-2000:]

@@ -468,6 +468,9 @@ typedef struct {
     double fast_dt;               /* the step size it last took (first: was offered for) [s] */
     double *fast_dt_slot;         /* where it reads its step size (NULL: steps of fast_dt only) */
     double fast_elapsed;          /* the time its steps the slave has not counted yet took [s] */
+    long fast_shaft_vr;           /* driving by angle: the shaft angle input's value reference, */
+    long fast_omega_vr;           /* omega's (derived from it each step) and the whirl angle's */
+    int fast_whirl_at;            /* place among the outputs; fast_shaft_vr -1: by omega */
     int fast_fresh;               /* fast_outputs holds the outputs of the last step */
     int fast_said;                /* the log has said once that the fast path runs */
     long fast_pending;            /* fast steps the slave has not counted yet */
@@ -769,6 +772,30 @@ static int fast_in_range(const Inst *c, int k, double x)
     return 1;
 }
 
+/* A new value x of the fast step's input with value reference vr (in its range): where the
+   compiled step reads it, and to the slave's variables when Python next sees the instance
+   (fast_sync); an input without a slot goes to the slave before the next step. */
+static void fast_put(Inst *c, long vr, double x)
+{
+    int k = c->fast_in[vr] - 1;
+    if (c->fast_in_value[vr] == x) return;
+    c->fast_in_value[vr] = x;
+    c->fast_in_dirty = 1;
+    if (c->fast_in_slot[k]) *c->fast_in_slot[k] = x;
+    else c->fast_in_for_slave = 1;
+}
+
+/* Driving by angle: omega over a step of h such that the whirl angle reaches the master's
+   shaft angle at its end, (shaft_angle - whirl_angle) / h, as the slaves' own steps derive it.
+   0: out of omega's range (the slave's step then refuses it, with the reason). */
+static int fast_angle_to_omega(Inst *c, double h)
+{
+    double w = (c->fast_in_value[c->fast_shaft_vr] - c->fast_outputs[c->fast_whirl_at]) / h;
+    if (!fast_in_range(c, c->fast_in[c->fast_omega_vr] - 1, w)) return 0;
+    fast_put(c, c->fast_omega_vr, w);
+    return 1;
+}
+
 /* No fast step until the slave offers one again (inputs set, state restored, reset). */
 static void fast_off(Inst *c)
 {
@@ -840,11 +867,11 @@ static void fast_take(Inst *c)
     if (!c->fast_out) c->fast_out = malloc((size_t)c->n_vars * sizeof *c->fast_out);
     if (!c->fast_in) c->fast_in = calloc((size_t)c->n_vars, sizeof *c->fast_in);
     if (!c->fast_in_value) c->fast_in_value = calloc((size_t)c->n_vars, sizeof(double));
-    static const char *const field[9] = {"step", "dt", "out_vrs", "in_vrs", "in_values",
-                                         "args", "in_slots", "outputs", "dt_slot"};
-    PyObject *it[9] = {NULL};
+    static const char *const field[10] = {"step", "dt", "out_vrs", "in_vrs", "in_values",
+                                          "args", "in_slots", "outputs", "dt_slot", "by_angle"};
+    PyObject *it[10] = {NULL};
     int ok = c->fast_out && c->fast_in && c->fast_in_value;
-    for (int i = 0; ok && i < 9; ++i) ok = (it[i] = PyObject_GetAttrString(f, field[i])) != NULL;
+    for (int i = 0; ok && i < 10; ++i) ok = (it[i] = PyObject_GetAttrString(f, field[i])) != NULL;
     FastStep fn = NULL;
     if (ok) {
         fn = (FastStep)(intptr_t)PyLong_AsLong(it[0]);
@@ -884,9 +911,26 @@ static void fast_take(Inst *c)
         }
         c->fast_args = (double **)(intptr_t)PyLong_AsLong(it[5]);
         c->fast_outputs = (double *)(intptr_t)PyLong_AsLong(it[7]);
-        ok = !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs;
+        /* by_angle: () or (shaft angle's vr, omega's vr, the whirl angle's output place), both
+           inputs among the step's, the place among its outputs */
+        c->fast_shaft_vr = -1;
+        if (ok && PySequence_Size(it[9]) == 3) {
+            long a[3];
+            for (int j = 0; j < 3; ++j) {
+                PyObject *e = PySequence_GetItem(it[9], j);
+                a[j] = e ? PyLong_AsLong(e) : -1;
+                xdecref(e);
+            }
+            ok = a[0] >= 0 && a[0] < c->n_vars && c->fast_in[a[0]] &&
+                 a[1] >= 0 && a[1] < c->n_vars && c->fast_in[a[1]] &&
+                 a[2] >= 0 && a[2] < PyList_Size(it[2]);
+            c->fast_shaft_vr = a[0];
+            c->fast_omega_vr = a[1];
+            c->fast_whirl_at = (int)a[2];
+        }
+        ok = ok && !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs;
     }
-    for (int i = 0; i < 9; ++i) xdecref(it[i]);
+    for (int i = 0; i < 10; ++i) xdecref(it[i]);
     Py_DecRef(f);
     if (!ok) {
         PyErr_Clear();
@@ -1252,16 +1296,7 @@ static fmi2Status set_values(Inst *c, int kind, const fmi2ValueReference vr[], s
             valid = valid && fast_in_range(c, c->fast_in[vr[i]] - 1,
                                            ((const fmi2Real *)values)[i]);
         if (i == nvr && valid) {       /* else Python takes them and a step refuses them */
-            for (i = 0; i < nvr; ++i) {
-                double x = ((const fmi2Real *)values)[i];
-                int k = c->fast_in[vr[i]] - 1;
-                if (c->fast_in_value[vr[i]] != x) {
-                    c->fast_in_value[vr[i]] = x;
-                    c->fast_in_dirty = 1;
-                    if (c->fast_in_slot[k]) *c->fast_in_slot[k] = x;
-                    else c->fast_in_for_slave = 1;
-                }
-            }
+            for (i = 0; i < nvr; ++i) fast_put(c, (long)vr[i], ((const fmi2Real *)values)[i]);
             return fmi2OK;
         }
     }
@@ -1521,6 +1556,9 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
+    if (fast_fits(c, communicationStepSize, currentCommunicationPoint) && c->fast_shaft_vr >= 0 &&
+        !fast_angle_to_omega(c, communicationStepSize))
+        fast_off(c);                  /* omega out of range: the slave's step refuses it */
     if (fast_fits(c, communicationStepSize, currentCommunicationPoint) && c->fast_in_for_slave) {
         GIL_BEGIN                     /* new inputs: the slave takes them (or turns us off) */
         GIL_END
