@@ -67,12 +67,17 @@ def run(sv, dt, n, vary=(), spread=False):
     # spread: a variable-step master's steps, drawn from [0.2 dt, 2 dt] (the same each run)
     hs = (np.random.default_rng(7).uniform(0.2 * dt, 2 * dt, n) if spread
           else np.full(n, dt)).tolist()
+    # driven by angle: the master sets the shaft angle for each step's end (omega's start value)
+    shaft = vr["shaft_angle"].valueReference if sv.get("drive_by_angle") else None
+    w0 = float(sv.get("omega", vr["omega"].start))
     t = 0.0
     t0 = time.perf_counter()
     for i in range(n):
         if in_vr:
             f = 1.0 + 1e-3 * math.sin(1e-2 * i)
             s.setReal(in_vr, [f * v for v in in0])
+        if shaft is not None:
+            s.setReal([shaft], [w0 * (t + hs[i])])
         s.doStep(t, hs[i])
         t += hs[i]
         ys[i] = s.getReal(out_vr)
@@ -99,7 +104,8 @@ print(json.dumps(res))
 def time_runs(fmu, cases, runs=5, read=("Fz_mod",)):
     """In one fresh process: per case, median wall time of ``runs`` runs after a warm-up, and
     the recorded signal.  cases: [{"sv": start values, "dt": comm step, "stop": s, "vary":
-    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead}]."""
+    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead}];
+    with sv's drive_by_angle the master sets shaft_angle every step (at omega's start value)."""
     req = {"fmu": str(fmu), "cases": cases, "runs": runs, "read": list(read)}
     p = subprocess.run([sys.executable, "-c", _WORKER], input=json.dumps(req),
                        capture_output=True, text=True, timeout=7200)
