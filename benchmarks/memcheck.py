@@ -1,12 +1,13 @@
 """valgrind memcheck on one full run of each FMU, in FMPy and in the plain C host.
 
-A run: instantiate, two whirl cycles (the joint angle moved at the first steps), get and set the
-FMU state, free, exit; each FMU with one roller and with three (the whole joint).  Python runs
-with PYTHONMALLOC=malloc so that valgrind sees every allocation.  A baseline run of the same
-interpreter importing the same packages without any FMU tells the reports that belong to the
-interpreter and the system (the dynamic loader) from those of the FMU.  Prints, per run, the
-invalid reads and writes (and invalid frees), those whose stack passes through the FMU's
-binary, and whether each was seen in the baseline too.  Logs go to --out.
+A run: instantiate, two whirl cycles (the joint angle and the step size moved at the first
+steps), get and set the FMU state, free, exit; each FMU with one roller and with three (the
+whole joint).  Python runs with PYTHONMALLOC=malloc so that valgrind sees every allocation.  A
+baseline run of the same interpreter importing the same packages without any FMU tells the
+reports that belong to the interpreter and the system (the dynamic loader) from those of the
+FMU.  Prints, per run, the invalid reads and writes (and invalid frees), those whose stack
+passes through the FMU's binary, and whether each was seen in the baseline too.  Logs go to
+--out.
 
 Usage: python benchmarks/memcheck.py [--out out/memcheck]   (several minutes: valgrind is
 about 50x slower than a native run).  Needs valgrind (Debian: apt-get install valgrind).
@@ -38,13 +39,17 @@ if len(sys.argv) > 2:   # n_rollers: the whole joint (the contact FMU steps it a
 s.enterInitializationMode(); s.exitInitializationMode()
 dt = 1e-4
 th = next(v for v in md.modelVariables if v.name == "theta")
-# a master moving an input every step: both FMUs' compiled steps take the new inputs (the
-# analytic FMU's march from its third step), then the march runs on at constant inputs
+# a master moving an input and the step size every step: both FMUs' compiled steps take the
+# new inputs and sizes (the analytic FMU's march from its third step), then the march runs on
+# at constant inputs and steps
 moved = 200
+t = 0.0
 for i in range(1000):
+    h = dt * (1.0 + 0.5 * ((i * 7919) % 13 - 6) / 6.0) if i < moved else dt
     if i < moved:
         s.setReal([th.valueReference], [float(th.start) * (1.0 + 1e-4 * (i + 1))])
-    s.doStep(i * dt, dt)
+    s.doStep(t, h)
+    t += h
 state = s.getFMUstate()
 a = [s.doStep((1000 + i) * dt, dt) or s.getReal([fz])[0] for i in range(1000)]
 s.setFMUstate(state)

@@ -3,7 +3,6 @@
 Variables are generated from the parameter table (reduced_model.scene) and the output list
 (reduced_model.scene.OUTPUTS); units, ranges and display units are added by fmu_src/build.py.
 """
-import copy
 import math
 import sys
 
@@ -172,8 +171,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
     # FMU state: the registered variables plus the model's internal arrays, deep-copied, so a
     # rollback (get state, run, set state, run) reproduces the outputs bit for bit
     def _get_fmu_state(self):
-        return {"vars": super()._get_fmu_state(),
-                "model": None if self.model is None else self.model.get_state()}
+        return self._vouch({"vars": super()._get_fmu_state(),
+                            "model": None if self.model is None else self.model.get_state()})
 
     def _check_state(self, state):
         """A state fits this instance: its layout, its parameters, inputs in range.  Into an
@@ -199,7 +198,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         same_layout(state["model"], model, "model")
 
     def _set_fmu_state(self, state):
-        self._check_state(state)       # before anything changes
+        if self._needs_check(state):   # before anything changes
+            self._check_state(state)
         if state["model"] is None:     # taken before initialisation: back there
             super()._set_fmu_state(state["vars"])
             self.model, self._fast, self._ready = None, None, False
@@ -209,7 +209,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
             self._initialise()
             self._ready = True
         super()._set_fmu_state(state["vars"])
-        self.model.set_state(copy.deepcopy(state["model"]))
+        self.model.set_state(state["model"])   # (copied into the model's own arrays)
 
     def _advance(self, current_time, step_size):
         self._fast = None

@@ -93,7 +93,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         st = {"vars": super()._get_fmu_state()}
         st.update(self.model.get_state() if self.model is not None else
                   {"x": [0.0], "dt": None, "scene": None, "march": None, "span": None})
-        return st
+        return self._vouch(st)
 
     def _check_state(self, st):
         """A state fits this instance: its layout, its parameters, one whirl angle (and one
@@ -152,7 +152,8 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             same_layout(st["span"], [[0.0] * 3, [0.0] * 3], "span")
 
     def _set_fmu_state(self, state):
-        self._check_state(state)       # before anything changes
+        if self._needs_check(state):   # before anything changes
+            self._check_state(state)
         if state["scene"] is None:     # taken before initialisation: back there
             super()._set_fmu_state(state["vars"])
             self.model = None

@@ -62,3 +62,52 @@ def test_non_finite_inputs_are_discarded(name, ints, tmp_path):
     bad = [[n, v] for n in ("theta", "omega", "F_press", "torque") for v in ("inf", "-inf", "nan")]
     r = abuse(name, tmp_path, ints=ints, inputs=bad)
     assert set(r["inputs"].values()) == {"discard"}, r["inputs"]
+
+
+_IN_MEMORY = r'''
+import json, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
+vr = {v.name: v.valueReference for v in md.modelVariables}
+
+def make(name, n):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+                  instanceName=name)
+    s.instantiate(); s.setupExperiment(startTime=0.0); s.enterInitializationMode()
+    s.setInteger([vr["n_rollers"]], [n]); s.exitInitializationMode()
+    for i in range(20):
+        s.doStep(i * 1e-4, 1e-4)
+    return s
+
+def try_set(s, st):
+    try:
+        s.setFMUstate(st)
+        return "set"
+    except Exception:
+        return "refused"
+
+a, b = make("a", 3), make("b", 1)
+st = a.getFMUstate()
+res = {"other-instance": try_set(b, st)}
+a.doStep(20e-4, 1e-4)
+res["own"] = try_set(a, st)
+a.reset(); a.setupExperiment(startTime=0.0); a.enterInitializationMode()
+a.setInteger([vr["n_rollers"]], [1]); a.exitInitializationMode()
+res["own-after-reset-to-other-layout"] = try_set(a, st)
+print(json.dumps(res))
+'''
+
+
+@pytest.mark.parametrize("name", ["TripodRoller", "TripodRollerAnalytic"])
+def test_an_in_memory_state_of_another_layout_is_refused(name):
+    """The slave vouches for the states it took (setting one again skips their check, most of
+    a rollback's cost): a state handed to another instance with another layout (3 rollers into
+    1), or to this instance after an fmi2Reset to another layout, is still checked and
+    refused; its own state, after a step, restores."""
+    p = subprocess.run([sys.executable, "-c", _IN_MEMORY, str(ensure_fmu(name))],
+                       capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    assert r == {"other-instance": "refused", "own": "set",
+                 "own-after-reset-to-other-layout": "refused"}, r
