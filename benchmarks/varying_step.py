@@ -1,8 +1,10 @@
 """Cost per step under masters the compiled steps once left to Python: a communication step
-that varies every step (a variable-step or event-driven master), and the whirl driven by angle
-(drive_by_angle: the master sets shaft_angle for each step's end), against a fixed step driven
-by omega; compiled steps on, and off (TRIPOD_FAST=0: every step through Python, which is what
-those masters got before).
+that varies every step (a variable-step or event-driven master), the whirl driven by angle
+(drive_by_angle: the master sets shaft_angle for each step's end), and an iterative master that
+rolls back every step (get the state, a trial step, set the state, the step again: the cost of
+the step it keeps), against a fixed step driven by omega; compiled steps on, and off
+(TRIPOD_FAST=0: every step through Python, which is what those masters got before, and the
+rollback's state check, which it then still paid).
 
 Three rollers at 300 N m, theta, omega and torque moved by 1e-3 every step (driven by angle:
 theta and torque, omega held by the angle); steps drawn from 20-200 us (the same draw each run)
@@ -22,11 +24,12 @@ from harness.fmus import ensure_fmu  # noqa: E402
 
 SV = {"n_rollers": 3, "torque": 300.0}
 DT, N = 1e-4, 2000
-# (label, varying step, driven by angle)
-MASTERS = (("fixed 100 us, by omega", False, False),
-           ("varying 20-200 us, by omega", True, False),
-           ("fixed 100 us, by angle", False, True),
-           ("varying 20-200 us, by angle", True, True))
+# (label, varying step, driven by angle, rollback every step)
+MASTERS = (("fixed 100 us, by omega", False, False, False),
+           ("varying 20-200 us, by omega", True, False, False),
+           ("fixed 100 us, by angle", False, True, False),
+           ("varying 20-200 us, by angle", True, True, False),
+           ("fixed 100 us, by omega, rollback every step", False, False, True))
 
 
 def main(argv=None):
@@ -38,14 +41,15 @@ def main(argv=None):
     print("|---|---|---|---|")
     for fmu in ("TripodRoller", "TripodRollerAnalytic"):
         path = ensure_fmu(fmu)
-        for label, spread, angle in MASTERS:
+        for label, spread, angle, rollback in MASTERS:
             sv = dict(SV, drive_by_angle=True) if angle else SV
             vary = [k for k in MASTER_INPUTS if not (angle and k == "omega")]
             us = []
             for fast in ("1", "0"):
                 os.environ["TRIPOD_FAST"] = fast
                 r = time_runs(path, [{"sv": sv, "dt": DT, "stop": N * DT, "vary": vary,
-                                      "spread": spread}], a.runs, read=("Fz",))[0]
+                                      "spread": spread, "rollback": rollback}], a.runs,
+                              read=("Fz",))[0]
                 us.append(r["wall"] / r["n"] * 1e6)
             os.environ.pop("TRIPOD_FAST")
             print(f"| {fmu} | {label} | {us[0]:.1f} | {us[1]:.1f} |", flush=True)

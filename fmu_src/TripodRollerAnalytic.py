@@ -165,6 +165,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             self._ready = True
         super()._set_fmu_state(state["vars"])
         self.model.set_state(state, self.plunge)
+        self._fast = None      # the next step through Python (it may prepare the model anew)
 
     def terminate(self):
         if self.model is None:

@@ -58,7 +58,7 @@ def instance(sv):
     s.exitInitializationMode()
     return s
 
-def run(sv, dt, n, vary=(), spread=False):
+def run(sv, dt, n, vary=(), spread=False, rollback=False):
     s = instance(sv)
     ys = np.empty((n, len(out_vr)))
     # inputs a master moves every step (by 1e-3 of their start values, slowly)
@@ -78,6 +78,11 @@ def run(sv, dt, n, vary=(), spread=False):
             s.setReal(in_vr, [f * v for v in in0])
         if shaft is not None:
             s.setReal([shaft], [w0 * (t + hs[i])])
+        if rollback:   # an iterative master: the state, a trial step, the state set back
+            st = s.getFMUstate()
+            s.doStep(t, hs[i])
+            s.setFMUstate(st)
+            s.freeFMUstate(st)
         s.doStep(t, hs[i])
         t += hs[i]
         ys[i] = s.getReal(out_vr)
@@ -89,11 +94,11 @@ def run(sv, dt, n, vary=(), spread=False):
 res = []
 for case in req["cases"]:
     n = int(round(case["stop"] / case["dt"]))
-    vary, spread = case.get("vary", ()), case.get("spread", False)
-    run(case["sv"], case["dt"], min(n, 200), vary, spread)   # warm-up (numba cache, imports)
+    opts = (case.get("vary", ()), case.get("spread", False), case.get("rollback", False))
+    run(case["sv"], case["dt"], min(n, 200), *opts)   # warm-up (numba cache, imports)
     walls, ys = [], None
     for _ in range(req["runs"]):
-        w, ys = run(case["sv"], case["dt"], n, vary, spread)
+        w, ys = run(case["sv"], case["dt"], n, *opts)
         walls.append(w)
     res.append({"wall": statistics.median(walls), "walls": walls, "n": n,
                 "y": ys[:, 0].tolist()})
@@ -104,8 +109,9 @@ print(json.dumps(res))
 def time_runs(fmu, cases, runs=5, read=("Fz_mod",)):
     """In one fresh process: per case, median wall time of ``runs`` runs after a warm-up, and
     the recorded signal.  cases: [{"sv": start values, "dt": comm step, "stop": s, "vary":
-    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead}];
-    with sv's drive_by_angle the master sets shaft_angle every step (at omega's start value)."""
+    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead,
+    "rollback": each step tried, the state set back and the step taken again}]; with sv's
+    drive_by_angle the master sets shaft_angle every step (at omega's start value)."""
     req = {"fmu": str(fmu), "cases": cases, "runs": runs, "read": list(read)}
     p = subprocess.run([sys.executable, "-c", _WORKER], input=json.dumps(req),
                        capture_output=True, text=True, timeout=7200)

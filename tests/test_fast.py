@@ -317,3 +317,68 @@ def test_driving_by_angle_out_of_omega_range_is_refused_on_the_compiled_path(fmu
     assert r["status"] != "OK" and r["after"] == r["before"], r
     assert "run compiled" in p.stdout, p.stdout[-2000:]
     assert "omega" in p.stdout and "allowed range" in p.stdout, p.stdout[-2000:]
+
+
+_ROLLBACK = _VARYING.split("rng = np.random")[0] + r'''
+t, out = 0.0, []
+for i in range(300):   # an iterative master: state, a trial step, back, the step it keeps
+    h = 1e-4
+    if args["move"]:
+        s.setReal([vr["theta"], vr["torque"]], [0.17 + 0.02 * np.sin(300 * t), 300.0 - 1e3 * t])
+    if args.get("angle"):
+        s.setReal([vr["shaft_angle"]], [62.8 * ((t + h) + (t + h) ** 2)])
+    if args.get("plain"):   # the same run without rollback
+        s.doStep(t, h)
+        t += h
+        out.append(s.getReal([vr[n] for n in names]))
+        continue
+    st = s.getFMUstate()
+    s.doStep(t, h)
+    trial = s.getReal([vr[n] for n in names])
+    s.setFMUstate(st)
+    s.freeFMUstate(st)
+    s.doStep(t, h)
+    t += h
+    kept = s.getReal([vr[n] for n in names])
+    assert kept == trial, (i, kept, trial)
+    out.append(kept)
+s.terminate(); s.freeInstance()
+print(json.dumps(out))
+'''
+
+
+@pytest.mark.parametrize("fmu,ints,move,angle", [
+    ("TripodRoller", {}, False, False), ("TripodRoller", {"n_rollers": 3, "bearing": 1}, True, False),
+    ("TripodRoller", {"n_rollers": 3}, True, True),
+    ("TripodRollerAnalytic", {"n_rollers": 3}, True, False)],
+    ids=["default", "three-lumped-moving", "three-by-angle", "analytic-three-moving"])
+def test_a_rollback_every_step_runs_compiled_bitwise_the_python_step(fmu, ints, move, angle):
+    """An iterative master (get the state, a trial step, set the state back, the step again,
+    every step): the contact FMU offers the compiled step right after the state is set (the
+    state's inputs written where it reads them), so every step after the first runs
+    compiled; the repeated step equals the trial bit for bit, and the run equals the same
+    run through Python and the run without rollback (before, each step after a set went
+    through Python: 315 us a kept step with three rollers, 124 us now with the state check
+    skipped too, against 21 us without rollback; one in-process run).  The analytic FMU
+    steps through Python after a set; its kept step is the trial's too (before, a state from
+    its settled table with the next inputs already set made the kept step derive a new table
+    at them, 36 ms, and part from the trial by up to 0.04 N)."""
+    runs = {}
+    for fast, plain in (("0", False), ("1", False), ("1", True)):
+        p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(ensure_fmu(fmu)),
+                            json.dumps({"ints": ints, "move": move, "angle": angle,
+                                        "plain": plain})],
+                           capture_output=True, text=True, env=dict(os.environ, TRIPOD_FAST=fast),
+                           timeout=600)
+        assert p.returncode == 0, p.stderr[-3000:]
+        steps = [m for m in p.stdout.splitlines() if "communication steps:" in m]
+        runs[fast, plain] = (np.array(json.loads(p.stdout.strip().splitlines()[-1])), steps)
+    (slow, _), (fast, fast_steps) = runs["0", False], runs["1", False]
+    plain = runs["1", True][0]
+    assert slow.shape == fast.shape == plain.shape == (300, 6)
+    assert np.array_equal(slow, fast) and np.array_equal(fast, plain)
+    assert np.ptp(fast[:, 2]) > 1.0
+    if fmu == "TripodRoller":
+        # Python takes the first step and, the state set back to before it, that step again
+        assert "communication steps: 598 compiled, 2 through Python" in fast_steps[0], \
+            fast_steps

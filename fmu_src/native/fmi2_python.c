@@ -1412,6 +1412,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
         c->phase = s->phase;
         c->last_ok_time = s->last_ok_time;
         c->wants_to_terminate = 0;
+        fast_take(c);                 /* the slave may offer the compiled step at once */
     } else {
         st = refuse(c, "fmi2SetFMUstate");
     }
