@@ -120,9 +120,10 @@ def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
     assert plain.shape == table.shape and np.array_equal(plain, table)
 
 
-# an instance of the FMU at sys.argv[1], initialised, its log on stdout
-_SLAVE = r'''
+# an instance of the FMU at sys.argv[1] in its initialisation mode, its log on stdout
+_INSTANCE = r'''
 import json, sys
+import numpy as np
 from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
@@ -130,23 +131,30 @@ vr = {v.name: v.valueReference for v in md.modelVariables}
 s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
               instanceName="test")
 s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
-s.enterInitializationMode(); s.exitInitializationMode()
+s.enterInitializationMode()
+
+def step_refused(set_bad, dt=1e-4):
+    """Set a bad input (set_bad()), try the step at 50 dt; print its status and the outputs
+    before and after it."""
+    before = s.getReal([vr["Fz"], vr["Fx"], vr["whirl_angle"]])
+    set_bad()
+    try:
+        s.doStep(50 * dt, dt)
+        status = "OK"
+    except Exception as e:
+        status = type(e).__name__
+    after = s.getReal([vr["Fz"], vr["Fx"], vr["whirl_angle"]])
+    print(json.dumps({"status": status, "before": before, "after": after}))
 '''
+# ... initialised
+_SLAVE = _INSTANCE + "s.exitInitializationMode()\n"
 
 _BAD = _SLAVE + r'''
 dt = 1e-4
 for i in range(50):   # compiled after the first step
     s.setReal([vr["theta"], vr["omega"]], [0.17 + 1e-5 * i, 62.8 + 1e-3 * i])
     s.doStep(i * dt, dt)
-before = s.getReal([vr["Fz"], vr["Fx"]])
-s.setReal([vr["theta"]], [float(sys.argv[2])])
-try:
-    s.doStep(50 * dt, dt)
-    status = "OK"
-except Exception as e:
-    status = type(e).__name__
-after = s.getReal([vr["Fz"], vr["Fx"]])
-print(json.dumps({"status": status, "before": before, "after": after}))
+step_refused(lambda: s.setReal([vr["theta"]], [float(sys.argv[2])]))
 '''
 
 
@@ -205,17 +213,7 @@ def test_analytic_steps_the_slide_in_time_when_inputs_move():
 
 # a master whose communication step varies every step (a variable-step or event-driven master),
 # the inputs moving as args say; prints the outputs and the end-of-run log's step count
-_VARYING = r'''
-import json, sys
-import numpy as np
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
-md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
-vr = {v.name: v.valueReference for v in md.modelVariables}
-s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
-              instanceName="test")
-s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
-s.enterInitializationMode()
+_VARYING = _INSTANCE + r'''
 args = json.loads(sys.argv[2])
 for k, v in args["ints"].items():
     s.setInteger([vr[k]], [v])
@@ -276,31 +274,15 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     assert "communication steps: 1499 compiled, 1 through Python" in fast_steps[0], fast_steps
 
 
-_ANGLE_JUMP = r'''
-import json, sys
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
-md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
-vr = {v.name: v.valueReference for v in md.modelVariables}
-s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
-              instanceName="test")
-s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
-s.enterInitializationMode()
+_ANGLE_JUMP = _INSTANCE + r'''
 s.setBoolean([vr["drive_by_angle"]], [True])
 s.exitInitializationMode()
 dt, w = 1e-4, 62.8
 for i in range(50):   # compiled after the first step
     s.setReal([vr["shaft_angle"]], [w * (i + 1) * dt])
     s.doStep(i * dt, dt)
-before = s.getReal([vr["Fz"], vr["whirl_angle"]])
-s.setReal([vr["shaft_angle"]], [w * 50 * dt + 2.0])   # 2 rad in one step: omega 2e4 rad/s
-try:
-    s.doStep(50 * dt, dt)
-    status = "OK"
-except Exception as e:
-    status = type(e).__name__
-after = s.getReal([vr["Fz"], vr["whirl_angle"]])
-print(json.dumps({"status": status, "before": before, "after": after}))
+# 2 rad in one step: omega 2e4 rad/s
+step_refused(lambda: s.setReal([vr["shaft_angle"]], [w * 50 * dt + 2.0]))
 '''
 
 
