@@ -14,7 +14,7 @@ from reduced_model import switches
 from reduced_model.scene import BY_NAME, check_value, params_for
 from slavekit import DataState, FastStep, Guarded, StateError, register_table, same_layout
 from tripod_model import native
-from tripod_model.layout import H_TAKEN, OP_FP, OP_LEN, OP_THETA, OP_TQ, OP_VP, OP_W
+from tripod_model.layout import H_TAKEN, OP_FP, OP_THETA, OP_TQ, OP_VP, OP_W
 from tripod_model.model import JointModel, fast_argv
 
 _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
@@ -115,7 +115,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
                     if self.drive_by_angle else ())
         return {"address": address, "argv": fast_argv(arrays), "in_slots": in_slots,
                 "dt_slot": OP.ctypes.data + OP.itemsize * L.OP_DT, "by_angle": by_angle,
-                "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
+                "op": OP, "arrays": arrays, "out_vrs": [vr[n] for n in OUTPUT_NAMES],
                 "in_vrs": [vr[n] for n in _FAST_INPUTS], "names": OUTPUT_NAMES}
 
     def _offer_fast(self, out):
@@ -211,11 +211,11 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         super()._set_fmu_state(state["vars"])
         self.model.set_state(state["model"])   # (copied into the model's own arrays)
         self._fast = None
-        if self._fast_args is not None and self.model.rollers[0]._started:
+        if self._fast_args is not None and self.model.started:
             # the compiled step from here (an iterative master's rollback, each step): the
             # state's inputs where it reads them, as the model's step would set them (its
             # operating point is derived again: set_state cleared its key), its outputs
-            OP = self._fast_args["arrays"][2].reshape(-1, OP_LEN)[0]
+            OP = self._fast_args["op"]
             for slot, name in ((OP_THETA, "theta"), (OP_W, "omega"), (OP_FP, "F_press"),
                                (OP_TQ, "torque"), (OP_VP, "plunge_speed")):
                 OP[slot] = getattr(self, name)

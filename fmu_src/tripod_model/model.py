@@ -426,6 +426,11 @@ class JointModel:
             return self.rollers[0].fast_arrays() if len(self.rollers) == 1 else None
         return tuple(self._stacks[name] for name in _FAST_ARRAYS)
 
+    @property
+    def started(self):
+        """Whether the rollers have taken their first step (a restored state brings its own)."""
+        return self.rollers[0]._started
+
     def pressing(self, F_press, torque):
         """Pressing load per roller [N]: torque / (3 s) when torque is not 0, else F_press."""
         return scene_mod.pressing_load(F_press, torque, self.p["s"])
