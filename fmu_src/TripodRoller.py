@@ -12,7 +12,8 @@ from pythonfmu.enums import Fmi2Status
 from fmi2bridge import requirements
 from reduced_model import switches
 from reduced_model.scene import BY_NAME, check_value, params_for
-from slavekit import DataState, FastStep, Guarded, StateError, register_table, same_layout
+from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
+                      register_table, same_layout)
 from tripod_model import native
 from tripod_model.layout import H_TAKEN, OP_FP, OP_THETA, OP_TQ, OP_VP, OP_W
 from tripod_model.model import JointModel, fast_argv
@@ -21,6 +22,10 @@ _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
 # the inputs the compiled step takes from the native layer: those, and the shaft angle (held for
 # the layer, which derives omega from it when the whirl is driven by angle)
 _FAST_INPUTS = _INPUTS + ("shaft_angle",)
+# where the compiled step reads each input: the model's operating-point vector (a joint's
+# header row, whose inputs every roller takes)
+_OP_SLOTS = {"theta": OP_THETA, "omega": OP_W, "F_press": OP_FP, "torque": OP_TQ,
+             "plunge_speed": OP_VP}
 
 
 def _have_numba():
@@ -98,14 +103,12 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         # its allowed range, for the native layer to take a master's new values without Python
         # (a joint's: its header row, whose inputs every roller takes)
         OP = arrays[2].reshape(-1, L.OP_LEN)[0]
-        slots = {"theta": L.OP_THETA, "omega": L.OP_W, "F_press": L.OP_FP, "torque": L.OP_TQ,
-                 "plunge_speed": L.OP_VP}
         self._fast_shaft = np.zeros(1)
         in_slots = []
         for name in _FAST_INPUTS:
             p = BY_NAME[name]
             in_slots.append((self._fast_shaft.ctypes.data if name == "shaft_angle" else
-                             OP.ctypes.data + OP.itemsize * slots[name],
+                             OP.ctypes.data + OP.itemsize * _OP_SLOTS[name],
                              -math.inf if p.lo is None else float(p.lo),
                              math.inf if p.hi is None else float(p.hi),
                              int(p.lo_open), int(p.hi_open)))
@@ -216,8 +219,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
             # state's inputs where it reads them, as the model's step would set them (its
             # operating point is derived again: set_state cleared its key), its outputs
             OP = self._fast_args["op"]
-            for slot, name in ((OP_THETA, "theta"), (OP_W, "omega"), (OP_FP, "F_press"),
-                               (OP_TQ, "torque"), (OP_VP, "plunge_speed")):
+            for name, slot in _OP_SLOTS.items():
                 OP[slot] = getattr(self, name)
             self._offer_fast({n: getattr(self, n) for n in self._fast_args["names"]})
 
@@ -226,7 +228,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         self._steps[1] += 1
         check_value("shaft_angle", self.shaft_angle)   # an input even when unused
         if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
-            self.omega = (self.shaft_angle - self.model.rollers[0].whirl_angle) / step_size
+            self.omega = omega_by_angle(self.shaft_angle, self.model.rollers[0].whirl_angle,
+                                        step_size)
         key = (self.theta, self.omega, self.F_press, self.torque, self.plunge_speed)
         if key != self._checked:       # validate inputs only when they change
             for name, value in zip(_INPUTS, key):

@@ -20,7 +20,8 @@ from reduced_model import switches
 from reduced_model.analytic_model import INPUTS as _INPUTS, STATE_KEYS, AnalyticModel
 from reduced_model.scene import (ANALYTIC_LOWER, BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS,
                                  check_value, params_for, same_value, validate)
-from slavekit import DataState, FastStep, Guarded, StateError, register_table, same_layout
+from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
+                      register_table, same_layout)
 
 # outputs the reduced model defines (no contact point, no roller spin state)
 _OUT = tuple(n for n, _, _ in OUTPUTS if n not in CONTACT_ONLY_OUTPUTS)
@@ -188,7 +189,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self._steps[1] += 1
         check_value("shaft_angle", self.shaft_angle)   # an input even when unused
         if self.drive_by_angle:   # the whirl reaches the master's angle at the step's end
-            self.omega = (self.shaft_angle - self.model.x[0]) / step_size
+            self.omega = omega_by_angle(self.shaft_angle, self.model.x[0], step_size)
         self.model.step(step_size, current_time, self._inputs())
         self._write_outputs()
         self._offer_fast()

@@ -17,11 +17,17 @@ from reduced_model.scene import INT_OUTPUTS, OUTPUTS, params_for
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 
 
+def omega_by_angle(shaft_angle, whirl_angle, h):
+    """Whirl rate [rad/s] over a step of h [s] that brings the whirl angle [rad] to the
+    master's shaft angle [rad] at its end (drive_by_angle); fmi2_python.c's
+    fast_angle_to_omega is its C mirror (tests/test_fast.py holds them equal bit for bit)."""
+    return (shaft_angle - whirl_angle) / h
+
+
 class FastStep(NamedTuple):
     """A compiled step a slave offers the native layer (its attribute ``_fast``), which reads
-    these fields by name (fmi2_python.c: fast_take) and runs it for the next steps (of the same
-    size, or of any size with a dt_slot) without entering Python.  Addresses are the slave's
-    own arrays, kept alive by it."""
+    these fields by name (fmi2_python.c: fast_take) and runs it for the next steps, of any
+    size, without entering Python.  Addresses are the slave's own arrays, kept alive by it."""
     step: int            # int32_t step(double **args): 1 written, else failed
     args: int            # address of its argument: the addresses of its arrays (uintp array)
     outputs: int         # address of the outputs it writes (doubles, out_vrs' order)
@@ -29,13 +35,13 @@ class FastStep(NamedTuple):
     out_vrs: list        # value references of its outputs
     in_vrs: list         # value references of the inputs it takes (at most 8)
     in_values: list      # their values now
-    in_slots: tuple = ()  # per input: (address the step reads it at, lowest, highest value,
-    #                       lowest excluded, highest excluded); empty: the slave takes them
-    dt_slot: int = 0     # address the step reads its step size [s] at (a master's new one is
-    #                       written there); 0: steps of dt only
+    in_slots: tuple      # per input: (address the step reads it at, lowest, highest value,
+    #                       lowest excluded, highest excluded); address 0: the slave takes it
+    dt_slot: int         # address the step reads its step size [s] at (a master's new one is
+    #                       written there)
     by_angle: tuple = ()  # whirl driven by angle: (shaft angle's vr, omega's vr, the whirl
     #                       angle's place in out_vrs), both inputs among in_vrs: the layer
-    #                       sets omega = (shaft_angle - whirl_angle) / h before each step
+    #                       sets omega by omega_by_angle before each step
 
 
 def register_table(slave, model, outputs=None):

@@ -460,13 +460,12 @@ typedef struct {
     char **strings;               /* fmi2GetString results, valid until the next call */
     size_t n_strings;
     /* The fast path: a compiled step the slave offers after a step through Python (its
-       attribute _fast), run for the next steps (of any size, with a dt slot) without
-       entering Python; the slave counts them when Python is next entered (_fast_sync). */
+       attribute _fast), run for the next steps (of any size) without entering Python; the slave counts them when Python is next entered (_fast_sync). */
     FastStep fast;                /* NULL: every step goes through Python */
     double **fast_args;           /* its argument: the slave's array of its arrays' addresses */
     double *fast_outputs;         /* the outputs it writes (the slave's array) */
     double fast_dt;               /* the step size it last took (first: was offered for) [s] */
-    double *fast_dt_slot;         /* where it reads its step size (NULL: steps of fast_dt only) */
+    double *fast_dt_slot;         /* where it reads its step size (a new one is written there) */
     double fast_elapsed;          /* the time its steps the slave has not counted yet took [s] */
     long fast_shaft_vr;           /* driving by angle: the shaft angle input's value reference, */
     long fast_omega_vr;           /* omega's (derived from it each step) and the whirl angle's */
@@ -753,13 +752,6 @@ static int same_step(double h, double h0, double t)
     return fabs(h - h0) <= 64.0 * DBL_EPSILON * fmax(fabs(t), h0);
 }
 
-/* Whether the compiled step can take a step of h at time t: one is offered, and it takes
-   steps of any size (a dt slot) or h is its step up to rounding. */
-static int fast_fits(const Inst *c, double h, double t)
-{
-    return c->fast && (c->fast_dt_slot || same_step(h, c->fast_dt, t));
-}
-
 /* Whether x is a value the k-th input of the fast step may take (its range, as the slave's
    check_value: finite, within [lo, hi] or with an open end excluded).  Without a slot to
    write it to, the slave checks it. */
@@ -786,8 +778,9 @@ static void fast_put(Inst *c, long vr, double x)
 }
 
 /* Driving by angle: omega over a step of h such that the whirl angle reaches the master's
-   shaft angle at its end, (shaft_angle - whirl_angle) / h, as the slaves' own steps derive it.
-   0: out of omega's range (the slave's step then refuses it, with the reason). */
+   shaft angle at its end, (shaft_angle - whirl_angle) / h: C mirror of slavekit.py's
+   omega_by_angle, which the slaves' own steps call (tests/test_fast.py holds them equal bit
+   for bit).  0: out of omega's range (the slave's step then refuses it, with the reason). */
 static int fast_angle_to_omega(Inst *c, double h)
 {
     double w = (c->fast_in_value[c->fast_shaft_vr] - c->fast_outputs[c->fast_whirl_at]) / h;
@@ -848,7 +841,7 @@ static void fast_sync(Inst *c)
    _fast is None or a slavekit.FastStep, read here by its field names: step (the function's
    address), args (the address of its argument, the array of its arrays' addresses), outputs
    (the address of the outputs it writes), dt (the step size), dt_slot (where it reads its
-   step size: 0, steps of dt only; else any step size, written there), out_vrs and in_vrs (the value
+   step size: a new one is written there), out_vrs and in_vrs (the value
    references of its outputs and inputs), in_values (the inputs' values) and in_slots (per
    input: the address where the compiled step takes it, lowest, highest value, lowest
    excluded, highest excluded; empty: new inputs go to the slave).  With the GIL. */
@@ -928,7 +921,8 @@ static void fast_take(Inst *c)
             c->fast_omega_vr = a[1];
             c->fast_whirl_at = (int)a[2];
         }
-        ok = ok && !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs;
+        ok = ok && !PyErr_Occurred() && fn && c->fast_args && c->fast_outputs &&
+             c->fast_dt_slot;
     }
     for (int i = 0; i < 10; ++i) xdecref(it[i]);
     Py_DecRef(f);
@@ -1557,14 +1551,13 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real currentCommunicationPoin
         return finish(c, fmi2Error);
     }
     fmi2Status st = fmi2OK;
-    if (fast_fits(c, communicationStepSize, currentCommunicationPoint) && c->fast_shaft_vr >= 0 &&
-        !fast_angle_to_omega(c, communicationStepSize))
+    if (c->fast && c->fast_shaft_vr >= 0 && !fast_angle_to_omega(c, communicationStepSize))
         fast_off(c);                  /* omega out of range: the slave's step refuses it */
-    if (fast_fits(c, communicationStepSize, currentCommunicationPoint) && c->fast_in_for_slave) {
+    if (c->fast && c->fast_in_for_slave) {
         GIL_BEGIN                     /* new inputs: the slave takes them (or turns us off) */
         GIL_END
     }
-    if (fast_fits(c, communicationStepSize, currentCommunicationPoint)) {
+    if (c->fast) {
         /* a new step size: the step derives its operating point at it, as the model's own
            step does (a step within the rounding of the last one is that one: same_step) */
         if (!same_step(communicationStepSize, c->fast_dt, currentCommunicationPoint))
