@@ -3,15 +3,17 @@
 jump (docs/integrators.md).
 """
 
+import math
+
 from .jit import inline, njit
 from .linalg import solve_small
 from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
     row_rolling_resistance, row_sliding_friction, row_stiffness)
 from .euler import adaptive_steps
 from .motion import line_kinematics, roller_motion, tilt_drag
-from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_TAKEN, L_AAX, L_AAY,
-    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_IS, P_IT,
-    P_M, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
+from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX, L_AAY,
+    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE, P_IS, P_IT,
+    P_M, P_RINGA, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
     V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM,
     Y_U, Y_UD, Y_W, Y_WD, Y_X)
 
@@ -53,6 +55,15 @@ GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is
 # that: kept in hs[H_FACC:]; GA_AFTER_RESTART_AFRESH where the drive has moved since: anew)
 GA_AFTER_RESTART = 3.0
 GA_AFTER_RESTART_AFRESH = 2.0
+# hs[H_RING]: the roller's ring (its slide rocking across the groove, oppoint.ring_step).  An
+# input change excites it and the paper's contact law leaves it undamped while the slip
+# saturates the tanh, so from the start and after each change of the inputs the substeps
+# resolve it (RING_OPEN); once a communication step's slide acceleration stays below P_RINGA
+# (the ring's force a small fraction of the load: rung down by the friction) the substep is
+# the free one, P_HFREE (RING_QUIET), where the ring bound is what holds it: at a launch's
+# 45 kN a fifth of it (docs/integrators.md)
+RING_OPEN = 0.0
+RING_QUIET = 1.0
 
 
 @njit
@@ -297,6 +308,8 @@ def inputs_jumped(P, hs, jump):
     (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
     has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
     land on the new inputs' slip without overshoot.)"""
+    if jump >= 0.0:
+        hs[H_RING] = RING_OPEN
     if hs[H_GA] <= 0.0 or jump < 0.0:
         return
     if hs[H_GA] == GA_AFTER_RESTART:   # the forces it kept were the old drive's
@@ -315,8 +328,17 @@ def ga_steps(Y, P, drive, h, n, W, NW):
     """n generalized-alpha steps of h [s] (ideal or lumped bearing), restarted where the
     inputs jumped (hs[H_GA], inputs_jumped): a step input by the adaptive substeps over this
     communication step and the next, a large jump over one substep, a small one by one
-    GA_RESTART step; a step whose Newton fails by the adaptive substeps."""
+    GA_RESTART step; a step whose Newton fails by the adaptive substeps.  With the ring
+    quiet (hs[H_RING]) the communication step h n in fewer steps of at most P_HFREE; with it
+    open, whether the step's slide acceleration lets it close."""
     hs = W.hs
+    if hs[H_RING] == RING_QUIET and P[P_HFREE] > h:
+        T = h * n
+        nf = max(1, int(math.ceil(T / P[P_HFREE] - 1e-9)))
+        if nf < n:
+            n, h = nf, T / nf
+    regular = True     # every step a generalized-alpha one (its accelerations the slide's)
+    amax = 0.0
     for _ in range(n):
         if hs[H_GA] == GA_STEP_IN or hs[H_GA] == GA_STEP_IN_2:
             # a step input: this communication step and the next by the error-controlled
@@ -324,20 +346,28 @@ def ga_steps(Y, P, drive, h, n, W, NW):
             # and what the step set ringing), then the accelerations afresh from the forces
             adaptive_steps(Y, P, drive, h * n, 0.25 * h, W, NW)
             hs[H_GA] = GA_STEP_IN_2 if hs[H_GA] == GA_STEP_IN else 0.0
+            regular = False
             break
         if hs[H_GA] == GA_RELAX:
             # a large jump: its boundary layer (the slip relaxing onto the new inputs'
             # value) by the adaptive substeps over one substep
             adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
             hs[H_GA] = 0.0    # then the accelerations afresh from the forces
+            regular = False
             continue
         if hs[H_GA] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
             if ga_step(Y, P, drive, h, W):
+                amax = max(amax, abs(hs[H_ACC]))
                 continue
             hs[H_GA] = 1.0    # its Newton did not converge: the regular step
-        if not ga_step(Y, P, drive, h, W):
+        if ga_step(Y, P, drive, h, W):
+            amax = max(amax, abs(hs[H_ACC]))
+        else:
             # Newton did not converge (a very steep friction law): this step by the
             # error-controlled extrapolated substeps instead, then start afresh
             adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
             hs[H_GA] = 0.0
             hs[H_FALLBACK] += 1.0
+            regular = False
+    if regular:
+        hs[H_RING] = RING_QUIET if amax < P[P_RINGA] else RING_OPEN

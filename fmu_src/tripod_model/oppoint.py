@@ -17,7 +17,7 @@ from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP, OP_H, OP_KEY,
     OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, P_BEAR, P_CLR, P_DF, P_FRIC,
     P_FRICN, P_HMAX, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU, P_MUN, P_PITCH,
-    P_FLANK, P_QSUM, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
+    P_FLANK, P_HFREE, P_QSUM, P_RINGA, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
 
 
 # The fewest substeps a whirl cycle: about 2000, a resolution floor for the driven motion.
@@ -25,6 +25,13 @@ from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP
 # keeps its count while a master moves omega up by up to 2 %; with 2000 a rise of 1e-3 took a
 # third substep, 1.5 times the cost.
 CYCLE_SUBSTEPS = 1960.0
+# The roller's ring counts as quiet when its force on the slide, m |u''|, stays below this
+# fraction of the pressing load over a communication step (genalpha.ga_steps): a ring of
+# 3e-4 rho (60-90 nm).  At 1e-3 one roller at 300 N m and 10 Hz, whose steady running keeps
+# its ring alive, let it go quiet by spells: up to 0.83 % of order 3 off the reference after
+# an input step, 0.65 % with none (at 3e-4 0.45 % and 0.35 %, as with the ring always
+# resolved); docs/integrators.md
+RING_QUIET_FORCE = 3e-4
 
 
 def amplitudes(P, theta, omega):
@@ -62,28 +69,33 @@ def _accuracy_bound(P, theta, w, vst, n_transition):
 
 
 def ga_step_size(P, theta, omega, F, vst):
-    """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing).
+    """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing):
+    the smaller of ga_free_step and ring_step."""
+    return max(min(ga_free_step(P, theta, omega, vst), ring_step(P, F)), 1e-7)
 
-    Implicit with Newton, it needs no substep for the stick mode; it must resolve
-    - the roller rocking across the groove (sliding along the trunnion, restored by the
-      groove's curvature, undamped while the slip saturates the tanh): omega_g^2 =
-      F / (m rho), rho the roller centre's distance from the groove axis; omega_g h <= 0.5
-      (measured at the paper's scene: 0.48 -> order 3 0.02 % off, 0.96 -> 0.26 %; in steady
-      running the bound could stay at 1 kN's above it at no cost in order 3, docs/
-      integrators.md, but the ring an input step excites then strays 1.2 % from a fine
-      reference, tests/test_transients.py);
-    - the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in 20 steps;
-    - at least CYCLE_SUBSTEPS steps a whirl cycle, and at most 1e-4 s.
-    The lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the
-    step's numerical damping: order 3 0.03 % off the reference at 50 us (measured).
-    """
-    w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
-    h = _accuracy_bound(P, theta, w, vst, 20.0)
+
+def ga_free_step(P, theta, omega, vst):
+    """Step of the generalized-alpha integrator [s] where the roller's ring is quiet
+    (genalpha.ga_steps).  Implicit with Newton, it needs no substep for the stick mode; it
+    must resolve the friction transition (V through +/- v_st at up to 2 w sqrt(A^2+B^2)) in
+    20 steps and take at least CYCLE_SUBSTEPS steps a whirl cycle, and at most 1e-4 s.  The
+    lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the step's
+    numerical damping: order 3 0.03 % off the reference at 50 us (measured)."""
+    return max(_accuracy_bound(P, theta, abs(omega), vst, 20.0), 1e-7)
+
+
+def ring_step(P, F):
+    """Step [s] that resolves the roller rocking across the groove at the pressing load F [N]
+    (sliding along the trunnion, restored by the groove's curvature, undamped while the slip
+    saturates the tanh): omega_g^2 = F / (m rho), rho the roller centre's distance from the
+    groove axis; omega_g h <= 0.5 (measured at the paper's scene: 0.48 -> order 3 0.02 % off,
+    0.96 -> 0.26 %; after an input step at a launch's 45 kN the period error of a larger step
+    adds up over the ring, docs/integrators.md).  1e-4 s at F = 0 (no ring)."""
+    F = abs(F)      # coast: the same ring
     if F > 0:
         rho = P[P_RG] - P[P_R] + (F / P[P_K]) ** (2.0 / 3.0)
-        w_g = math.sqrt(F / (P[P_M] * rho))
-        h = min(h, 0.5 / w_g)
-    return max(h, 1e-7)
+        return min(0.5 / math.sqrt(F / (P[P_M] * rho)), 1e-4)
+    return 1e-4
 
 
 def substep(P, theta, omega, F, vst, stiff):
@@ -196,6 +208,12 @@ def derive(P, OP):
     P[P_VST] = vst
     P[P_VP] = vp
     P[P_HMAX] = substep(P, theta, omega, F, vst, False)
+    # the generalized-alpha step where the roller's ring is quiet (genalpha.ga_steps), and the
+    # slide's acceleration below which it counts as quiet
+    P[P_HFREE] = 0.0
+    if P[P_HSUB] <= 0.0 and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
+        P[P_HFREE] = ga_free_step(P, theta, omega, vst)
+    P[P_RINGA] = RING_QUIET_FORCE * abs(F) / P[P_M]
     OP[OP_KEY] = theta
     OP[OP_KEY + 1] = omega
     OP[OP_KEY + 2] = Fp
@@ -209,7 +227,7 @@ def derive(P, OP):
 # copy_derived (a joint's rollers, fast.step: one derive a joint)
 OP_DERIVED = (OP_F, OP_N, OP_H, OP_X0, OP_KEY, OP_KEY + 1, OP_KEY + 2, OP_KEY + 3, OP_KEY + 4,
               OP_KEY + 5)
-P_DERIVED = (P_DF, P_VST, P_VP, P_HMAX)
+P_DERIVED = (P_DF, P_VST, P_VP, P_HMAX, P_HFREE, P_RINGA)
 
 
 def copy_derived(P, OP, P_to, OP_to):
@@ -224,5 +242,5 @@ def copy_derived(P, OP, P_to, OP_to):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "_accuracy_bound", "ga_step_size", "substep", "groove_offset", "lumped_offset",
+             "_rate_amplitude", "_accuracy_bound", "ga_step_size", "ga_free_step", "ring_step", "substep", "groove_offset", "lumped_offset",
              "derive", "copy_derived")
