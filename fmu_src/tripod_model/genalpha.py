@@ -57,12 +57,14 @@ GA_AFTER_RESTART = 3.0
 GA_AFTER_RESTART_AFRESH = 2.0
 # hs[H_RING]: the roller's ring (its slide rocking across the groove, oppoint.ring_step), which
 # the paper's contact law leaves undamped while the slip saturates the tanh.  RING_OPEN (at the
-# start and after every input change): the substeps resolve it.  Each communication step of
+# start and after a step input: the slip's amplitude moved by more than GA_JUMP_RELAX v_st or
+# the load by more than GA_LOAD_RELAX): the substeps resolve it.  Each communication step of
 # generalized-alpha steps ends with a verdict: RING_QUIET when the slide's acceleration stayed
 # below P_RINGA in every step (the friction has rung it down), else RING_OPEN; quiet, the next
 # one takes the free substep P_HFREE (a launch's 45 kN at 10 Hz: 51 us against the ring's
-# 9 us).  The free steps are judged too: a ring the friction's reversals excite shows in the
-# slide's acceleration before the coarser step damps it (docs/integrators.md)
+# 9 us).  The free steps are judged too: a ring that a master's small moves or the friction's
+# reversals excite shows in the slide's acceleration before the coarser step damps it
+# (docs/integrators.md)
 RING_OPEN = 0.0
 RING_QUIET = 1.0
 
@@ -306,10 +308,12 @@ def inputs_jumped(P, hs, jump):
       switched between the paths from step to step and lost 0.65 % of its peak.)
     - A small one (a master's ramp, every step): one GA_RESTART step; the lumped bearing
       takes a small load change so too (its row's offset moves with the load).
+    The first two also resolve the roller's ring again (hs[H_RING] = RING_OPEN); after a
+    small one the step's verdict on the ring decides (ga_steps).
     (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
     has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
     land on the new inputs' slip without overshoot.)"""
-    if jump >= 0.0:
+    if jump >= 0.0 and (P[P_DF] > GA_LOAD_RELAX or jump > GA_JUMP_RELAX):
         hs[H_RING] = RING_OPEN
     if hs[H_GA] <= 0.0 or jump < 0.0:
         return
