@@ -18,7 +18,7 @@ from pythonfmu.enums import Fmi2Status
 
 from reduced_model import switches
 from reduced_model.analytic_model import INPUTS as _INPUTS, STATE_KEYS, AnalyticModel
-from reduced_model.scene import (ANALYTIC_LOWER, BY_NAME, CONTACT_ONLY_OUTPUTS, OUTPUTS,
+from reduced_model.scene import (CONTACT_ONLY_OUTPUTS, OUTPUTS, compiled_bounds,
                                  check_value, params_for, same_value, validate)
 from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
                       register_table, same_layout)
@@ -202,8 +202,10 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         if self._fast_lib is False:
             self._fast_lib = _fast_library(self.resources)
         m = self.model
-        if self._fast_lib is None or len(m.x) > 3 or m.mirror or m.scene["omega"] < 0:
-            return          # (the compiled steps do drive at forward whirl)
+        if self._fast_lib is None or len(m.x) > 3:
+            return
+        if m.march is None and (m.mirror or m.scene["omega"] < 0):
+            return          # (the table runs drive at forward whirl; the march any)
         import numpy as np
         if m.march is not None:
             _, _, _, out_names, address, op_names, state_names = self._fast_lib
@@ -228,14 +230,12 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         self._fast_shaft = np.zeros(1)
         slots = []
         for name in _FAST_INPUTS:
-            p = BY_NAME[name]
-            lo = ANALYTIC_LOWER.get(name, p.lo)    # drive and forward whirl only
+            lo, hi, lo_open, hi_open = compiled_bounds(name, m.scene, m.march is not None)
             at = (self._fast_shaft.ctypes.data if name == "shaft_angle" else
                   self._fast_op.ctypes.data + 8 * op_names.index(name) if m.march is not None
                   else 0)
             slots.append((at, -math.inf if lo is None else float(lo),
-                          math.inf if p.hi is None else float(p.hi),
-                          int(p.lo_open), int(p.hi_open)))
+                          math.inf if hi is None else float(hi), int(lo_open), int(hi_open)))
         self._fast_x = np.array(m.x)
         self._fast_out = np.array([getattr(self, n) for n in out_names])
         # the step's argument: these arrays' addresses

@@ -336,9 +336,28 @@ def check_param(p: Param, value) -> None:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 
 
-# the analytic FMU's compiled steps run drive at forward whirl: the lower bounds of the inputs
-# it takes there (coast and reverse whirl step through Python)
-ANALYTIC_LOWER = {"omega": 0.0, "F_press": 0.0, "torque": 0.0}
+def compiled_bounds(name: str, scene: dict, march: bool) -> tuple:
+    """(lo, hi, lo_open, hi_open) of the input ``name`` that the analytic FMU's compiled steps
+    take at ``scene``'s inputs (outside them a step goes through Python): the table's runs
+    drive at forward whirl; the march's any whirl, and drive or coast as now (the side of the
+    pressing load stays that of the operating point it was offered at: torque / (3 s) when a
+    torque is given, else F_press).  None: unbounded."""
+    p = BY_NAME[name]
+    lo, hi, lo_open, hi_open = p.lo, p.hi, p.lo_open, p.hi_open
+    if name == "omega" and not march:
+        lo, lo_open = 0.0, False
+    elif name in ("F_press", "torque"):
+        tq = scene["torque"]
+        coast = pressing_load(scene["F_press"], tq, scene["s"]) < 0
+        if not (march and coast):              # drive: both from 0 up
+            lo, lo_open = 0.0, False
+        elif tq != 0 and name == "torque":     # coast by the torque: it stays below 0
+            hi, hi_open = 0.0, True
+        elif tq == 0 and name == "torque":     # coast by F_press: the torque stays 0
+            lo, hi, lo_open, hi_open = 0.0, 0.0, False, False
+        elif tq == 0:                          # (F_press) ... and F_press below 0
+            hi, hi_open = 0.0, True
+    return lo, hi, lo_open, hi_open
 
 
 def check_drive(scene: dict, what: str) -> None:

@@ -156,7 +156,7 @@ int32_t tripod_analytic_step(double **args)
 
 typedef struct {
     double w, F, mu, vst, K, a1, clear, rho, r, s, I, T, k, vp;
-    int held, sm;
+    int held, sm, mirror;
 } Op;
 
 /* scene.same_value: a and b differ only by rounding (64 ulps of the larger) */
@@ -169,12 +169,22 @@ static int same_value(double a, double b)
 static double pmin(double a, double b) { return b < a ? b : a; }
 static double pmax(double a, double b) { return b > a ? b : a; }
 
-/* the operating point at the key's inputs (Traverse.__init__ with periodic=False) */
+/* the operating point at the key's inputs (Traverse.__init__ with periodic=False).  Coast (a
+   negative pressing load, scene.pressing_load) runs as drive at the opposite whirl and plunge
+   speed turned about the trunnion axis (AnalyticModel.mirror, .inner): the inputs negated */
 static void operating_point(const double *M, Op *o)
 {
     double th = M[M_KEY_THETA], w = M[M_KEY_OMEGA], fp = M[M_KEY_F_PRESS], tq = M[M_KEY_TORQUE];
+    double vp = M[M_KEY_PLUNGE];
+    o->mirror = (tq != 0.0 ? tq / (3.0 * M[M_S]) : fp) < 0.0;
+    if (o->mirror) {
+        w = -w;
+        fp = -fp;
+        tq = -tq;
+        vp = -vp;
+    }
     o->w = w;
-    o->vp = M[M_KEY_PLUNGE];
+    o->vp = vp;
     o->s = M[M_S];
     o->r = M[M_R];
     o->F = tq != 0.0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
@@ -386,18 +396,20 @@ int32_t tripod_analytic_march(double **args)
        model was checked when the run ends) */
     M[M_THETA_LO] = fmin(M[M_THETA_LO], key[0]);
     M[M_THETA_HI] = fmax(M[M_THETA_HI], key[0]);
-    M[M_OMEGA_LO] = fmin(M[M_OMEGA_LO], o.w);
-    M[M_OMEGA_HI] = fmax(M[M_OMEGA_HI], o.w);
-    M[M_LOAD_LO] = fmin(M[M_LOAD_LO], o.F);
-    M[M_LOAD_HI] = fmax(M[M_LOAD_HI], o.F);
+    M[M_OMEGA_LO] = fmin(M[M_OMEGA_LO], fabs(o.w));
+    M[M_OMEGA_HI] = fmax(M[M_OMEGA_HI], fabs(o.w));
+    M[M_LOAD_LO] = fmin(M[M_LOAD_LO], fabs(o.F));
+    M[M_LOAD_HI] = fmax(M[M_LOAD_HI], fabs(o.F));
     double dt = M[M_DT], table_n = M[M_N];
     double nd = ceil(fabs(o.w) * dt * table_n / (2.0 * PI) - 1e-9);
     long n = nd > 1.0 ? (long)nd : 1;
     double h = dt / (double)n, wh = o.w * h;
     double x1[3], st[3][S_LEN], o_[OUT_LEN], fz[3] = {0.0, 0.0, 0.0};
     double fx[3] = {0.0, 0.0, 0.0}, fy[3] = {0.0, 0.0, 0.0};
+    /* AnalyticModel.at, .outer: coast's whirl angle and forces turned about the trunnion axis */
+    double turn = o.mirror ? -1.0 : 1.0;
     for (int i = 0; i < nr; ++i) {
-        double x = X[i], s = S[S_LEN * i + S_S], p = S[S_LEN * i + S_P];
+        double x = o.mirror ? -X[i] : X[i], s = S[S_LEN * i + S_S], p = S[S_LEN * i + S_P];
         Drive d0, d1;
         drive_on(&o, x, &d0);
         for (long j = 0; j < n; ++j) {
@@ -428,6 +440,7 @@ int32_t tripod_analytic_march(double **args)
         /* reduced_model/thrust.py: fz_mod */
         double Fz_mod = Fx * o.F > 1e-9 * pmax(o.F * o.F, 1.0) ? Fz * o.F / Fx : 0.0;
         x1[i] = x + wh * (double)n;
+        if (o.mirror) x1[i] = -x1[i];
         st[i][S_S] = s;
         st[i][S_P] = p;
         st[i][S_FZ] = Fz;
@@ -435,23 +448,24 @@ int32_t tripod_analytic_march(double **args)
         st[i][S_FX] = Fx;
         st[i][S_FY] = Fy;
         st[i][S_SLIP] = fabs(s);
-        fz[i] = Fz;
-        fx[i] = Fx;
+        fz[i] = turn * Fz;
+        fx[i] = turn * Fx;
         fy[i] = Fy;
     }
-    /* AnalyticModel.outputs */
-    o_[FZ] = st[0][S_FZ];
-    o_[FZ_MOD] = st[0][S_FZ_MOD];
-    o_[FX] = st[0][S_FX];
+    /* AnalyticModel.outputs (the state rows keep the drive scene's forces, as its march) */
+    double F_out = turn * o.F;
+    o_[FZ] = fz[0];
+    o_[FZ_MOD] = turn * st[0][S_FZ_MOD];
+    o_[FX] = fx[0];
     o_[FY] = st[0][S_FY];
     o_[SLIP] = st[0][S_SLIP];
-    o_[DFX] = o_[FX] - o.F;
+    o_[DFX] = o_[FX] - F_out;
     o_[FZ_JOINT] = fz[0] + fz[1] + fz[2];
     o_[FZ_2] = fz[1];
     o_[FZ_3] = fz[2];
     o_[WHIRL] = x1[0];
-    o_[PLUNGE] = OUT[PLUNGE] + o.vp * M[M_DT];
-    housing_into(o_, fx, fy, o.s, o.F);
+    o_[PLUNGE] = OUT[PLUNGE] + M[M_KEY_PLUNGE] * M[M_DT];
+    housing_into(o_, fx, fy, o.s, F_out);
     int ok = 1;
     for (int q = 0; q < OUT_LEN; ++q) ok = ok && isfinite(o_[q]);
     for (int i = 0; i < nr; ++i)
