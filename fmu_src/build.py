@@ -9,6 +9,7 @@ no unit attributes).
 from __future__ import annotations
 
 import hashlib
+import json
 import os
 import re
 import shutil
@@ -108,13 +109,22 @@ def analytic_step_library(force=False) -> Path:
 
 def prebuilt_kernel(force=False) -> tuple[Path, Path]:
     """build/aot/_step.{so,json}: the contact kernel's step compiled ahead of time (aot.py),
-    rebuilt when missing or older than the kernel's sources."""
+    rebuilt when missing or stale: built from other kernel sources than today's (the content
+    hash the FMU checks when it loads the library, native.source_hash, which covers the
+    reduced model's modules the kernel compiles too), or older than aot.py and its stubs."""
     lib, meta = AOT_DIR / "_step.so", AOT_DIR / "_step.json"
-    srcs = list((FMU_SRC / "tripod_model").glob("*.py")) + list(AOT)
-    if (not force and lib.exists() and meta.exists()
-            and all(lib.stat().st_mtime >= f.stat().st_mtime for f in srcs)):
-        return lib, meta
-    sys.path.insert(0, str(FMU_SRC))
+    for path in (str(FMU_SRC), str(ROOT)):
+        if path not in sys.path:
+            sys.path.insert(0, path)
+    if not force and lib.exists() and meta.exists():
+        from tripod_model import native
+        try:
+            built = json.loads(meta.read_text())["hash"]
+        except (ValueError, KeyError):
+            built = None
+        if (built == native.source_hash()
+                and all(lib.stat().st_mtime >= f.stat().st_mtime for f in AOT)):
+            return lib, meta
     import aot
     return aot.build_step_library(AOT_DIR)
 

@@ -61,3 +61,17 @@ def test_needle_resolved_bearing_still_compiles_with_numba(tmp_path):
     info = json.loads(p.stdout.strip().splitlines()[-1])
     assert info["numba"] and info["kernel"] == ["numba"]
     assert np.isfinite(np.load(tmp_path / "n.npy")).all()
+
+
+def test_the_build_rebuilds_the_prebuilt_kernel_from_the_sources_the_fmu_checks():
+    # the FMU loads the library only when its content hash is today's sources' (the kernel's
+    # package and the reduced model's modules it compiles): the build's freshness test is that
+    # same hash (a change to reduced_model/scene.py once left a library the FMU then ignored,
+    # stepping with numba instead)
+    import sys
+    from harness.fmus import ROOT
+    sys.path.insert(0, str(ROOT / "fmu_src"))
+    import build
+    from tripod_model import native
+    _, meta = build.prebuilt_kernel()
+    assert json.loads(meta.read_text())["hash"] == native.source_hash()
