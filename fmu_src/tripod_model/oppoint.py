@@ -170,8 +170,9 @@ def lumped_offset(P, F):
 def derive(P, OP):
     """The operating point at OP's inputs and step OP[OP_DT] [s], when they differ from those it
     was last derived at (OP[OP_KEY:]): OP's pressing load, substep, substep count and pressing
-    offset (ideal and lumped bearing; the resolved one's offset is the model's), P's v_st and
-    largest adaptive substep.  The pressing load per roller is torque / (3 s) when a torque
+    offset (ideal and lumped bearing; the resolved one's offset is the model's), P's v_st,
+    largest adaptive substep, the generalized-alpha step where the roller's ring is quiet and
+    the slide's acceleration that counts as quiet.  The pressing load per roller is torque / (3 s) when a torque
     [N m] is given (not 0; < 0 coast), else F_press (reduced_model/scene.py, pressing_load).  Returns -1 when
     the inputs did not move, else how far they moved the driven slip (its amplitude's change
     over v_st; 0 for a load change alone): kernel.inputs_moved restarts the integrator."""
