@@ -10,7 +10,7 @@ import pytest
 from harness import transients as T
 
 sys.path.insert(0, str(T.ROOT / "fmu_src"))
-from tripod_model import genalpha, layout as LY, oppoint  # noqa: E402
+from tripod_model import layout as LY, oppoint  # noqa: E402
 
 LAUNCH = {"theta": T.LAUNCH_THETA, "torque": T.LAUNCH_TORQUE}
 
@@ -37,7 +37,7 @@ def test_a_launch_in_steady_running_takes_the_free_substep(launch_10hz):
     # communication step from the same state (measured 0.12 %; with the ring resolved 0.004 %)
     m, a3 = launch_10hz
     st = m.get_state()
-    assert all(r._hs[LY.H_RING] == genalpha.RING_QUIET for r in m.rollers)
+    assert all(r._hs[LY.H_RING] == LY.RING_QUIET for r in m.rollers)
     inputs = {"theta": T.LAUNCH_THETA, "omega": 2 * math.pi * 10, "torque": T.LAUNCH_TORQUE}
     k0 = _substeps(m)
     y = T.response(m, inputs, 1000)
@@ -63,7 +63,7 @@ def test_an_input_step_opens_the_ring_until_it_rings_down(launch_10hz, name, fac
         rings.append(m.rollers[0]._hs[LY.H_RING])
     ref = T.reference({}, 3, st, inputs, 50, _ring_step(m, T.LAUNCH_TORQUE))
     m.set_state(st)
-    assert rings[0] == genalpha.RING_OPEN and rings[-1] == genalpha.RING_QUIET
+    assert rings[0] == LY.RING_OPEN and rings[-1] == LY.RING_QUIET
     assert 100 * np.abs(np.array(y) - ref).max() / a3 < 1.0
 
 

@@ -176,18 +176,18 @@ static void operating_point(const double *M, Op *o)
 {
     double th = M[M_KEY_THETA], w = M[M_KEY_OMEGA], fp = M[M_KEY_F_PRESS], tq = M[M_KEY_TORQUE];
     double vp = M[M_KEY_PLUNGE];
-    o->mirror = (tq != 0.0 ? tq / (3.0 * M[M_S]) : fp) < 0.0;
-    if (o->mirror) {
+    double F = tq != 0.0 ? tq / (3.0 * M[M_S]) : fp;                  /* scene.pressing_load */
+    o->mirror = F < 0.0;
+    if (o->mirror) {   /* (-tq) / (3 s) is -(tq / (3 s)) to the bit: the Python's inner scene */
         w = -w;
-        fp = -fp;
-        tq = -tq;
         vp = -vp;
+        F = -F;
     }
     o->w = w;
     o->vp = vp;
     o->s = M[M_S];
     o->r = M[M_R];
-    o->F = tq != 0.0 ? tq / (3.0 * o->s) : fp;                        /* scene.pressing_load */
+    o->F = F;
     o->mu = M[M_MU];
     if (M[M_V_ST] > 0) {                                           /* thrust.transition_velocity */
         o->vst = M[M_V_ST];

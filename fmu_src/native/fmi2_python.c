@@ -460,7 +460,8 @@ typedef struct {
     char **strings;               /* fmi2GetString results, valid until the next call */
     size_t n_strings;
     /* The fast path: a compiled step the slave offers after a step through Python (its
-       attribute _fast), run for the next steps (of any size) without entering Python; the slave counts them when Python is next entered (_fast_sync). */
+       attribute _fast), run for the next steps (of any size) without entering Python; the
+       slave counts them when Python is next entered (_fast_sync). */
     FastStep fast;                /* NULL: every step goes through Python */
     double **fast_args;           /* its argument: the slave's array of its arrays' addresses */
     double *fast_outputs;         /* the outputs it writes (the slave's array) */

@@ -1,8 +1,9 @@
 """The contact model's communication step as a C function, for the FMU's native layer: a step
 after the first (at any inputs in range and any step size: its operating point is derived
 again when they change) runs without entering Python, so a doStep costs what the kernel costs
-(the contact FMU near the bare FMI boundary).  Ideal and lumped bearing, one roller or a joint of three (JointModel: the rollers'
-arrays as rows of one array each); the needle-resolved bearing steps through Python.
+(the contact FMU near the bare FMI boundary).  Ideal and lumped bearing, one roller or a joint
+of three (JointModel: the rollers' arrays as rows of one array each); the needle-resolved
+bearing steps through Python.
 
 ContactModel.step (model.py) keeps the operating point in OP and publishes the addresses of
 the arrays (at layout's FA_ places); the slave offers ``step`` with them as a slavekit.FastStep, the

@@ -11,11 +11,11 @@ from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
     row_rolling_resistance, row_sliding_friction, row_stiffness)
 from .euler import adaptive_steps
 from .motion import line_kinematics, roller_motion, tilt_drag
-from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX, L_AAY,
-    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE, P_IS, P_IT,
-    P_M, P_RINGA, P_QSUM, P_R, P_ROLLR, P_TRAV, P_VST, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT,
-    V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM,
-    Y_U, Y_UD, Y_W, Y_WD, Y_X)
+from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX,
+    L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE,
+    P_IS, P_IT, P_M, P_QSUM, P_R, P_RINGA, P_ROLLR, P_TRAV, P_VST, RING_OPEN, RING_QUIET, R_FX,
+    R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT,
+    W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD, Y_X)
 
 
 # generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
@@ -65,8 +65,6 @@ GA_AFTER_RESTART_AFRESH = 2.0
 # 9 us).  The free steps are judged too: a ring that a master's small moves or the friction's
 # reversals excite shows in the slide's acceleration before the coarser step damps it
 # (docs/integrators.md)
-RING_OPEN = 0.0
-RING_QUIET = 1.0
 
 
 @njit

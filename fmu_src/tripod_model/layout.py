@@ -61,11 +61,12 @@ V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # valid); H_FALLBACK: steps handed to the adaptive substeps; H_ACC..: the algorithmic
 # accelerations of the NV unknowns (generalized-alpha); H_FACC..: their accelerations from the
 # forces at the end of a restart step (genalpha.GA_AFTER_RESTART); H_RING: the roller's ring
-# (genalpha.RING_OPEN: resolved, the start's value; RING_QUIET)
+# (RING_OPEN or RING_QUIET, genalpha.ga_steps)
 H_SUB, H_TAKEN, H_REJECTED, H_GA, H_FALLBACK, H_ACC = range(6)
 H_FACC = H_ACC + NV
 H_RING = H_FACC + NV
 H_LEN = H_RING + 1
+RING_OPEN, RING_QUIET = 0.0, 1.0   # hs[H_RING]: resolved (the start's value), quiet
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN) = range(11)
 # generalized-alpha work array GW (NV + 8 rows of NV): rows after the unknowns' own

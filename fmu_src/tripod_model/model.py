@@ -169,7 +169,7 @@ class ContactModel:
         if self.n_needle_bodies:
             needle_setup.start_needles(self.Y, p, self.phase, theta, self.n_needle_bodies)
         self._hs[K.H_GA] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
-        self._hs[K.H_RING] = 0.0   # the roller's ring resolved (genalpha.RING_OPEN)
+        self._hs[K.H_RING] = K.RING_OPEN   # the roller's ring resolved from the start
         self._started = True
 
     def row_bore_radius(self):

@@ -68,6 +68,12 @@ def _accuracy_bound(P, theta, w, vst, n_transition):
     return h
 
 
+def ga_substeps(P):
+    """Whether the substep is the generalized-alpha step's (integrator 4 with the ideal or
+    lumped bearing, max_substep automatic)."""
+    return P[P_HSUB] <= 0.0 and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED
+
+
 def ga_step_size(P, theta, omega, F, vst):
     """Step of the generalized-alpha integrator [s] (integrator 4, ideal or lumped bearing):
     the smaller of ga_free_step and ring_step."""
@@ -116,7 +122,7 @@ def substep(P, theta, omega, F, vst, stiff):
     """
     if P[P_HSUB] > 0:
         return P[P_HSUB]
-    if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
+    if stiff and ga_substeps(P):
         return ga_step_size(P, theta, omega, F, vst)
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
     h = _accuracy_bound(P, theta, w, vst, 80.0 if stiff else 0.0)
@@ -211,9 +217,7 @@ def derive(P, OP):
     P[P_HMAX] = substep(P, theta, omega, F, vst, False)
     # the generalized-alpha step where the roller's ring is quiet (genalpha.ga_steps), and the
     # slide's acceleration below which it counts as quiet
-    P[P_HFREE] = 0.0
-    if P[P_HSUB] <= 0.0 and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
-        P[P_HFREE] = ga_free_step(P, theta, omega, vst)
+    P[P_HFREE] = ga_free_step(P, theta, omega, vst) if ga_substeps(P) else 0.0
     P[P_RINGA] = RING_QUIET_FORCE * abs(F) / P[P_M]
     OP[OP_KEY] = theta
     OP[OP_KEY + 1] = omega
@@ -243,5 +247,5 @@ def copy_derived(P, OP, P_to, OP_to):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "_accuracy_bound", "ga_step_size", "ga_free_step", "ring_step", "substep", "groove_offset", "lumped_offset",
+             "_rate_amplitude", "_accuracy_bound", "ga_substeps", "ga_step_size", "ga_free_step", "ring_step", "substep", "groove_offset", "lumped_offset",
              "derive", "copy_derived")
