@@ -14,7 +14,7 @@ import numpy as np
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "fmu_src"))
 from tripod_model.model import ContactModel  # noqa: E402
-from tripod_model import motion, layout as LY  # noqa: E402
+from tripod_model import contact, layout as LY  # noqa: E402
 
 
 def main():
@@ -40,7 +40,7 @@ def main():
         rho_lo = min(rho_lo, np.hypot(pos[:, 0], pos[:, 1]).min())
         # the outer limit from the roller bore's axis (the roller sits off the trunnion's by E, W)
         rho_hi = max(rho_hi, np.hypot(pos[:, 0] - m.Y[LY.Y_E], pos[:, 1] - m.Y[LY.Y_W]).max())
-        d = motion.trunnion_axial(m.Y[LY.Y_X], p["theta"], p["s"], p["axial"])
+        d = contact.trunnion_axial(m.Y[LY.Y_X], p["theta"], p["s"], p["axial"])
         ax_over = max(ax_over, np.max(np.abs(pos[:, 2] - d)) - p["needle_axial_clearance"])
     err = np.array(err)
     print(f"two whirl cycles, {p['n_needles']} x {p['n_spheres']}: wall {time.time() - t0:.1f} s")

@@ -53,7 +53,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         self._params = register_table(self, "contact")
         self.model = None
         self._checked = None
-        self._fast = None          # the compiled step offered to the native layer (fast.py)
+        self._fast = None          # the compiled step offered to the native layer (kernel.step)
         self._fast_args = None
         if _NUMBA_ON and not _have_numba():
             # say once what this Python lacks
@@ -89,8 +89,8 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         if fn is not None:
             address = native.address(fn)
         elif _NUMBA_ON and _have_numba():
-            from tripod_model import fast
-            address = fast.step.address
+            from tripod_model import kernel
+            address = kernel.c_step().address
         else:
             return None
         import numpy as np
@@ -99,7 +99,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         vr = {v.name: ref for ref, v in self.vars.items()}
         self._fast_outputs = np.zeros(N_OUT)
         arrays = arrays[:3] + (self._fast_outputs,) + arrays[3:]
-        # where each input goes (the model's OP: fast.step derives its operating point) and
+        # where each input goes (the model's OP: kernel.step derives its operating point) and
         # its allowed range, for the native layer to take a master's new values without Python
         # (a joint's: its header row, whose inputs every roller takes)
         OP = arrays[2].reshape(-1, L.OP_LEN)[0]

@@ -1,4 +1,4 @@
-"""Build the prebuilt kernel (tripod_model/native.py): fast.step compiled once, ahead of time,
+"""Build the prebuilt kernel (tripod_model/native.py): kernel.step compiled once, ahead of time,
 into a shared library that goes into the contact FMU, so a scene without resolved needles runs
 without numba at run time.
 
@@ -23,15 +23,15 @@ _EMIT = r"""
 import json, sys
 import llvmlite.binding as llvm
 import numba
-from tripod_model import fast, native
+from tripod_model import kernel, native
 llvm.initialize_native_target()
 llvm.initialize_native_asmprinter()
-mod = llvm.parse_assembly(fast.step._library.get_llvm_str())
+mod = llvm.parse_assembly(kernel.c_step()._library.get_llvm_str())
 mod.verify()
 tm = llvm.Target.from_default_triple().create_target_machine(cpu="generic", features="",
                                                              opt=3, reloc="pic")
 open(sys.argv[1], "wb").write(tm.emit_object(mod))
-json.dump({"symbol": fast.step.native_name, "hash": native.source_hash(),
+json.dump({"symbol": kernel.c_step().native_name, "hash": native.source_hash(),
            "numba": numba.__version__, "cpu": "generic"}, open(sys.argv[2], "w"))
 """
 

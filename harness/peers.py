@@ -18,7 +18,7 @@ import time
 import numpy as np
 
 from reduced_model.thrust import fz_mod
-from tripod_model import contact, genalpha, motion, layout as LY
+from tripod_model import contact, genalpha, layout as LY
 from tripod_model.model import ContactModel
 
 
@@ -131,7 +131,7 @@ class _TrunnionMotion:
         self.x_start, self.w, self.x0 = m.phase, w, x0
 
     def pose(self, t):
-        qz, ax, ay, az = motion.trunnion_line(self.x_start + self.w * t, *self.args)
+        qz, ax, ay, az = contact.trunnion_line(self.x_start + self.w * t, *self.args)
         return np.array([self.x0, 0.0, qz, math.atan2(az, ay), math.asin(ax), 0.0])
 
     def rate(self, t):

@@ -1,4 +1,4 @@
-"""The native layer's fast path (fmu_src/tripod_model/fast.py for the contact FMU,
+"""The native layer's fast path (fmu_src/tripod_model/kernel.py: step for the contact FMU,
 fmu_src/native/analytic_step.c for the analytic one): steps at unchanged inputs run as one
 compiled call without entering Python.  What it must not change: every output, bit for
 bit, against the same FMU stepping through Python (TRIPOD_FAST=0), also when the inputs change

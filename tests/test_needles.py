@@ -15,7 +15,7 @@ import pytest
 from rounding import solve_error
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
-from tripod_model import hertz, motion, rowsolve, layout as LY, needle_laws, needles as NDL, ring  # noqa: E402
+from tripod_model import contact, hertz, rowsolve, layout as LY, needle_laws, needles as NDL, ring  # noqa: E402
 from tripod_model.model import ContactModel  # noqa: E402
 
 SCENE = {"bearing": 2, "n_needles": 12}
@@ -72,7 +72,7 @@ def test_needles_stay_in_the_row_and_finite(run):
         rho = np.hypot(pos[:, 0], pos[:, 1])
         # a few micrometres of contact approach at most, never out of the annulus
         assert np.all(rho > inner - 5e-6) and np.all(rho < outer + 5e-6 + 2e-5)
-        d = motion.trunnion_axial(Y[LY.Y_X], p["theta"], p["s"], p["axial"])
+        d = contact.trunnion_axial(Y[LY.Y_X], p["theta"], p["s"], p["axial"])
         assert np.all(np.abs(pos[:, 2] - d) < p["needle_axial_clearance"] + 2e-5)
 
 

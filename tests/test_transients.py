@@ -130,7 +130,7 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
 
 @pytest.mark.parametrize("params", [{}, {"bearing": 1}], ids=["ideal", "lumped"])
 def test_what_a_joint_copies_from_one_derive_is_all_derive_writes(params):
-    # fast.step derives the first roller's operating point and copies it to the others
+    # kernel.step derives the first roller's operating point and copies it to the others
     # (oppoint.copy_derived, by its lists OP_DERIVED and P_DERIVED): every slot derive changes
     # must be on those lists, and the copy must be what derive would have written
     import sys

@@ -7,9 +7,8 @@ import math
 from .jit import inline, njit
 from . import ring
 from .needles import needle_forces
-from .contact import (groove_contact, row_damping, row_load, row_rolling_resistance,
-    row_sliding_friction, row_stiffness)
-from .motion import line_kinematics, roller_motion, trunnion_axial
+from .contact import (groove_contact, line_kinematics, roller_motion, row_damping, row_load,
+    row_rolling_resistance, row_sliding_friction, row_stiffness, trunnion_axial)
 from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_AXIAL,
     P_FRICN, P_INTEG, P_IS, P_IT, P_M, P_MU, P_QSUM, P_R, P_ROLLR, P_S, P_VST, R_FN, R_FX, R_FY,
     R_FZ, R_G, R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D,
@@ -131,7 +130,7 @@ def resolved_row_terms(Y, P, NW, theta, x, h, W, axes, kh, drag, cpl):
     """Needle-resolved bearing in the implicit step: the roller's own inertia and the groove's
     radial stiffness kh [N/m], then every needle contact on the roller with its tangent,
     evaluated at the start of the substep (needles and roller step on the same state); axes
-    the row's (e1, e2), drag the tilts' drag moments (motion.tilt_drag), cpl as in
+    the row's (e1, e2), drag the tilts' drag moments (contact.tilt_drag), cpl as in
     resolved_forces."""
     A, b = W.A, W.b
     drag1, drag2 = drag

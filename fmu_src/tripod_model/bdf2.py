@@ -4,10 +4,9 @@ and needle row in one system (rowsolve.coupled_solve).
 
 from .jit import njit
 from .assembly import hold_slide, resolved_row_terms, roller_system
-from .contact import groove_stiffness_x
+from .contact import groove_stiffness_x, tilt_drag
 from .euler import extrapolated_step
 from .genalpha import GA_JUMP_STEP, GA_LOAD_RELAX
-from .motion import tilt_drag
 from .rowsolve import coupled_solve
 from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_IS, P_IT, P_M, P_TRAV,
     V_POS, V_VEL, Y_LEN, Y_X)

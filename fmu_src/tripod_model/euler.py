@@ -7,8 +7,7 @@ import math
 from .jit import inline, njit
 from .linalg import solve_small
 from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row_terms, resolved_row_terms, roller_system
-from .contact import groove_stiffness_x, row_damping
-from .motion import tilt_drag
+from .contact import groove_stiffness_x, row_damping, tilt_drag
 from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, H_REJECTED, H_SUB, H_TAKEN, P_BEAR, P_HMAX, P_IT,
     P_M, P_R, P_TOL, P_TRAV, P_VST, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
 

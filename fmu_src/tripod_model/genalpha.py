@@ -7,10 +7,9 @@ import math
 
 from .jit import inline, njit
 from .linalg import solve_small
-from .contact import (groove_contact, groove_stiffness_x, row_damping, row_load,
-    row_rolling_resistance, row_sliding_friction, row_stiffness)
+from .contact import (groove_contact, groove_stiffness_x, line_kinematics, roller_motion,
+    row_damping, row_load, row_rolling_resistance, row_sliding_friction, row_stiffness, tilt_drag)
 from .euler import adaptive_steps
-from .motion import line_kinematics, roller_motion, tilt_drag
 from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX,
     L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE,
     P_IS, P_IT, P_M, P_QSUM, P_R, P_RINGA, P_ROLLR, P_TRAV, P_VST, RING_OPEN, RING_QUIET, R_FX,

@@ -142,6 +142,19 @@ def inline(fn):
     return fn
 
 
+# numba.carray in a C function's body (kernel.step), which only numba runs
+carray = _nb.carray if HAVE_NUMBA else None
+
+
+def c_function(fn):
+    """fn compiled as a C function int32_t fn(double **args), the native layer's calling
+    convention (slavekit.FastStep): numba.cfunc, cached like njit; None without numba."""
+    if not HAVE_NUMBA:
+        return None
+    t = _nb.types
+    return _nb.cfunc(t.int32(t.CPointer(t.CPointer(t.float64))), nopython=True, cache=True)(fn)
+
+
 def compiled_copies(module, names):
     """numba versions of ``module``'s functions ``names`` (its own and those it imported), the
     module's own calling each other compiled, in a namespace; the module itself is untouched,

@@ -49,7 +49,7 @@ V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # g = tanh(3 |v_t| / v_st), the friction slope d(mu f_n g)/d|v_t| [N s/m], contact point [m]
 (R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, R_NX, R_NY, R_NZ, R_FN, R_VTX, R_VTY, R_VTZ, R_SLIP,
  R_G, R_SLOPE, R_PX, R_PY, R_PZ, R_LEN) = range(20)
-# --- the trunnion line L (motion.line_kinematics) at whirl angle x ---
+# --- the trunnion line L (contact.line_kinematics) at whirl angle x ---
 # its axis a and da/dt, d2a/dt2; the origin Q's travel along the groove Qz with dQz/dt (the
 # plunge speed included) and d2Qz/dt2; the trunnion's material velocity along a and its spin
 # rate about a; then the key (x, w, theta, plunge speed) it was computed for (NaN: none)
@@ -82,7 +82,7 @@ N_F = 11   # floats per needle in the state vector
 # D_BORE, D_TRUN, D_NEIGH, D_FLANGE: summed normal loads [N] on the bore, trunnion, next
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
-# --- the communication step as a C function (fast.py) ---
+# --- the communication step as a C function (kernel.step) ---
 # its one argument: the addresses of these arrays, at these places (the state Y, P, the
 # operating point OP, the FMU's outputs OUT, the roller's work arrays of layout.Work and its
 # output vector out; a joint: each array the rollers' rows stacked, JointModel.fast_arrays);
@@ -93,7 +93,7 @@ N_F = 11   # floats per needle in the state vector
 # plunge speed OP_VP and the step dt; what they set (pressing load per roller, pressing offset,
 # substep and count); the inputs it was derived at (OP_KEY: six slots, theta, omega, F_press,
 # torque, dt, plunge speed); OP_NOSTEP > 0: outputs only, no substep;
-# OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (fast.step)
+# OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (kernel.step)
 (OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_VP,
  OP_KEY) = range(12)
 OP_NROLL = OP_KEY + 6
@@ -105,7 +105,7 @@ OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "sl
                 "F_housing_x", "F_housing_y", "T_housing", "F_roller", "plunge")
 N_OUT = len(OUTPUT_NAMES)
 OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))
-OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (fast.joint_into)
+OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (kernel.joint_into)
 OUT_PLUNGE = OUTPUT_NAMES.index("plunge")
 
 # --- records passed through the kernel (numba takes namedtuples as typed records) ---

@@ -274,14 +274,14 @@ class ContactModel:
         return "numba" if jit.HAVE_NUMBA else "plain Python (numba missing or off)"
 
     def fast_arrays(self):
-        """The arrays fast.step works on, in its argument order (after OUT, which the caller
+        """The arrays kernel.step works on, in its argument order (after OUT, which the caller
         owns); None where it cannot run (needle-resolved bearing)."""
         if self.NW is not None:
             return None
         return tuple(getattr(self, name) for name in _FAST_ARRAYS)
 
     def fast_synced(self, k, elapsed, hs1_before):
-        """Count k steps over elapsed [s] that fast.step took (hs[H_TAKEN] was hs1_before)."""
+        """Count k steps over elapsed [s] that kernel.step took (hs[H_TAKEN] was hs1_before)."""
         self.time += elapsed
         self.substeps += int(self._hs[K.H_TAKEN] - hs1_before)
 
@@ -323,7 +323,7 @@ _FAST_ARRAYS = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "
 
 
 def fast_argv(arrays):
-    """fast.step's argument for these arrays (at layout's FA_ places): their addresses in an
+    """kernel.step's argument for these arrays (at layout's FA_ places): their addresses in an
     array the caller keeps alive as long as it calls the step with it."""
     assert len(arrays) == K.FA_LEN
     return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
@@ -364,7 +364,7 @@ def _joint_outputs(outs, s, F):
     force and torque on the housing (reduced_model/housing.py, at the contact radius s +
     contact_y [m]) and the pressing load per roller F [N]."""
     o = dict(outs[0])
-    total = 0.0   # left to right, as fast.step (sum() compensates from Python 3.12 on)
+    total = 0.0   # left to right, as kernel.step (sum() compensates from Python 3.12 on)
     for x in outs:
         total += x["Fz"]
     o["Fz_joint"] = total
@@ -400,7 +400,7 @@ class JointModel:
                         else None)
 
     def _stack(self):
-        """The rollers' arrays as rows of one array each (fast.step steps them as a joint in
+        """The rollers' arrays as rows of one array each (kernel.step steps them as a joint in
         one call), the OP array under a header row; each roller keeps views of its rows."""
         n = len(self.rollers)
         stacks = {}
@@ -415,13 +415,13 @@ class JointModel:
         for r in self.rollers:
             r._bind_work()
         stacks["_OP"][0, K.OP_NROLL] = n
-        # fast.step derives one operating point for all the rollers (oppoint.copy_derived):
+        # kernel.step derives one operating point for all the rollers (oppoint.copy_derived):
         # they differ in their whirl phase, which P does not hold, and in nothing else
         assert all(np.array_equal(row, stacks["P"][0], equal_nan=True) for row in stacks["P"])
         return stacks
 
     def fast_arrays(self):
-        """The arrays fast.step works on (ContactModel.fast_arrays; for a joint the stacked
+        """The arrays kernel.step works on (ContactModel.fast_arrays; for a joint the stacked
         rows under the OP header), or None where it cannot run."""
         if self._stacks is None:
             return self.rollers[0].fast_arrays() if len(self.rollers) == 1 else None
@@ -440,7 +440,7 @@ class JointModel:
         """Advance every roller by dt [s]; returns roller 1's outputs plus the joint's."""
         out = _joint_outputs([r.step(dt, theta, omega, F_press, torque, plunge_speed)
                               for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
-        if self._stacks is not None:   # the inputs and step a joint's fast.step takes next
+        if self._stacks is not None:   # the inputs and step a joint's kernel.step takes next
             head, op = self._stacks["_OP"][0], self.rollers[0]._OP
             for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
                 head[j] = op[j]

@@ -1,4 +1,4 @@
-"""The prebuilt kernel: fast.step compiled ahead of time into a shared library when the FMU is
+"""The prebuilt kernel: kernel.step compiled ahead of time into a shared library when the FMU is
 built (fmu_src/aot.py), loaded here with ctypes.  A scene without resolved needles then steps
 through it and never imports numba: a fresh process saves numba's import and start-up (about
 0.6 s of a 1.3 s `fmpy simulate`).  The library is used only when it was built from exactly
@@ -19,7 +19,7 @@ _HASH = None
 _STEP = False   # not looked up yet
 
 
-# modules of the reduced model the compiled kernel takes in (fast.py: the housing frame and
+# modules of the reduced model the compiled kernel takes in (kernel.py: the housing frame and
 # Fz_mod; oppoint.py, compiled into the step: v_st, the pressing load, the slip amplitudes)
 _ELSEWHERE = ("reduced_model.housing", "reduced_model.thrust", "reduced_model.friction",
               "reduced_model.scene", "reduced_model.sliding")
@@ -56,7 +56,7 @@ def source_hash() -> str:
 
 
 def step_function():
-    """The prebuilt step as a ctypes function (fast.step's C signature: int32_t f(double **)),
+    """The prebuilt step as a ctypes function (kernel.step's C signature: int32_t f(double **)),
     or None."""
     global _STEP
     if _STEP is False:
@@ -76,7 +76,7 @@ def _load():
     except (OSError, KeyError, ValueError, AttributeError):
         return None
     fn.restype = ctypes.c_int32
-    fn.argtypes = [ctypes.c_void_p]   # fast.step's one argument: its arrays' addresses
+    fn.argtypes = [ctypes.c_void_p]   # kernel.step's one argument: its arrays' addresses
     return fn
 
 

@@ -81,7 +81,7 @@ def start_needles(Y, p, phase, theta, n):
     """The n needles' state in Y: equally spaced from the pressing direction, each midway
     between trunnion and bore (equal approach on both races), rolling without slip on both
     races; the roller's offset Y[Y_E] and spin Y[Y_OM] already set, whirl angle phase [rad]."""
-    from .motion import trunnion_axial   # numba: the resolved bearing compiles its kernel
+    from .contact import trunnion_axial   # numba: the resolved bearing compiles its kernel
     Rt, Rb = p["r_trunnion"], row_bore_radius(p)
     rn = 0.5 * p["d_needle"]
     E = Y[K.Y_E]
