@@ -49,16 +49,23 @@ def test_torque_drives_pressing_and_wins(name):
 
 def test_outputs_at_start_time_are_the_start_state():
     """At t = 0 the contact FMU reports its start state, not the outputs' declared zeros: the
-    roller starts pressed onto the groove at the Hertz deflection of F_press (Fx = F_press) and
-    rolling without slip at whirl angle 0 (spin = s tan(theta) omega / r, model.md)."""
+    roller pressed onto the groove by F_press where the settled cycle has it (start_slide: up
+    the flank, sliding along the trunnion, rolling along the groove).  Against the same FMU
+    three whirl cycles on, at the same whirl angle: the start at the groove bottom, at rest
+    along the trunnion, was 10 % off in Fx and 5 % in the spin; the traverse model's slide
+    puts it within 1 % and 0.3 % at this scene (docs/integrators.md, "The start")."""
     from reduced_model.scene import defaults
     p = defaults("contact")
-    r = run_fmu(ensure_fmu("TripodRoller"), {"n_rollers": 3}, stop_time=1e-3,
+    cycle = round(2 * math.pi / p["omega"] / 1e-4)           # samples a whirl cycle (1000)
+    r = run_fmu(ensure_fmu("TripodRoller"), {"n_rollers": 3}, stop_time=3 * cycle * 1e-4,
                 output_interval=1e-4)
     assert r["time"][0] == 0.0
-    assert r["Fx"][0] == pytest.approx(p["F_press"], rel=1e-6)
-    spin = p["s"] * math.tan(p["theta"]) * p["omega"] / p["r_roller"]
-    assert r["roller_spin"][0] == pytest.approx(spin, rel=1e-9)
+    assert r["time"][3 * cycle] == pytest.approx(3 * cycle * 1e-4, abs=1e-9)
+    for name, rel in (("Fx", 0.02), ("roller_spin", 0.01)):
+        settled = r[name][3 * cycle]
+        assert settled == pytest.approx(r[name][2 * cycle], rel=1e-6), name   # settled
+        assert r[name][0] == pytest.approx(settled, rel=rel), name
+    assert r["Fx"][0] > p["F_press"]   # up the flank: the fixed offset presses harder
     # a sum of three in some order: two roundings of the largest partial sum, margin 4
     fz = [r[n][0] for n in ("Fz", "Fz_2", "Fz_3")]
     assert r["Fz_joint"][0] == pytest.approx(sum(fz), abs=ulps(8, sum(map(abs, fz))))

@@ -11,7 +11,7 @@ import numpy as np
 
 from reduced_model import scene as scene_mod
 
-from . import hertz, layout as K, native, needle_setup, oppoint   # numba only when needed
+from . import hertz, layout as K, native, needle_setup, oppoint, start_slide   # numba only when needed
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
@@ -152,9 +152,10 @@ class ContactModel:
         g = abs(self.Y[K.Y_E]) - self.p["needle_clearance"]
         return self.K_row * g ** (10 / 9) if g > 0 else 0.0
 
-    def start(self, theta, omega, F_press=0.0):
-        """Initial state: roller at the groove bottom, rolling without slip (fewer transients),
-        at whirl angle ``self.phase`` [rad] (0, 2 pi/3, 4 pi/3 for the rollers of a joint)."""
+    def start(self, theta, omega, F_press=0.0, plunge_speed=0.0):
+        """Initial state at whirl angle ``self.phase`` [rad] (0, 2 pi/3, 4 pi/3 for the rollers
+        of a joint): the roller rolling without slip, and along the trunnion where the settled
+        cycle has it (start_slide; at the groove bottom and at rest where that does not hold)."""
         p = self.p
         self.Y[:] = 0.0
         self.Y[K.Y_X] = self.phase
@@ -166,6 +167,10 @@ class ContactModel:
         if F_press < 0:   # coast: the contact on the other side of the roller rolls it back
             self.Y[K.Y_OM] = -self.Y[K.Y_OM]
         self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
+        table = None if p["bearing"] == K.BEAR_RESOLVED else start_slide.traverse_table(
+            p, theta, omega, F_press, plunge_speed)
+        if table is not None:
+            start_slide.place_on_cycle(self, table, theta, omega, F_press, plunge_speed)
         if self.n_needle_bodies:
             needle_setup.start_needles(self.Y, p, self.phase, theta, self.n_needle_bodies)
         self._hs[K.H_GA] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
@@ -196,7 +201,8 @@ class ContactModel:
         step (continuous inputs).
         """
         if not self._started:
-            self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
+            self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]),
+                       plunge_speed)
         self.set_inputs(dt, theta, omega, F_press, torque, plunge_speed)
         acc = self._hs[K.H_TAKEN]
         self._run()

@@ -1,0 +1,106 @@
+"""Where the roller starts along the trunnion: on the settled cycle of the reduced traverse model.
+
+Started at the groove bottom and at rest along the trunnion, a roller whose friction
+saturates is thrown up the flank and rocks across the groove at sqrt(F / (m rho)) (the
+roller's ring, docs/integrators.md) for 50-200 steps, which the generalized-alpha step resolves
+at up to 11 substeps.  The reduced traverse model (reduced_model/traverse.py) gives the settled
+cycle's tilt of the contact normal towards the trunnion axis, p(x) = n.a; the slide u that
+gives that tilt, its rate, and the spin the slide adds to rolling start the roller where steady
+running has it (ideal and lumped bearing; the needle-resolved row starts as it did).  The
+trunnion's line and the contact slip come from the kernel itself, probed at the start state
+without a step (ContactModel.start), so this module needs no numba: the prebuilt kernel's
+process never imports it.  How close the start is: docs/integrators.md, "The start".
+"""
+from __future__ import annotations
+
+import math
+from functools import lru_cache
+
+from reduced_model import scene as scene_mod
+from reduced_model.traverse import Traverse
+from . import layout as K
+from .oppoint import groove_offset
+
+_TABLE_KEYS = tuple(scene_mod.defaults("analytic"))
+DX = 1e-4   # whirl-angle step of p's slope [rad]: within one of the table's intervals
+
+
+@lru_cache(maxsize=8)
+def _table(items):
+    return Traverse(dict(items))
+
+
+def traverse_table(p: dict, theta, omega, F, plunge_speed):
+    """The traverse model's periodic table at these inputs (a joint's rollers share it), or
+    None where it does not hold the roller: coast or reverse whirl (F <= 0 or omega <= 0: the
+    roller starts at the groove bottom, as it did), no groove friction, mu_groove >= 1, or
+    ``traverse`` off (the slide locked)."""
+    if not (F > 0.0 and omega > 0.0 and p["traverse"] and p["friction_groove"]
+            and 0.0 < p["mu_groove"] < 1.0):
+        return None
+    sc = {k: p[k] for k in _TABLE_KEYS}
+    sc.update(theta=theta, omega=omega, F_press=F, torque=0.0, plunge_speed=plunge_speed)
+    return _table(tuple(sorted(sc.items())))
+
+
+def tilt_and_rate(table, x, omega):
+    """p [1] of the table's settled cycle at whirl angle x [rad], and its rate dp/dt [1/s]."""
+    p = table.state_at(x)[1]
+    slope = (table.state_at(x + DX)[1] - table.state_at(x - DX)[1]) / (2.0 * DX)
+    return p, slope * omega
+
+
+def slide_for_tilt(tilt, rate, D, a, ad, sweeps=8):
+    """Slide u [m] of the roller centre along the trunnion axis a = (ax, ay) (its x and y
+    components; ad their rates [1/s]) that tilts the contact normal towards a by n.a = tilt
+    [1], and u' [m/s] that keeps n.a on tilt's rate [1/s].  The centre is at (D + u ax, u ay)
+    [m] from the facing flank's arc centre in the groove's cross-section
+    (contact.groove_contact), so that u q = tilt rho - D ax with q = ax^2 + ay^2 and rho the
+    centre's distance; a fixed point on rho, which the slide changes by its square only
+    (|ax| << 1: 8 sweeps reach rounding), and that relation's time derivative, linear in u'."""
+    ax, ay = a
+    adx, ady = ad
+    q = ax * ax + ay * ay
+    u = 0.0
+    for _ in range(sweeps):
+        rho = math.hypot(D + u * ax, u * ay)
+        u = (tilt * rho - D * ax) / q
+    cx, cy = D + u * ax, u * ay
+    rho = math.hypot(cx, cy)
+    # d/dt: u' q + u q' = rate rho + tilt rho' - D ax', rho' = (cx cx' + cy cy') / rho
+    # with cx' = u' ax + u ax', cy' = u' ay + u ay'
+    qd = 2.0 * (ax * adx + ay * ady)
+    coef = q - tilt * (cx * ax + cy * ay) / rho
+    rhs = rate * rho + tilt * (cx * u * adx + cy * u * ady) / rho - D * adx - u * qd
+    return u, rhs / coef
+
+
+def rolling_spin(om0, pz0, pz1):
+    """Spin [rad/s] at which the contact point's slip along the groove vanishes, from the slip
+    pz0 at spin om0 and pz1 at om0 + 1 [m/s] (linear in the spin: contact.groove_contact)."""
+    return om0 - pz0 / (pz1 - pz0)
+
+
+def place_on_cycle(m, table, theta, omega, F, vp):
+    """Put the roller of ContactModel m (at its start state, at the groove bottom) where the
+    table's settled cycle has it: the slide, its rate and the spin the slide adds to rolling,
+    from the kernel's trunnion line (m._L) and contact slip (m._res) at that state, each probed
+    by a step of no substeps (the parameters, operating point and history kept).  theta
+    [rad], omega [rad/s], F [N], vp [m/s]: the start's inputs."""
+    Y, L, res = m.Y, m._L, m._res
+    kept = m.P.copy(), m._OP.copy(), m._hs.copy()
+
+    def slip_z(om):   # the contact point's slip along the groove [m/s] at spin om
+        Y[K.Y_OM] = om
+        m.set_inputs(1e-4, theta, omega, F, 0.0, vp)
+        m._OP[K.OP_NOSTEP] = 1.0
+        m._run()
+        return res[K.R_VTZ]
+    om0 = Y[K.Y_OM]
+    at_rest = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
+    tilt, rate = tilt_and_rate(table, Y[K.Y_X], omega)
+    Y[K.Y_U], Y[K.Y_UD] = slide_for_tilt(tilt, rate, groove_offset(m.P, F) - m.P[K.P_FLANK],
+                                         (L[K.L_AX], L[K.L_AY]), (L[K.L_ADX], L[K.L_ADY]))
+    sliding = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
+    Y[K.Y_OM] = om0 + (sliding - at_rest)
+    m.P[:], m._OP[:], m._hs[:] = kept
