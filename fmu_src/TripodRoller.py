@@ -75,7 +75,7 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         self._steps = [0, 0]       # communication steps compiled, through Python (the log)
         # the outputs at the start time, not their declared zeros
         for k, v in self.model.initial_outputs(self.theta, self.omega, self.F_press,
-                                               self.torque).items():
+                                               self.torque, self.plunge_speed).items():
             setattr(self, k, v)
 
     def _fast_arrays(self):

@@ -231,21 +231,32 @@ class ContactModel:
         """The communication step [s] the operating point is set for."""
         return float(self._OP[K.OP_DT])
 
-    def initial_outputs(self, theta, omega, F_press, torque=0.0):
+    def initial_outputs(self, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """The outputs at the start state these inputs give (what the FMU reports at its
         start time), without a step and without moving the model: the first step still
         starts from the inputs it is given."""
         saved = self.get_state()
         P, OP = self.P.copy(), self._OP.copy()
-        self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]))
+        self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]),
+                   plunge_speed)
         # any step size: only the substep and the pressing offset are used, no substep is taken
-        self.set_inputs(1e-4, theta, omega, F_press, torque)
+        self.set_inputs(1e-4, theta, omega, F_press, torque, plunge_speed)
         self._OP[K.OP_NOSTEP] = 1.0
         self._run()
         out = self.outputs(self._OP[K.OP_F])
         self.set_state(saved)
         self.P[:], self._OP[:] = P, OP
         return out
+
+    def probe(self, theta, omega, F, vp):
+        """The kernel's (L, res) at the state now, by a step of no substeps at these inputs
+        [rad, rad/s, N, m/s]; the parameters, operating point and history kept."""
+        kept = self.P.copy(), self._OP.copy(), self._hs.copy()
+        self.set_inputs(1e-4, theta, omega, F, 0.0, vp)
+        self._OP[K.OP_NOSTEP] = 1.0
+        self._run()
+        self.P[:], self._OP[:], self._hs[:] = kept
+        return self._L, self._res
 
     def _run(self):
         """One step at OP's inputs: through the prebuilt kernel when the FMU ships one for
@@ -452,9 +463,9 @@ class JointModel:
                 head[j] = op[j]
         return out
 
-    def initial_outputs(self, theta, omega, F_press, torque=0.0):
+    def initial_outputs(self, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
-        return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque)
+        return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque, plunge_speed)
                                for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
 
     def get_state(self) -> list:

@@ -84,23 +84,18 @@ def rolling_spin(om0, pz0, pz1):
 def place_on_cycle(m, table, theta, omega, F, vp):
     """Put the roller of ContactModel m (at its start state, at the groove bottom) where the
     table's settled cycle has it: the slide, its rate and the spin the slide adds to rolling,
-    from the kernel's trunnion line (m._L) and contact slip (m._res) at that state, each probed
-    by a step of no substeps (the parameters, operating point and history kept).  theta
-    [rad], omega [rad/s], F [N], vp [m/s]: the start's inputs."""
-    Y, L, res = m.Y, m._L, m._res
-    kept = m.P.copy(), m._OP.copy(), m._hs.copy()
+    from the kernel's trunnion line and contact slip at that state (m.probe).  theta [rad],
+    omega [rad/s], F [N], vp [m/s]: the start's inputs."""
+    Y = m.Y
 
     def slip_z(om):   # the contact point's slip along the groove [m/s] at spin om
         Y[K.Y_OM] = om
-        m.set_inputs(1e-4, theta, omega, F, 0.0, vp)
-        m._OP[K.OP_NOSTEP] = 1.0
-        m._run()
-        return res[K.R_VTZ]
+        return m.probe(theta, omega, F, vp)[1][K.R_VTZ]
     om0 = Y[K.Y_OM]
     at_rest = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
+    L = m.probe(theta, omega, F, vp)[0]
     tilt, rate = tilt_and_rate(table, Y[K.Y_X], omega)
     Y[K.Y_U], Y[K.Y_UD] = slide_for_tilt(tilt, rate, groove_offset(m.P, F) - m.P[K.P_FLANK],
                                          (L[K.L_AX], L[K.L_AY]), (L[K.L_ADX], L[K.L_ADY]))
     sliding = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
     Y[K.Y_OM] = om0 + (sliding - at_rest)
-    m.P[:], m._OP[:], m._hs[:] = kept
