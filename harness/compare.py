@@ -1,7 +1,8 @@
 """The analytic and the contact model side by side: both FMUs through FMPy, orders 1 and 3 of
 Fz_mod over the last whole whirl cycle of a settled (periodic) run, differences, tolerance and
 verdict.  Verification scenes (no traverse, ideal bearing) are judged against Eqs. (18)-(27);
-physical scenes against the reduced traverse model, Eqs. (18)-(27) reported beside it."""
+physical scenes against the reduced traverse model, Eqs. (18)-(27) reported beside it; coast
+and reverse whirl, which the closed forms do not cover, against the analytic FMU's own run."""
 from __future__ import annotations
 
 import math
@@ -32,9 +33,16 @@ ORDERS = (1, 3)
 def split_scene(overrides: dict) -> tuple[dict, dict]:
     """Validated contact scene and the analytic scene it implies (shared names only)."""
     contact = scene_mod.validate(overrides, "contact")
-    scene_mod.check_drive(contact, "tripod-thrust compare")
     analytic = {k: v for k, v in contact.items() if "analytic" in scene_mod.BY_NAME[k].models}
     return contact, scene_mod.validate(analytic, "analytic")
+
+
+def quadrant(scene: dict) -> str:
+    """"drive", "coast", "reverse" or "coast in reverse": the pressing load's and the whirl's
+    signs (docs/model.md, "Coast and reverse whirl")."""
+    F = scene_mod.pressing_load(scene["F_press"], scene.get("torque", 0.0), scene["s"])
+    return {(False, False): "drive", (True, False): "coast", (False, True): "reverse",
+            (True, True): "coast in reverse"}[(F < 0, scene["omega"] < 0)]
 
 
 def is_verification(contact: dict) -> bool:
@@ -62,10 +70,13 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     """
     contact_sc, analytic_sc = split_scene(overrides or {})
     omega = contact_sc["omega"]
-    if omega <= 0:
-        raise ValueError("omega = 0: compare needs whole whirl cycles; allowed range (0, 10000] rad/s")
+    if omega == 0:
+        raise ValueError("omega = 0: compare needs whole whirl cycles; allowed range "
+                         "[-10000, 0) or (0, 10000] rad/s")
+    dt = default_dt(abs(omega)) if dt is None else dt
+    if quadrant(contact_sc) != "drive":
+        return _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol)
     period = 2 * math.pi / omega
-    dt = default_dt(omega) if dt is None else dt
     ra = run_fmu(ensure_fmu("TripodRollerAnalytic"), analytic_sc, 2 * period, dt)
     signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
     rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, omega, signals, dt, max_cycles,
@@ -87,7 +98,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     diff27, _ = _judge(oc, eq27, {})
     st = rc["settle"]
     result = {
-        "scene": contact_sc,
+        "scene": contact_sc, "quadrant": "drive",
         "kind": "verification" if verification else "physical",
         "against": against,
         "regime": rep["regime"],
@@ -111,6 +122,38 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
         "_runs": {"analytic": ra, "contact": rc, "omega": omega, "settle": st},
     }
     return result
+
+
+def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
+    """Coast or reverse whirl: the closed forms cover forward drive only, so the contact FMU is
+    judged against the analytic FMU's own run (the reduced model through the model's symmetry,
+    docs/model.md), both run until periodic, orders against the whirl angle's magnitude."""
+    w = abs(contact_sc["omega"])
+    signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
+    ra = run_settled(ensure_fmu("TripodRollerAnalytic"), analytic_sc, w, ["Fz_mod"], dt,
+                     max_cycles, rel_tol)
+    rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, w, signals, dt, max_cycles, rel_tol)
+    oa, oc = (last_cycle_orders(r["time"], r["Fz_mod"], np.abs(r["whirl_angle"]), ORDERS)
+              for r in (ra, rc))
+    verification = is_verification(contact_sc)
+    tol = TOL_VERIFICATION if verification else (
+        TOL_PHYSICAL if contact_sc["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING)
+    diff, ok = _judge(oc, oa, tol)
+    st, sa = rc["settle"], ra["settle"]
+    settled = st["settled"] and sa["settled"]
+    fmu = {f"order{k}": _o(*oa[k]) for k in ORDERS}
+    return {
+        "scene": contact_sc, "quadrant": quadrant(contact_sc),
+        "kind": "verification" if verification else "physical",
+        "against": "analytic_fmu", "regime": None, "outside_checked": [],
+        "analytic": {**fmu, "closed_form": None, "traverse": None, "fmu": fmu},
+        "contact": {f"order{k}": _o(*oc[k]) for k in ORDERS},
+        "difference": diff, "difference_eqs_18_27": None, "tolerance": tol,
+        "phase_lag_deg": None, "cycles": st["cycles"], "settled": settled,
+        "cycle_change": st["worst"], "pass": bool(ok and settled),
+        "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
+        "_runs": {"analytic": ra, "contact": rc, "omega": w, "settle": st},
+    }
 
 
 def _judge(got, ref, tol):
@@ -139,12 +182,16 @@ def spectrum(run: dict, omega: float, name: str = "Fz_mod", orders=range(1, 11))
 def format_table(r: dict) -> str:
     sc = r["scene"]
     a, c, d = r["analytic"], r["contact"], r["difference"]
-    ref_name = {"traverse": "traverse model", "eqs_18_27": "Eqs. 18-27"}[r["against"]]
+    ref_name = {"traverse": "traverse model", "eqs_18_27": "Eqs. 18-27",
+                "analytic_fmu": "analytic FMU (the closed forms cover forward drive)"}[r["against"]]
+    regime = (f"regime (reduced traverse model): {r['regime']}" if r["regime"] else
+              f"{r['quadrant']}: both FMUs run until periodic")
     lines = [
-        f"tripod-thrust compare: {r['kind']} scene (traverse = {str(sc['traverse']).lower()}, "
-        f"bearing = {sc['bearing']}), theta = {math.degrees(sc['theta']):.2f} deg, "
-        f"{sc['omega'] / (2 * math.pi):.3g} Hz, {scene_mod.load_text(sc)}",
-        f"regime (reduced traverse model): {r['regime']}; contact FMU: "
+        f"tripod-thrust compare: {r['kind']} scene, {r['quadrant']} (traverse = "
+        f"{str(sc['traverse']).lower()}, bearing = {sc['bearing']}), theta = "
+        f"{math.degrees(sc['theta']):.2f} deg, {sc['omega'] / (2 * math.pi):.3g} Hz, "
+        f"{scene_mod.load_text(sc)}",
+        f"{regime}; contact FMU: "
         + settle_line({"cycles": r["cycles"], "settled": r["settled"], "worst": r["cycle_change"],
                        "rel_tol": r["_runs"]["settle"]["rel_tol"],
                        "max_cycles": r["_runs"]["settle"]["max_cycles"]}),
@@ -163,11 +210,12 @@ def format_table(r: dict) -> str:
                                       f"{t['phase_deg']:g} deg" if "phase_deg" in t else "") if x) or "reported"
         tr = a["traverse"][key] if a["traverse"] else None
         trtxt = f"{tr['amplitude']:11.3f} N {tr['phase_deg']:7.2f}°" if tr else f"{'-':>22s}"
+        cf = a["closed_form"][key] if a["closed_form"] else None
+        cftxt = f"{cf['amplitude']:11.3f} N {cf['phase_deg']:7.2f}°" if cf else f"{'-':>22s}"
         lines.append(
             f"{'order ' + str(k):8s}"
             f"{a['fmu'][key]['amplitude']:9.3f} N {a['fmu'][key]['phase_deg']:7.2f}°"
-            f"{a['closed_form'][key]['amplitude']:11.3f} N {a['closed_form'][key]['phase_deg']:7.2f}°"
-            f"{trtxt}"
+            f"{cftxt}{trtxt}"
             f"{c[key]['amplitude']:11.3f} N {c[key]['phase_deg']:7.2f}°"
             f"{100 * d[key]['amplitude_rel']:+10.2f} % {d[key]['phase_deg']:+6.2f}°"
             f"{ttxt:>20s}")

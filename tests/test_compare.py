@@ -42,6 +42,28 @@ def test_compare_json_keys_and_plots(tmp_path):
         assert f.stat().st_size > 10_000 and f.read_bytes()[:4] == b"\x89PNG"
 
 
+def test_compare_takes_coast_and_reverse_by_the_models_symmetry():
+    """Coast and reverse whirl: the closed forms cover forward drive, so compare judges the
+    contact FMU against the analytic FMU's own run (the reduced model through the symmetry,
+    docs/model.md).  Drive at -omega is coast at +omega turned about the trunnion axis: Fz_mod
+    flips sign, so order 3 keeps its amplitude and turns by 180 deg, to rounding with the
+    ideal bearing (docs/model.md: 1e-10 of each signal; margin for the order analysis)."""
+    w = sc.defaults()["omega"]
+    runs = {}
+    for q, args in (("coast", ["--set", "torque=-300"]),
+                    ("reverse", ["--set", "torque=300", "--set", f"omega={-w!r}"])):
+        p = cli("compare", "--json", *args)
+        assert p.returncode == 0, p.stderr
+        r = json.loads(p.stdout)
+        assert r["quadrant"] == q and r["against"] == "analytic_fmu"
+        assert r["analytic"]["closed_form"] is None and r["pass"] is True
+        assert abs(r["difference"]["order3"]["amplitude_rel"]) <= 0.10
+        runs[q] = r["contact"]["order3"]
+    c, rv = runs["coast"], runs["reverse"]
+    assert rv["amplitude"] == pytest.approx(c["amplitude"], rel=1e-6)
+    assert abs((rv["phase_deg"] - c["phase_deg"]) % 360.0 - 180.0) < 1e-3
+
+
 def test_verdict_fails_where_small_angle_theory_breaks():
     # 30 deg: Eqs. (18)-(27) are small-angle; the exact-kinematics contact model departs by
     # about 3 % and 5 deg, beyond the 1 % / 1 deg verification tolerance: exit code 1
