@@ -370,7 +370,7 @@ def check_drive(scene: dict, what: str) -> None:
         if bad:
             raise ValueError(f"{name} = {scene[name]:g}: {what} covers drive at forward whirl "
                              "(omega, torque, F_press >= 0); coast and reverse whirl: run the "
-                             "FMUs, both take them")
+                             "FMUs or tripod-thrust compare, which take them")
 
 
 def check_traverse_mu(mu: float) -> None:
