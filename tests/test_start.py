@@ -38,9 +38,10 @@ def test_slide_tilts_the_normal_as_asked(tilt, D, a):
     assert ud == pytest.approx((at(dt) - at(-dt)) / (2 * dt), rel=1e-6)
 
 
-def _launch_run(settled_start, n):
-    m = JointModel(dict(LAUNCH))
+def _launch_run(settled_start, n, scene=LAUNCH):
+    m = JointModel(dict(scene))
     d = S.defaults()
+    theta, torque = scene.get("theta", d["theta"]), scene.get("torque", 0.0)
     subs, fz = [], []
     if not settled_start:   # the start as it was: at the groove bottom, at rest
         real = start_slide.traverse_table
@@ -48,8 +49,7 @@ def _launch_run(settled_start, n):
     try:
         for _ in range(n):
             before = sum(r.substeps for r in m.rollers)
-            fz.append(m.step(1e-4, LAUNCH["theta"], d["omega"], d["F_press"],
-                             LAUNCH["torque"])["Fz_joint"])
+            fz.append(m.step(1e-4, theta, d["omega"], d["F_press"], torque)["Fz_joint"])
             subs.append(sum(r.substeps for r in m.rollers) - before)
     finally:
         if not settled_start:
@@ -71,6 +71,20 @@ def test_a_launch_starts_without_its_ring():
     assert subs[:100].mean() < 2.5 and old_subs[:100].mean() > 5.0
     assert np.max(np.abs(fz[:cycle] - fz[2 * cycle:])) < 0.01 * amp
     assert np.max(np.abs(old_fz[:cycle] - fz[2 * cycle:])) > 0.5 * amp
+
+
+def test_the_papers_scene_starts_near_its_settled_cycle():
+    """Three rollers at the paper's scene (1000 N, 10 deg, 10 Hz), the roller at 120 deg
+    starting mid-crossing: Fz_joint's first 20 steps within 10 % of the settled cycle's
+    amplitude (3.3 % measured; the ring that the friction's reversals keep alive at this load
+    moves single samples by a few %), where the start at the groove bottom strayed by 40 %."""
+    cycle = 1000
+    _, fz = _launch_run(True, 3 * cycle, {"n_rollers": 3})
+    _, old_fz = _launch_run(False, 3 * cycle, {"n_rollers": 3})
+    ref = fz[2 * cycle:]
+    amp = np.ptp(ref) / 2
+    assert np.max(np.abs(fz[:20] - ref[:20])) < 0.10 * amp
+    assert np.max(np.abs(old_fz[:20] - ref[:20])) > 0.25 * amp
 
 
 @pytest.mark.parametrize("over", [{"torque": -300.0}, {"omega": -62.8}, {"omega": 0.0},

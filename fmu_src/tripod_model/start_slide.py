@@ -5,11 +5,12 @@ saturates is thrown up the flank and rocks across the groove at sqrt(F / (m rho)
 roller's ring, docs/integrators.md) for 50-200 steps, which the generalized-alpha step resolves
 at up to 11 substeps.  The reduced traverse model (reduced_model/traverse.py) gives the settled
 cycle's tilt of the contact normal towards the trunnion axis, p(x) = n.a; the slide u that
-gives that tilt, its rate, and the spin the slide adds to rolling start the roller where steady
-running has it (ideal and lumped bearing; the needle-resolved row starts as it did).  The
-trunnion's line and the contact slip come from the kernel itself, probed at the start state
-without a step (ContactModel.start), so this module needs no numba: the prebuilt kernel's
-process never imports it.  How close the start is: docs/integrators.md, "The start".
+gives that tilt, its rate, and the spin at which the roller then rolls without slip across the
+trunnion axis start the roller where steady running has it (ideal and lumped bearing; the
+needle-resolved row starts as it did).  The trunnion's line and the contact slip come from the
+kernel itself, probed at the start state without a step (ContactModel.probe), so this module
+needs no numba: the prebuilt kernel's process never imports it.  How close the start is:
+docs/integrators.md, "The start".
 """
 from __future__ import annotations
 
@@ -75,27 +76,37 @@ def slide_for_tilt(tilt, rate, D, a, ad, sweeps=8):
     return u, rhs / coef
 
 
-def rolling_spin(om0, pz0, pz1):
-    """Spin [rad/s] at which the contact point's slip along the groove vanishes, from the slip
-    pz0 at spin om0 and pz1 at om0 + 1 [m/s] (linear in the spin: contact.groove_contact)."""
-    return om0 - pz0 / (pz1 - pz0)
+def slip_across(L, res):
+    """The contact point's slip [m/s] across the trunnion axis: along b = a x n / |a x n|, the
+    direction in which the spin about a moves the contact point (a the trunnion axis in L, n
+    the contact normal and v_t the slip in res: contact.groove_contact).  The slip along a is
+    the slide's."""
+    ax, ay, az = L[K.L_AX], L[K.L_AY], L[K.L_AZ]
+    nx, ny = res[K.R_NX], res[K.R_NY]
+    bx, by, bz = -az * ny, az * nx, ax * ny - ay * nx
+    return (res[K.R_VTX] * bx + res[K.R_VTY] * by + res[K.R_VTZ] * bz) / math.sqrt(
+        bx * bx + by * by + bz * bz)
+
+
+def rolling_spin(om0, v0, v1):
+    """Spin [rad/s] at which the roller rolls without slip across the trunnion axis, from that
+    slip v0 at spin om0 and v1 at om0 + 1 [m/s] (slip_across; linear in the spin)."""
+    return om0 - v0 / (v1 - v0)
 
 
 def place_on_cycle(m, table, theta, omega, F, vp):
     """Put the roller of ContactModel m (at its start state, at the groove bottom) where the
-    table's settled cycle has it: the slide, its rate and the spin the slide adds to rolling,
-    from the kernel's trunnion line and contact slip at that state (m.probe).  theta [rad],
-    omega [rad/s], F [N], vp [m/s]: the start's inputs."""
+    table's settled cycle has it: the slide and its rate, and the spin at which it then rolls
+    without slip across the trunnion axis, from the kernel's trunnion line and contact at that
+    state (m.probe).  theta [rad], omega [rad/s], F [N], vp [m/s]: the start's inputs."""
     Y = m.Y
-
-    def slip_z(om):   # the contact point's slip along the groove [m/s] at spin om
-        Y[K.Y_OM] = om
-        return m.probe(theta, omega, F, vp)[1][K.R_VTZ]
-    om0 = Y[K.Y_OM]
-    at_rest = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
     L = m.probe(theta, omega, F, vp)[0]
     tilt, rate = tilt_and_rate(table, Y[K.Y_X], omega)
     Y[K.Y_U], Y[K.Y_UD] = slide_for_tilt(tilt, rate, groove_offset(m.P, F) - m.P[K.P_FLANK],
                                          (L[K.L_AX], L[K.L_AY]), (L[K.L_ADX], L[K.L_ADY]))
-    sliding = rolling_spin(om0, slip_z(om0), slip_z(om0 + 1.0))
-    Y[K.Y_OM] = om0 + (sliding - at_rest)
+
+    def across(om):   # the slip across the trunnion axis [m/s] at spin om
+        Y[K.Y_OM] = om
+        return slip_across(*m.probe(theta, omega, F, vp))
+    om0 = Y[K.Y_OM]
+    Y[K.Y_OM] = rolling_spin(om0, across(om0), across(om0 + 1.0))
