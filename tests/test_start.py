@@ -98,3 +98,14 @@ def test_where_the_traverse_model_does_not_hold_the_start_is_the_groove_bottom(o
     assert start_slide.traverse_table(p, p["theta"], p["omega"], F, 0.0) is None
     m.start(p["theta"], p["omega"], F)
     assert m.Y[K.Y_U] == 0.0 and m.Y[K.Y_UD] == 0.0
+
+
+def test_a_load_too_light_to_press_the_roller_on_starts_finite():
+    """1 mN: the roller barely touches its flank, and the spin moves no slip there; the start
+    keeps its rolling spin (before: 0 / 0, and every output NaN from the first step)."""
+    m = JointModel({"n_rollers": 3, "F_press": 1e-3})
+    p = m.p
+    for _ in range(20):
+        out = m.step(1e-4, p["theta"], p["omega"], p["F_press"])
+    assert all(math.isfinite(v) for v in out.values())
+    assert all(math.isfinite(v) for r in m.rollers for v in r.Y)

@@ -34,14 +34,19 @@ def _table(items):
 def traverse_table(p: dict, theta, omega, F, plunge_speed):
     """The traverse model's periodic table at these inputs (a joint's rollers share it), or
     None where it does not hold the roller: coast or reverse whirl (F <= 0 or omega <= 0: the
-    roller starts at the groove bottom, as it did), no groove friction, mu_groove >= 1, or
-    ``traverse`` off (the slide locked)."""
+    roller starts at the groove bottom, as it did), no groove friction, mu_groove >= 1,
+    ``traverse`` off (the slide locked), or a scene whose cycle the model does not settle or
+    solve."""
     if not (F > 0.0 and omega > 0.0 and p["traverse"] and p["friction_groove"]
             and 0.0 < p["mu_groove"] < 1.0):
         return None
     sc = {k: p[k] for k in _TABLE_KEYS}
     sc.update(theta=theta, omega=omega, F_press=F, torque=0.0, plunge_speed=plunge_speed)
-    return _table(tuple(sorted(sc.items())))
+    try:
+        table = _table(tuple(sorted(sc.items())))
+    except (ValueError, ArithmeticError):   # a scene the traverse model cannot solve
+        return None
+    return table if table.settled else None
 
 
 def tilt_and_rate(table, x, omega):
@@ -90,8 +95,10 @@ def slip_across(L, res):
 
 def rolling_spin(om0, v0, v1):
     """Spin [rad/s] at which the roller rolls without slip across the trunnion axis, from that
-    slip v0 at spin om0 and v1 at om0 + 1 [m/s] (slip_across; linear in the spin)."""
-    return om0 - v0 / (v1 - v0)
+    slip v0 at spin om0 and v1 at om0 + 1 [m/s] (slip_across; linear in the spin); om0 where
+    the spin moves no slip (the roller off its flank: a load too light to press it on)."""
+    d = v1 - v0
+    return om0 - v0 / d if d != 0.0 else om0
 
 
 def place_on_cycle(m, table, theta, omega, F, vp):
@@ -110,3 +117,5 @@ def place_on_cycle(m, table, theta, omega, F, vp):
         return slip_across(*m.probe(theta, omega, F, vp))
     om0 = Y[K.Y_OM]
     Y[K.Y_OM] = rolling_spin(om0, across(om0), across(om0 + 1.0))
+    if not all(math.isfinite(Y[i]) for i in (K.Y_U, K.Y_UD, K.Y_OM)):
+        Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM] = 0.0, 0.0, om0   # the groove bottom, as before
