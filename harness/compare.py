@@ -50,6 +50,13 @@ def is_verification(contact: dict) -> bool:
     return (not contact["traverse"]) and contact["bearing"] == scene_mod.BEARING_IDEAL
 
 
+def _tolerance(contact: dict) -> dict:
+    """The tolerance a scene is judged with against the reduced model (the module's TOL_)."""
+    if is_verification(contact):
+        return TOL_VERIFICATION
+    return TOL_PHYSICAL if contact["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING
+
+
 def _o(a, p):
     return {"amplitude": float(a), "phase_deg": float(p)}
 
@@ -92,8 +99,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
         ref, against, tol = eq27, "eqs_18_27", TOL_VERIFICATION if verification else {}
     else:
         ref = {k: (trav[f"order{k}"]["amplitude"], trav[f"order{k}"]["phase_deg"]) for k in ORDERS}
-        against = "traverse"
-        tol = TOL_PHYSICAL if contact_sc["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING
+        against, tol = "traverse", _tolerance(contact_sc)
     diff, ok = _judge(oc, ref, tol)
     diff27, _ = _judge(oc, eq27, {})
     st = rc["settle"]
@@ -136,8 +142,7 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
     oa, oc = (last_cycle_orders(r["time"], r["Fz_mod"], np.abs(r["whirl_angle"]), ORDERS)
               for r in (ra, rc))
     verification = is_verification(contact_sc)
-    tol = TOL_VERIFICATION if verification else (
-        TOL_PHYSICAL if contact_sc["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING)
+    tol = _tolerance(contact_sc)
     diff, ok = _judge(oc, oa, tol)
     st, sa = rc["settle"], ra["settle"]
     settled = st["settled"] and sa["settled"]

@@ -236,21 +236,17 @@ class ContactModel:
         start time), without a step and without moving the model: the first step still
         starts from the inputs it is given."""
         saved = self.get_state()
-        P, OP = self.P.copy(), self._OP.copy()
-        self.start(theta, omega, scene_mod.pressing_load(F_press, torque, self.p["s"]),
-                   plunge_speed)
-        # any step size: only the substep and the pressing offset are used, no substep is taken
-        self.set_inputs(1e-4, theta, omega, F_press, torque, plunge_speed)
-        self._OP[K.OP_NOSTEP] = 1.0
-        self._run()
-        out = self.outputs(self._OP[K.OP_F])
+        F = scene_mod.pressing_load(F_press, torque, self.p["s"])
+        self.start(theta, omega, F, plunge_speed)
+        self.probe(theta, omega, F, plunge_speed)   # the outputs at the start state
+        out = self.outputs(F)
         self.set_state(saved)
-        self.P[:], self._OP[:] = P, OP
         return out
 
     def probe(self, theta, omega, F, vp):
         """The kernel's (L, res) at the state now, by a step of no substeps at these inputs
-        [rad, rad/s, N, m/s]; the parameters, operating point and history kept."""
+        [rad, rad/s, N, m/s] (the output vector written too; any step size: no substep is
+        taken); the parameters, operating point and history kept."""
         kept = self.P.copy(), self._OP.copy(), self._hs.copy()
         self.set_inputs(1e-4, theta, omega, F, 0.0, vp)
         self._OP[K.OP_NOSTEP] = 1.0
