@@ -6,11 +6,11 @@ roller's ring, docs/integrators.md) for 50-200 steps, which the generalized-alph
 at up to 11 substeps.  The reduced traverse model (reduced_model/traverse.py) gives the settled
 cycle's tilt of the contact normal towards the trunnion axis, p(x) = n.a; the slide u that
 gives that tilt, its rate, and the spin at which the roller then rolls without slip across the
-trunnion axis start the roller where steady running has it (ideal and lumped bearing; the
-needle-resolved row starts as it did).  The trunnion's line and the contact slip come from the
-kernel itself, probed at the start state without a step (ContactModel.probe), so this module
-needs no numba: the prebuilt kernel's process never imports it.  How close the start is:
-docs/integrators.md, "The start".
+trunnion axis start the roller where steady running has it (ideal and lumped bearing; with
+the needle-resolved row the roller starts at the groove bottom).  The trunnion's line and the
+contact slip come from the kernel itself, probed at the start state without a step
+(ContactModel.probe), so this module needs no numba: the prebuilt kernel's process never
+imports it.  How close the start is: docs/integrators.md, "The start".
 """
 from __future__ import annotations
 
@@ -33,10 +33,10 @@ def _table(items):
 
 def traverse_table(p: dict, theta, omega, F, plunge_speed):
     """The traverse model's periodic table at these inputs (a joint's rollers share it), or
-    None where it does not hold the roller: coast or reverse whirl (F <= 0 or omega <= 0: the
-    roller starts at the groove bottom, as it did), no groove friction, mu_groove >= 1,
-    ``traverse`` off (the slide locked), or a scene whose cycle the model does not settle or
-    solve."""
+    None where it does not hold the roller (it then starts at the groove bottom, at rest
+    along the trunnion): coast or reverse whirl (F <= 0 or omega <= 0), no groove friction,
+    mu_groove >= 1, ``traverse`` off (the slide locked), or a scene whose cycle the model
+    does not settle or solve."""
     if not (F > 0.0 and omega > 0.0 and p["traverse"] and p["friction_groove"]
             and 0.0 < p["mu_groove"] < 1.0):
         return None
@@ -118,4 +118,4 @@ def place_on_cycle(m, table, theta, omega, F, vp):
     om0 = Y[K.Y_OM]
     Y[K.Y_OM] = rolling_spin(om0, across(om0), across(om0 + 1.0))
     if not all(math.isfinite(Y[i]) for i in (K.Y_U, K.Y_UD, K.Y_OM)):
-        Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM] = 0.0, 0.0, om0   # the groove bottom, as before
+        Y[K.Y_U], Y[K.Y_UD], Y[K.Y_OM] = 0.0, 0.0, om0   # the groove bottom, at rest
