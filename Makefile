@@ -80,11 +80,12 @@ docs: docs-quick
 	$(BIN)/tripod-thrust stress --out out/stress
 	$(BIN)/python benchmarks/fmu_speed.py --md out/speed.md
 	$(BIN)/python benchmarks/transients.py --md out/transients.md
+	$(BIN)/python benchmarks/needle_chaos.py --md out/needle_chaos.md
 	$(BIN)/tripod-thrust example --out out/example
 	cp out/example/launch.png out/example/order_map.png out/example/thrust_orders.png docs/
 	$(BIN)/python -m harness.docgen --bench out/bench/bench.md --stress out/stress/stress.md \
 	  --speed out/speed.md --peers out/bench/peers.md --example out/example/launch.md \
-	  --transients out/transients.md
+	  --transients out/transients.md --chaos out/needle_chaos.md
 	cp out/bench/work_precision.png docs/
 
 # only what the code alone determines (seconds to minutes): no timings

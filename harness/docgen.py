@@ -204,14 +204,22 @@ def _example_rows():
     return [j for j in JOINTS for _ in TOOLS] + [next(iter(JOINTS))]
 
 
+def _needle_chaos_rows():
+    sys.path.insert(0, str(ROOT / "benchmarks"))
+    import needle_chaos
+    return needle_chaos.row_labels()
+
+
 def _transients_rows():
-    from harness.transients import LAUNCH_ROW
-    return ["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + ["needle-resolved"]
+    from harness.transients import LAUNCH_ROW, RESOLVED_ROWS
+    return ["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + list(RESOLVED_ROWS)
 
 
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)
     "make example": (_example_rows, "make example"),
     "benchmarks/transients.py": (_transients_rows, "python benchmarks/transients.py --md FILE"),
+    "benchmarks/needle_chaos.py": (_needle_chaos_rows,
+                                   "python benchmarks/needle_chaos.py --md FILE"),
     "bench: step cost": (_step_cost_rows, "tripod-thrust bench"),
     "bench: breakdown": (_breakdown_rows, "tripod-thrust bench"),
     "bench: work-precision": (None, "tripod-thrust bench"),
@@ -267,13 +275,16 @@ def update_exact(files=FILES) -> list[Path]:
 def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
                     speed_md: Path | None = None, peers_md: Path | None = None,
                     example_md: Path | None = None, transients_md: Path | None = None,
-                    files=FILES) -> list[Path]:
+                    chaos_md: Path | None = None, files=FILES) -> list[Path]:
     """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
     stress.md of `tripod-thrust stress`, the table `make bench` prints, peers.md of
-    `tripod-thrust bench --peer`, launch.md of `make example`."""
+    `tripod-thrust bench --peer`, launch.md of `make example`, the tables of
+    benchmarks/transients.py and benchmarks/needle_chaos.py."""
     new_blocks = {}
     if transients_md:
         new_blocks["benchmarks/transients.py"] = Path(transients_md).read_text()
+    if chaos_md:
+        new_blocks["benchmarks/needle_chaos.py"] = Path(chaos_md).read_text()
     if example_md:
         new_blocks["make example"] = Path(example_md).read_text()
     if peers_md:
@@ -315,6 +326,8 @@ if __name__ == "__main__":
     ap.add_argument("--example", metavar="LAUNCH.md", help="launch.md of `make example`")
     ap.add_argument("--transients", metavar="FILE.md",
                     help="the table of `python benchmarks/transients.py --md FILE.md`")
+    ap.add_argument("--chaos", metavar="FILE.md",
+                    help="the tables of `python benchmarks/needle_chaos.py --md FILE.md`")
     ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
     a = ap.parse_args()
     if a.check:
@@ -323,6 +336,6 @@ if __name__ == "__main__":
         sys.exit(1 if bad else 0)
     # measured blocks first: the README's speed summary is read from them
     for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers, a.example,
-                                             a.transients)
+                                             a.transients, a.chaos)
                            + update_exact()):
         print("updated", p.relative_to(ROOT))

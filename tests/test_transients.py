@@ -40,22 +40,26 @@ def resolved_10hz():
     return T.settle({"bearing": 2}, 1, 10)
 
 
-@pytest.mark.parametrize("name,factor", [("omega", 1.10), ("theta", 0.90)])
+@pytest.mark.parametrize("name,factor", [("omega", 1.10), ("torque", 1.10)])
 def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, factor):
-    # the needle-resolved row, one roller settled at 10 Hz: with BDF2's history across the
-    # step at its steady substep these missed the reference by 5.3 % and 6.1 % of order 3.
-    # Undisturbed, the default already misses the same reference by 2.0 % (its steady
-    # substep's own error at an event of the row, where the h/10 and h/20 references agree
-    # within 0.1 %), and after a step the references themselves part by 0.5-2.2 % (the row's
-    # chaos); so the bound is that floor plus 1.5 %.  Another CPU's rounding is another
-    # realization of the row: over seven (the settling whirl moved by 1e-12 to 1e-8) these
-    # ran 1.85-1.92 % and 1.86-2.69 %, the no-step floor 1.1-2.9 %
-    assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz) < 3.5
+    # the needle-resolved row, one roller settled at 10 Hz.  The row is chaotic: a 1e-15
+    # change of its state moves single samples of Fz_joint by up to 1.2 % of order 3 within
+    # the 20 steps, and references 10 to 160 times finer part by as much, so single samples
+    # have no converged reference; their 1 ms running mean has (those references within
+    # 0.5 %).  Against a reference of h/20, that mean missed by 1.21-1.27 % (omega) with
+    # BDF2's history across the step at its steady substep, 0.36-0.67 % with three finer
+    # communication steps; with the finer substeps over the next 0.8 ms 0.09-0.37 % (omega)
+    # and 0.08-0.41 % (torque) over six realizations of the row (its settling whirl moved by
+    # 1e-11 to 3e-9: another CPU's rounding is another realization)
+    assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz, mean=T.MEAN_SAMPLES,
+                  refine=20) < 1.0
 
 
-def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps():
-    # the mechanism: a step input counts down h/4, h/4, h/2 over the next communication
-    # steps (bdf2.BDF_STEP_IN); a ramp's small change leaves the steady substep
+@pytest.mark.parametrize("dt,fine", [(1e-4, [4] * 7 + [2]), (1e-3, [4, 4, 2])])
+def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
+    # the mechanism: a step input takes the communication steps of the next 0.8 ms, at least
+    # three, in substeps of h/4, the last h/2 (bdf2.BDF_STEP_IN); a ramp's small change
+    # leaves the steady substep
     import sys
     sys.path.insert(0, str(T.ROOT / "fmu_src"))
     from tripod_model import layout as LY
@@ -63,16 +67,16 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps():
     w = 2 * math.pi * 10
     r = m.rollers[0]
     for _ in range(3):
-        m.step(1e-4, T.THETA, w, 0.0, T.TORQUE)
+        m.step(dt, T.THETA, w, 0.0, T.TORQUE)
     taken = []
-    for k in range(5):
+    for k in range(len(fine) + 2):
         before = r._hs[LY.H_TAKEN]
-        m.step(1e-4, T.THETA, w * (1.001 if k == 0 else 1.101), 0.0, T.TORQUE)
+        m.step(dt, T.THETA, w * (1.001 if k == 0 else 1.101), 0.0, T.TORQUE)
         taken.append(r._hs[LY.H_TAKEN] - before)
     steady = taken[0]                 # the ramp's small step (jump 0.004 < GA_JUMP_STEP)
-    assert steady == pytest.approx(math.ceil(1e-4 / r.substep(
+    assert steady == pytest.approx(math.ceil(dt / r.substep(
         T.THETA, w * 1.001, m.pressing(0.0, T.TORQUE), r.v_st(T.THETA, w * 1.001))), abs=1)
-    assert taken[1:] == pytest.approx([4 * steady, 4 * steady, 2 * steady, steady], abs=4)
+    assert taken[1:] == pytest.approx([k * steady for k in fine] + [steady], abs=4)
     assert r._hs[LY.H_GA] == 1.0                  # the countdown over: BDF2's history valid
 
 

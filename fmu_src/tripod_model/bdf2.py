@@ -2,6 +2,8 @@
 and needle row in one system (rowsolve.coupled_solve).
 """
 
+import math
+
 from .jit import njit
 from .assembly import hold_slide, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x, tilt_drag
@@ -13,21 +15,26 @@ from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_I
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
-# GA_LOAD_RELAX of itself): the history across the jump and the substep that
-# resolves the row's steady running (about 3 us) leave the row's response to it 5-12 % of
-# order 3 off a fine reference (one roller, 10 Hz: omega and theta +-10 %); the next three
-# communication steps in substeps of h/4, h/4, h/2 (BDF2's step ratio stays within 2) bring
-# every step within 1 % beyond the 2 % the undisturbed row already misses the same reference
-# by (the steady substep's own error at an event of the row; docs/benchmarks.md).  hs[H_GA]
-# counts them down: -3, -4 (h/4), -5 (h/2).
+# GA_LOAD_RELAX of itself): the history across the jump and the substep that resolves the
+# row's steady running (about 3 us) leave the row's response to it 5-12 % of order 3 off a
+# fine reference (one roller, 10 Hz: omega and theta +-10 %).  The row answers a step within
+# about a millisecond, so the communication steps of the next BDF_FINE_TIME (at least
+# BDF_FINE_STEPS of them) take substeps of h/4, the last h/2 (BDF2's step ratio stays within
+# 2).  hs[H_GA]: BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the
+# first of those steps, one up at each after; the last is at BDF_STEP_IN - 1.  Beyond a
+# millisecond the row is chaotic and no finer step follows it sample by sample
+# (docs/benchmarks.md).
 BDF_STEP_IN = -3.0
+BDF_FINE_TIME = 8e-4   # [s]
+BDF_FINE_STEPS = 3
 
 
 @njit
 def inputs_jumped(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
     the slip's amplitude over v_st, -1 for none; P[P_DF] the pressing load's relative change):
-    a step input takes the next three communication steps in finer substeps (BDF_STEP_IN)."""
+    a step input takes the communication steps of the next BDF_FINE_TIME in finer substeps
+    (BDF_STEP_IN)."""
     if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > GA_JUMP_STEP or P[P_DF] > GA_LOAD_RELAX):
         hs[H_GA] = BDF_STEP_IN
 
@@ -40,9 +47,16 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
     step input's countdown: valid), hs[H_TAKEN] counts substeps."""
     ny = Y.shape[0]
     Y2, hs = W.Y2, W.hs
-    if hs[H_GA] < 0.0:     # a step input's countdown: h/4, h/4, h/2
-        k = 4 if hs[H_GA] > BDF_STEP_IN - 1.5 else 2
-        hs[H_GA] = hs[H_GA] - 1.0 if k == 4 else 1.0
+    if hs[H_GA] < 0.0:     # a step input's countdown (BDF_STEP_IN)
+        if hs[H_GA] == BDF_STEP_IN:   # the first: how many steps make BDF_FINE_TIME
+            hs[H_GA] = BDF_STEP_IN - max(BDF_FINE_STEPS,
+                                         math.ceil(BDF_FINE_TIME / (h * n) - 1e-6))
+        else:
+            hs[H_GA] += 1.0
+        last = hs[H_GA] > BDF_STEP_IN - 1.5
+        k = 2 if last else 4
+        if last:     # then the steady substep
+            hs[H_GA] = 1.0
         h = h / k
         n = n * k
     for _ in range(n):
