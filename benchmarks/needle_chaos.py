@@ -49,21 +49,13 @@ def fine_run(state, inputs, substep, steps=20):
     return T.response(r, inputs, steps, sub=int(round(T.DT / substep)))
 
 
-def twin(state, eps):
-    """``state`` with the roller's spin scaled by 1 + eps."""
-    from tripod_model.layout import Y_OM
-    out = [dict(s, Y=s["Y"].copy()) for s in state]
-    out[0]["Y"][Y_OM] *= 1.0 + eps
-    return out
-
-
 def e_folding(model, state, inputs, eps, a3, steps=30, sub=10):
     """The e-folding time [s] of the difference between the runs from ``state`` and from its
     twin (eps), the largest over the state's entries scaled by their largest magnitude, fitted
     where it lies between 1e3 eps and 1e-3; and when the twins' Fz_joint first part by 1 % of
     order 3 (a3 [N]) [s]."""
     runs = []
-    for st in (state, twin(state, eps)):
+    for st in (state, T.twin(state, eps)):
         model.set_state(st)
         ys, fz = [], []
         for _ in range(steps * sub):
@@ -109,7 +101,7 @@ def main(argv=None):
         lines.append(f"| {label}: default | h/{REFINES[-1]} | {pc(y, finest, 1):.2f} | "
                      f"{pc(y, finest, T.MEAN_SAMPLES):.2f} |")
         for eps in TWINS:
-            m.set_state(twin(st, eps))
+            m.set_state(T.twin(st, eps))
             yt = T.response(m, inputs, 20)
             m.set_state(st)
             lines.append(f"| {label}: default from the state moved by {eps:g} | default | "

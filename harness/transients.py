@@ -73,9 +73,17 @@ def reference(params, n_rollers, state, inputs, steps, h, refine=10):
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
 # steps (1 ms): the row is chaotic on the scale of a few samples (a 1e-15 change of the state
-# moves single samples of Fz_joint by 0.6-1.6 % of order 3 within 20 steps, and references
+# moves single samples of Fz_joint by up to 1.2 % of order 3 within 20 steps, and references
 # 10 to 160 times finer part by as much), while the 1 ms mean converges (docs/benchmarks.md)
 MEAN_SAMPLES = 10
+
+
+def twin(state, eps):
+    """A model state (get_state's) with the first roller's spin scaled by 1 + eps."""
+    from tripod_model.layout import Y_OM   # (on the path _model put it)
+    out = [dict(s, Y=s["Y"].copy()) for s in state]
+    out[0]["Y"][Y_OM] *= 1.0 + eps
+    return out
 
 
 def running_mean(y, samples):
@@ -100,10 +108,7 @@ def case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE, m
     y = response(m, inputs, 20)
     m.set_state(st)
     if perturb:
-        from tripod_model.layout import Y_OM   # (on the path _model put it)
-        twin = [dict(s, Y=s["Y"].copy()) for s in st]
-        twin[0]["Y"][Y_OM] *= 1.0 + perturb
-        m.set_state(twin)
+        m.set_state(twin(st, perturb))
         ref = response(m, inputs, 20)
         m.set_state(st)
     else:
