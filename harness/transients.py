@@ -35,15 +35,16 @@ def _model(params, n_rollers, **extra):
                                "contact"))
 
 
-def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE):
+def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE, nudge=0.0):
     """The model after ``cycles`` whirl cycles at f [Hz], theta [rad] and torque [N m], and
-    order 3 of Fz_joint over the last [N]."""
+    order 3 of Fz_joint over the last [N].  ``nudge``: the first step's whirl scaled by
+    1 + nudge, another realization of a chaotic row (as another CPU's rounding gives)."""
     m = _model(params, n_rollers)
     w = 2 * math.pi * f
     n = int(round(cycles / f / DT))
     y, x = [], []
-    for _ in range(n):
-        o = m.step(DT, theta, w, 0.0, torque)
+    for i in range(n):
+        o = m.step(DT, theta, w * (1.0 + nudge) if i == 0 else w, 0.0, torque)
         y.append(o["Fz_joint"])
         x.append(o["whirl_angle"])
     x, y = np.array(x), np.array(y)

@@ -49,8 +49,9 @@ def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, fa
     # 0.5 %).  Against a reference of h/20, that mean missed by 1.21-1.27 % (omega) with
     # BDF2's history across the step at its steady substep, 0.36-0.67 % with three finer
     # communication steps; with the finer substeps over the next 0.8 ms 0.06-0.37 % (omega)
-    # and 0.07-0.47 % (torque) over twelve realizations of the row (its settling whirl moved
-    # by 3e-12 to 3e-7: another CPU's rounding is another realization)
+    # and 0.07-0.53 % (torque) over twelve other realizations of the row (its settling whirl
+    # nudged by 1e-12 to 3e-7: another CPU's rounding is another realization;
+    # `benchmarks/transients.py --realizations 12`)
     assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz, mean=T.MEAN_SAMPLES,
                   refine=20) < 1.0
 
