@@ -7,7 +7,7 @@ and after omega +1 %.  Prints markdown tables:
 - the same model from a state moved by 1e-15 or 1e-12 (the roller's spin): how far rounding
   alone moves it, and the e-folding time of that difference in the state.
 
-    python benchmarks/needle_chaos.py [--md FILE]       (about 2 min)
+    python benchmarks/needle_chaos.py [--md FILE]       (about 1 min)
 """
 from __future__ import annotations
 
