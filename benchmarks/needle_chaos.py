@@ -21,9 +21,10 @@ import numpy as np
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from harness import transients as T  # noqa: E402
+from reduced_model.scene import BY_NAME  # noqa: E402
 
 REFINES = (10, 20, 40, 80, 160)
-MIN_SUBSTEP = 1e-7   # max_substep's lower end (reduced_model/scene.py)
+MIN_SUBSTEP = BY_NAME["max_substep"].auto_or_min   # max_substep's smallest value
 CELLS = (("no step", 1.0), ("omega +1 %", 1.01))   # (label, omega's factor)
 TWINS = (1e-15, 1e-12)
 
@@ -42,11 +43,8 @@ def fine_run(state, inputs, substep, steps=20):
     (below max_substep's range: one substep a communication step of that size)."""
     if substep >= MIN_SUBSTEP:
         return T.reference({"bearing": 2}, 1, state, inputs, steps, substep, 1)
-    r = T._model({"bearing": 2}, 1, max_substep=MIN_SUBSTEP)
-    r.set_state(state)
-    from tripod_model.layout import H_GA   # (on the path _model put it)
-    r.rollers[0]._hs[H_GA] = 0.0
-    return T.response(r, inputs, steps, sub=int(round(T.DT / substep)))
+    return T.reference({"bearing": 2}, 1, state, inputs, steps, MIN_SUBSTEP, 1,
+                       sub=int(round(T.DT / substep)))
 
 
 def e_folding(model, state, inputs, eps, a3, steps=30, sub=10):

@@ -184,6 +184,14 @@ def spectrum(run: dict, omega: float, name: str = "Fz_mod", orders=range(1, 11))
     return np.array([res[k][0] for k in orders])
 
 
+def _cell(orders, key):
+    """One order's amplitude and phase in format_table's columns; "-" where ``orders`` is None
+    (no closed form or traverse model for the scene)."""
+    if not orders:
+        return f"{'-':>22s}"
+    return f"{orders[key]['amplitude']:11.3f} N {orders[key]['phase_deg']:7.2f}°"
+
+
 def format_table(r: dict) -> str:
     sc = r["scene"]
     a, c, d = r["analytic"], r["contact"], r["difference"]
@@ -213,15 +221,10 @@ def format_table(r: dict) -> str:
         t = r["tolerance"].get(key, {})
         ttxt = " / ".join(x for x in (f"{100 * t['amplitude_rel']:g} %" if "amplitude_rel" in t else "",
                                       f"{t['phase_deg']:g} deg" if "phase_deg" in t else "") if x) or "reported"
-        tr = a["traverse"][key] if a["traverse"] else None
-        trtxt = f"{tr['amplitude']:11.3f} N {tr['phase_deg']:7.2f}°" if tr else f"{'-':>22s}"
-        cf = a["closed_form"][key] if a["closed_form"] else None
-        cftxt = f"{cf['amplitude']:11.3f} N {cf['phase_deg']:7.2f}°" if cf else f"{'-':>22s}"
         lines.append(
             f"{'order ' + str(k):8s}"
             f"{a['fmu'][key]['amplitude']:9.3f} N {a['fmu'][key]['phase_deg']:7.2f}°"
-            f"{cftxt}{trtxt}"
-            f"{c[key]['amplitude']:11.3f} N {c[key]['phase_deg']:7.2f}°"
+            f"{_cell(a['closed_form'], key)}{_cell(a['traverse'], key)}{_cell(c, key)}"
             f"{100 * d[key]['amplitude_rel']:+10.2f} % {d[key]['phase_deg']:+6.2f}°"
             f"{ttxt:>20s}")
     if r["phase_lag_deg"] is not None:

@@ -61,15 +61,15 @@ def response(m, inputs, steps, sub=1):
     return np.array(out)
 
 
-def reference(params, n_rollers, state, inputs, steps, h, refine=10):
+def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10):
     """From ``state``, the same inputs with the substep h / refine and the communication step
-    DT / 10, accelerations afresh."""
+    DT / sub, accelerations afresh."""
     r = _model(params, n_rollers, max_substep=h / refine)
     r.set_state(state)
     from tripod_model.layout import H_GA   # (on the path _model put it)
     for roller in r.rollers:
         roller._hs[H_GA] = 0.0
-    return response(r, inputs, steps, sub=10)
+    return response(r, inputs, steps, sub=sub)
 
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
