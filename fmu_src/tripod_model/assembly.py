@@ -8,9 +8,9 @@ from .jit import inline, njit
 from . import ring
 from .needles import needle_forces
 from .contact import (groove_contact, line_kinematics, roller_motion, row_damping, row_load,
-    row_rolling_resistance, row_sliding_friction, row_stiffness, trunnion_axial)
+    row_rolling_resistance, row_sliding_friction, row_stiffness, spin_moment, trunnion_axial)
 from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_AXIAL,
-    P_FRICN, P_INTEG, P_IS, P_IT, P_M, P_MU, P_QSUM, P_R, P_ROLLR, P_S, P_VST, R_FN, R_FX, R_FY,
+    P_A1, P_FRICN, P_INTEG, P_IS, P_IT, P_M, P_MU, P_QSUM, P_R, P_ROLLR, P_S, P_SPIN, P_VST, R_FN, R_FX, R_FY,
     R_FZ, R_G, R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D,
     Y_B2, Y_B2D, Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
 
@@ -70,10 +70,11 @@ def slip_sensitivities(r, L, res, e1, e2, sixdof, resolved, G, b):
 
 
 @inline
-def friction_jacobian(P, h, res, G, nv, A):
+def friction_jacobian(P, h, res, G, nv, A, secant):
     """A = -h J, J the Jacobian of the groove friction (Eq. 11, tanh law) in the unknowns:
     J = -G (slope t t^T + iso (I - t t^T)) G^T with t = v_t/|v_t|, slope the tangent and
-    iso = mu f_n g/|v_t| the secant [N s/m]; zero for the explicit integrator 2."""
+    iso = mu f_n g/|v_t| the secant [N s/m]; with ``secant`` the secant along the slip too
+    (J = -iso G G^T); zero for the explicit integrator 2."""
     vt = res[R_SLIP]
     fn = res[R_FN]
     if vt > 1e-12:
@@ -82,7 +83,7 @@ def friction_jacobian(P, h, res, G, nv, A):
     else:
         iso = res[R_SLOPE]
         tx, ty, tz = 0.0, 0.0, 0.0
-    aniso = res[R_SLOPE] - iso
+    aniso = 0.0 if secant else res[R_SLOPE] - iso
     if P[P_INTEG] == INT_EXPLICIT:
         iso = 0.0      # explicit (symplectic) Euler, for comparison: no friction Jacobian
         aniso = 0.0
@@ -92,6 +93,37 @@ def friction_jacobian(P, h, res, G, nv, A):
             gj_t = G[j, 0] * tx + G[j, 1] * ty + G[j, 2] * tz
             gg = G[i, 0] * G[j, 0] + G[i, 1] * G[j, 1] + G[i, 2] * G[j, 2]
             A[i, j] = h * (iso * gg + aniso * gi_t * gj_t)      # -h J
+
+
+@inline
+def spin_moment_jacobian(P, h, res, wr, L, e1, e2, nv, A):
+    """A += -h J, J the Jacobian of the spin moment (Eq. 16: -M_s(w_n) n, w_n = w . n) in the
+    rotational unknowns om, b1d, b2d (axes a, e1, e2; as many as nv holds): J = -s k k^T with
+    k_i = n . axis_i and s its secant M_s / w_n [N m s] (the slope at w_n = 0), which, like
+    the sliding friction's, cannot overshoot."""
+    fn, mu, vst = res[R_FN], P[P_MU], P[P_VST]
+    if P[P_SPIN] < 0.5 or mu <= 0.0 or fn <= 0.0 or vst <= 0.0 or P[P_INTEG] == INT_EXPLICIT:
+        return
+    nx, ny = res[R_NX], res[R_NY]
+    wn = wr[0] * nx + wr[1] * ny
+    if abs(wn) > 1e-12:
+        s = spin_moment(mu, fn, P[P_A1], wn, vst) / wn
+    else:
+        a = P[P_A1] * fn ** (1.0 / 3.0)
+        s = 0.375 * mu * fn * a * 3.0 * a / vst
+    k1 = L[L_AX] * nx + L[L_AY] * ny
+    k3 = e1[0] * nx + e1[1] * ny
+    k4 = e2[0] * nx + e2[1] * ny
+    A[1, 1] += h * s * k1 * k1
+    if nv > 4:     # the tilts b1d, b2d (unknowns 3, 4)
+        A[1, 3] += h * s * k1 * k3
+        A[3, 1] += h * s * k1 * k3
+        A[1, 4] += h * s * k1 * k4
+        A[4, 1] += h * s * k1 * k4
+        A[3, 3] += h * s * k3 * k3
+        A[3, 4] += h * s * k3 * k4
+        A[4, 3] += h * s * k3 * k4
+        A[4, 4] += h * s * k4 * k4
 
 
 @inline
@@ -200,17 +232,20 @@ def lumped_radial_step(Y, h, m, Fe, ktot, c):
 
 
 @inline
-def roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv):
+def roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv, secant):
     """The roller's own part of a linearly implicit step of h [s] ending at whirl angle x
     [rad]: the groove contact on the state Y, its friction Jacobian in the nv unknowns, the
-    masses, the driving acceleration along the axis.  Returns the roller's centre [m] and the
-    row axes e1, e2."""
+    masses, the driving acceleration along the axis; ``secant`` (BDF2's choice): the friction's
+    secant along the slip too, and the spin moment implicit (spin_moment_jacobian).  Returns
+    the roller's centre [m] and the row axes e1, e2."""
     L, res, G, A, b = W.L, W.res, W.G, W.A, W.b
     line_kinematics(x, drive.w, drive.theta, P, L)
     c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, sixdof)
     groove_contact(c, v, wr, P, res)
     slip_sensitivities(P[P_R], L, res, e1, e2, sixdof, resolved, G, b)
-    friction_jacobian(P, h, res, G, nv, A)
+    friction_jacobian(P, h, res, G, nv, A, secant)
+    if secant:
+        spin_moment_jacobian(P, h, res, wr, L, e1, e2, nv, A)
     m = P[P_M]
     A[0, 0] += m
     A[1, 1] += P[P_IS]

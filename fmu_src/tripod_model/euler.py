@@ -31,7 +31,7 @@ def substep(Y, P, drive, h, W, NW):
     x = Y[Y_X] + h * drive.w
     Y[Y_X] = x
     nv = 6 if resolved else 5 if lumped else 2
-    c, e1, e2 = roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv)
+    c, e1, e2 = roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv, False)
     It = P[P_IT]
     drag1 = drag2 = kh = Fr = kr = 0.0
     if sixdof:
