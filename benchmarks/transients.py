@@ -17,7 +17,8 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,  # noqa: E402
-                                MEAN_SAMPLES, RESOLVED_ROWS, SIZES, case, settle)
+                                MEAN_SAMPLES, RESOLVED_LAUNCH, RESOLVED_ROWS, SIZES, case,
+                                settle)
 
 
 def floor(params, nr, f, base, **kw):
@@ -59,7 +60,7 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="one roller count, ideal bearing")
     ap.add_argument("--md", help="write the table as markdown to this file")
     ap.add_argument("--no-resolved", action="store_true",
-                    help="leave out the needle-resolved bearing's rows (about 40 s)")
+                    help="leave out the needle-resolved bearing's rows (about 70 s)")
     ap.add_argument("--realizations", type=int, default=0, metavar="K",
                     help=f"then the needle row's +-10 %% steps on K (at most {len(NUDGES)}) "
                          "other realizations")
@@ -98,6 +99,14 @@ def main(argv=None):
         base = settle(params, nr, f)
         for label, kw in ((RESOLVED_ROWS[0], {}), (RESOLVED_ROWS[1], {"perturb": 1e-15}),
                           (RESOLVED_ROWS[2], {"mean": MEAN_SAMPLES, "refine": 20})):
+            devs = [case(params, nr, f, name, fac, base, **kw) for name in INPUTS
+                    for fac in SIZES]
+            rows.append((label, nr, f, base[1], floor(params, nr, f, base, **kw), devs))
+            print(f"{label} 1 roller 10 Hz: worst {max(devs):.2f} %", file=sys.stderr)
+        # the same row at a launch's torque, single samples (docs/benchmarks.md)
+        for label, theta in RESOLVED_LAUNCH:
+            kw = {"theta": theta, "torque": LAUNCH_TORQUE}
+            base = settle(params, nr, f, **kw)
             devs = [case(params, nr, f, name, fac, base, **kw) for name in INPUTS
                     for fac in SIZES]
             rows.append((label, nr, f, base[1], floor(params, nr, f, base, **kw), devs))

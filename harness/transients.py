@@ -25,6 +25,9 @@ LAUNCH_THETA, LAUNCH_TORQUE = math.radians(25.0), 3000.0
 # its needle-resolved rows: single samples; single samples against a 1e-15 twin; the 1 ms mean
 RESOLVED_ROWS = ("needle-resolved", "needle-resolved, rounding (1e-15)",
                  "needle-resolved, 1 ms mean")
+# and its rows at a launch's torque (single samples): (label, theta [rad])
+RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
+                   ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
 
 
 def _model(params, n_rollers, **extra):
