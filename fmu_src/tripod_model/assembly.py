@@ -106,11 +106,9 @@ def spin_moment_jacobian(P, h, res, wr, L, e1, e2, nv, A):
         return
     nx, ny = res[R_NX], res[R_NY]
     wn = wr[0] * nx + wr[1] * ny
-    if abs(wn) > 1e-12:
-        s = spin_moment(mu, fn, P[P_A1], wn, vst) / wn
-    else:
-        a = P[P_A1] * fn ** (1.0 / 3.0)
-        s = 0.375 * mu * fn * a * 3.0 * a / vst
+    if abs(wn) < 1e-9:   # the slope at 0: tanh(x) / x = 1 - x^2 / 3, exact here
+        wn = 1e-9
+    s = spin_moment(mu, fn, P[P_A1], wn, vst) / wn
     k1 = L[L_AX] * nx + L[L_AY] * ny
     k3 = e1[0] * nx + e1[1] * ny
     k4 = e2[0] * nx + e2[1] * ny
