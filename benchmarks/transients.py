@@ -27,6 +27,15 @@ def floor(params, nr, f, base, **kw):
     return case(params, nr, f, "omega", 1.0, base, **kw)
 
 
+def table_row(label, params, nr, f, base, **kw):
+    """One row of the table: (label, rollers, whirl [Hz], order 3 [N], the no-step floor,
+    each step's deviation [% of order 3]); kw goes to case (the scene's theta and torque,
+    and how the row reads: mean, refine, perturb)."""
+    devs = [case(params, nr, f, name, fac, base, **kw) for name in INPUTS for fac in SIZES]
+    print(f"{label}, {nr} roller(s), {f} Hz: worst {max(devs):.2f} %", file=sys.stderr)
+    return label, nr, f, base[1], floor(params, nr, f, base, **kw), devs
+
+
 # the settling whirl's nudges of the other realizations (--realizations)
 NUDGES = (1e-11, 1e-10, 3e-10, 1e-9, 3e-9, 3e-12, 3e-11, 1e-8, 3e-8, 1e-7, 3e-7, 1e-12)
 
@@ -74,21 +83,13 @@ def main(argv=None):
     for bname, params in bearings:
         for nr in rollers:
             for f in (2, 10, 40):
-                base = settle(params, nr, f)
-                devs = [case(params, nr, f, name, fac, base) for name in INPUTS
-                        for fac in SIZES]
-                rows.append((bname, nr, f, base[1], floor(params, nr, f, base), devs))
-                print(f"{bname:6s} {nr} roller(s) {f:3d} Hz: worst {max(devs):.2f} %",
-                      file=sys.stderr)
+                rows.append(table_row(bname, params, nr, f, settle(params, nr, f)))
     if not a.quick:
         # the whole joint at a launch's load and angle (45 kN per roller), where the roller's
         # slide rings at 8.6 kHz (docs/integrators.md)
+        kw = {"theta": LAUNCH_THETA, "torque": LAUNCH_TORQUE}
         for f in (2, 10, 40):
-            kw = {"theta": LAUNCH_THETA, "torque": LAUNCH_TORQUE}
-            base = settle({}, 3, f, **kw)
-            devs = [case({}, 3, f, name, fac, base, **kw) for name in INPUTS for fac in SIZES]
-            rows.append((LAUNCH_ROW, 3, f, base[1], floor({}, 3, f, base, **kw), devs))
-            print(f"launch 3 rollers {f:3d} Hz: worst {max(devs):.2f} %", file=sys.stderr)
+            rows.append(table_row(LAUNCH_ROW, {}, 3, f, settle({}, 3, f, **kw), **kw))
     if not (a.quick or a.no_resolved):
         # the needle-resolved bearing (46 needles x 7 spheres, BDF2), slow to settle: one
         # roller at 10 Hz.  Three rows: single samples against the reference; single samples
@@ -99,18 +100,11 @@ def main(argv=None):
         base = settle(params, nr, f)
         for label, kw in ((RESOLVED_ROWS[0], {}), (RESOLVED_ROWS[1], {"perturb": 1e-15}),
                           (RESOLVED_ROWS[2], {"mean": MEAN_SAMPLES, "refine": 20})):
-            devs = [case(params, nr, f, name, fac, base, **kw) for name in INPUTS
-                    for fac in SIZES]
-            rows.append((label, nr, f, base[1], floor(params, nr, f, base, **kw), devs))
-            print(f"{label} 1 roller 10 Hz: worst {max(devs):.2f} %", file=sys.stderr)
+            rows.append(table_row(label, params, nr, f, base, **kw))
         # the same row at a launch's torque, single samples (docs/benchmarks.md)
         for label, theta in RESOLVED_LAUNCH:
             kw = {"theta": theta, "torque": LAUNCH_TORQUE}
-            base = settle(params, nr, f, **kw)
-            devs = [case(params, nr, f, name, fac, base, **kw) for name in INPUTS
-                    for fac in SIZES]
-            rows.append((label, nr, f, base[1], floor(params, nr, f, base, **kw), devs))
-            print(f"{label} 1 roller 10 Hz: worst {max(devs):.2f} %", file=sys.stderr)
+            rows.append(table_row(label, params, nr, f, settle(params, nr, f, **kw), **kw))
     head = ("| bearing | rollers | whirl [Hz] | order 3 [N] | no step | "
             + " | ".join(f"{n} {100 * (s - 1):+.0f} %" for n in INPUTS for s in SIZES) + " |")
     lines = [head, "|" + "---|" * (5 + len(INPUTS) * len(SIZES))]
