@@ -32,6 +32,14 @@ CYCLE_SUBSTEPS = 1960.0
 # an input step, 0.65 % with none (at 3e-4 0.45 % and 0.35 %, as with the ring always
 # resolved); docs/integrators.md
 RING_QUIET_FORCE = 3e-4
+# The BDF2 substep with the needle-resolved bearing takes at most this whirl angle [rad]
+# (10 Hz: 8 us, not binding; 40 Hz: 2 us).  BDF2 linearizes once a substep, with the needles'
+# friction by its secant; the linearization error grows with speed: one roller's order 1 at
+# 300 N m and 8 deg read 1 % high at 25 Hz and 4.5 % at 40 and 80 Hz at the row's 2.9 us
+# (a second linear solve at the corrected state, or half the substep, removes it).  At this
+# bound 0.7 % at 40 Hz and 0.4 % at 80 Hz, means over three realizations against h/4 to h/8,
+# inside the row's chaos (docs/integrators.md)
+ROW_WHIRL_STEP = 5e-4
 
 
 def amplitudes(P, theta, omega):
@@ -106,7 +114,7 @@ def ring_step(P, F):
 
 def substep(P, theta, omega, F, vst, stiff):
     """Substep [s]: max_substep if set; the generalized-alpha step (ga_step_size) with
-    integrator 4 and the ideal or lumped bearing; the BDF2 step's (row_substep, and the first
+    integrator 4 and the ideal or lumped bearing; the BDF2 step's (row_substep, ROW_WHIRL_STEP / w and the first
     two bounds below) with integrator 4 and the needle-resolved bearing; else from accuracy and
     stability estimates:
 
@@ -127,7 +135,10 @@ def substep(P, theta, omega, F, vst, stiff):
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
     h = _accuracy_bound(P, theta, w, vst, 80.0 if stiff else 0.0)
     if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] == BEAR_RESOLVED:
-        return max(min(h, row_substep(P, F)), 1e-7)
+        h = min(h, row_substep(P, F))
+        if w > 0:
+            h = min(h, ROW_WHIRL_STEP / w)
+        return max(h, 1e-7)
     if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
         mu = P[P_MU]
         if P[P_BEAR] == BEAR_RESOLVED and P[P_FRICN] > 0.5:
