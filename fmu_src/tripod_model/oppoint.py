@@ -114,9 +114,9 @@ def ring_step(P, F):
 
 def substep(P, theta, omega, F, vst, stiff):
     """Substep [s]: max_substep if set; the generalized-alpha step (ga_step_size) with
-    integrator 4 and the ideal or lumped bearing; the BDF2 step's (row_substep, ROW_WHIRL_STEP / w and the first
-    two bounds below) with integrator 4 and the needle-resolved bearing; else from accuracy and
-    stability estimates:
+    integrator 4 and the ideal or lumped bearing; the BDF2 step's (row_substep, ROW_WHIRL_STEP
+    / w and the first two bounds below) with integrator 4 and the needle-resolved bearing; else
+    from accuracy and stability estimates:
 
     - the friction transition: V swings through +/- v_st at up to 2 w sqrt(A^2+B^2); 80
       substeps across it keep order 3 converged to about 0.02 % (2nd-order integrator);
