@@ -304,6 +304,7 @@ def cmd_runup(args) -> int:
     if not rows:
         raise ValueError("the history holds no whole revolution of the whirl angle")
     out = T.write_runup(rows, args.out)
+    print(f"orders of {rows[0]['signal']} per revolution")
     print(f"{'rev':>4} {'speed [Hz]':>10} {'order 3 contact [N]':>20} {'analytic [N]':>13} "
           f"{'diff [%]':>9} {'order 1 contact [N]':>20}")
     for r in rows:
@@ -396,8 +397,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "about 2 min), 1 lumped (seconds)")
     p.set_defaults(func=cmd_paper)
     p = add("runup", "order tracking: both FMUs through a run-up or any input history, orders 1 "
-                     "and 3 of Fz_joint per revolution against speed (CSV, JSON, plot); the "
-                     "whole joint at 300 N m and 8 deg unless --set says otherwise")
+                     "and 3 of Fz_joint (one roller: Fz_mod) per revolution against speed "
+                     "(CSV, JSON, plot); the whole joint at 300 N m and 8 deg unless --set says "
+                     "otherwise")
     _scene_args(p, "contact")
     p.add_argument("--from-hz", type=float, default=2.0, help="whirl speed at the start [Hz]")
     p.add_argument("--to-hz", type=float, default=40.0, help="whirl speed at the end [Hz]")

@@ -223,22 +223,30 @@ def start_values_by_model(start_values):
     return out
 
 
+def runup_signal(start_values):
+    """The output a run-up tracks: Fz_joint for the whole joint, Fz_mod (the paper's modified
+    thrust, section 3.2) for one roller."""
+    n = start_values.get("n_rollers", BY_NAME["n_rollers"].default)
+    return "Fz_joint" if int(n) == 3 else "Fz_mod"
+
+
 def runup_fmus(start_values, inputs, stop_time, dt=DT):
     """Both FMUs through FMPy (fresh processes) along the input history ``inputs``, each with
-    the start values its model has (start_values_by_model); order 1 and 3 of Fz_joint per
-    revolution of each FMU's own whirl_angle, and the difference of the analytic FMU's order 3
-    from the contact FMU's [%]."""
+    the start values its model has (start_values_by_model); order 1 and 3 of runup_signal's
+    output [N] per revolution of each FMU's own whirl_angle, and the difference of the
+    analytic FMU's order 3 from the contact FMU's [%]."""
     from .fmus import ensure_fmu
     from .runs import run_fmu
     res = {}
     by_model = start_values_by_model(start_values)
+    signal = runup_signal(start_values)
     for model, name in (("contact", "TripodRoller"), ("analytic", "TripodRollerAnalytic")):
         r = run_fmu(ensure_fmu(name), by_model[model], stop_time=stop_time, output_interval=dt,
-                    outputs=["Fz_joint", "whirl_angle"], inputs=inputs)
-        res[model] = revolution_orders(r["time"], r["whirl_angle"], r["Fz_joint"])
+                    outputs=[signal, "whirl_angle"], inputs=inputs)
+        res[model] = revolution_orders(r["time"], r["whirl_angle"], r[signal])
     rows = []
     for c, a in zip(res["contact"], res["analytic"]):
-        rows.append({"revolution": c["revolution"], "speed_hz": c["speed_hz"],
+        rows.append({"revolution": c["revolution"], "speed_hz": c["speed_hz"], "signal": signal,
                      "contact_order1": c["order1"], "contact_order3": c["order3"],
                      "analytic_order1": a["order1"], "analytic_order3": a["order3"],
                      "order3_diff_pct": 100 * (a["order3"] / c["order3"] - 1)
@@ -269,7 +277,8 @@ def write_runup(rows, out):
                 label=f"order {k}, contact FMU")
         ax.plot(f, [r[f"analytic_order{k}"] for r in rows], "C1" + style + "s", ms=3,
                 label=f"order {k}, analytic FMU")
-    ax.set(ylabel="amplitude of Fz_joint [N]", title="order cuts along the input history")
+    ax.set(ylabel=f"amplitude of {rows[0]['signal']} [N]",
+           title="order cuts along the input history")
     ax.legend()
     bx.plot(f, [r["order3_diff_pct"] for r in rows], "C2o-", ms=3)
     bx.axhline(0.0, color="k", lw=0.5)
