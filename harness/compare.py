@@ -102,32 +102,16 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
         against, tol = "traverse", _tolerance(contact_sc)
     diff, ok = _judge(oc, ref, tol)
     diff27, _ = _judge(oc, eq27, {})
-    st = rc["settle"]
-    result = {
-        "scene": contact_sc, "quadrant": "drive",
-        "kind": "verification" if verification else "physical",
-        "against": against,
-        "regime": rep["regime"],
-        # where the judge (the traverse model) was not checked against the contact model
-        "outside_checked": trav["outside_checked"] if against == "traverse" else [],
-        "analytic": {**{f"order{k}": _o(*ref[k]) for k in ORDERS},
-                     "closed_form": {f"order{k}": _o(*eq27[k]) for k in ORDERS},
-                     "traverse": None if trav is None else
-                     {f"order{k}": trav[f"order{k}"] for k in ORDERS},
-                     "fmu": {f"order{k}": _o(*oa[k]) for k in ORDERS}},
-        "contact": {f"order{k}": _o(*oc[k]) for k in ORDERS},
-        "difference": diff,
-        "difference_eqs_18_27": diff27,
-        "tolerance": tol,
-        "phase_lag_deg": None if verification else -diff27["order3"]["phase_deg"],
-        "cycles": st["cycles"],
-        "settled": st["settled"],
-        "cycle_change": st["worst"],
-        "pass": bool(ok and st["settled"]),
-        "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
-        "_runs": {"analytic": ra, "contact": rc, "omega": omega, "settle": st},
-    }
-    return result
+    analytic = {**_orders(ref), "closed_form": _orders(eq27),
+                "traverse": None if trav is None else
+                {f"order{k}": trav[f"order{k}"] for k in ORDERS},
+                "fmu": _orders(oa)}
+    # where the judge (the traverse model) was not checked against the contact model
+    outside = trav["outside_checked"] if against == "traverse" else []
+    return _result(contact_sc, verification, against, analytic, oc, diff, tol, ok, ra, rc, omega,
+                   regime=rep["regime"], outside=outside, diff27=diff27,
+                   phase_lag=None if verification else -diff27["order3"]["phase_deg"],
+                   settled=rc["settle"]["settled"])
 
 
 def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
@@ -144,20 +128,37 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
     verification = is_verification(contact_sc)
     tol = _tolerance(contact_sc)
     diff, ok = _judge(oc, oa, tol)
-    st, sa = rc["settle"], ra["settle"]
-    settled = st["settled"] and sa["settled"]
-    fmu = {f"order{k}": _o(*oa[k]) for k in ORDERS}
+    fmu = _orders(oa)
+    settled = rc["settle"]["settled"] and ra["settle"]["settled"]
+    return _result(contact_sc, verification, "analytic_fmu",
+                   {**fmu, "closed_form": None, "traverse": None, "fmu": fmu}, oc, diff, tol, ok,
+                   ra, rc, w, settled=settled)
+
+
+def _orders(o):
+    """{"order1": {"amplitude", "phase_deg"}, ...} of orders {k: (amplitude, phase_deg)}."""
+    return {f"order{k}": _o(*o[k]) for k in ORDERS}
+
+
+def _result(scene, verification, against, analytic, oc, diff, tol, ok, ra, rc, omega, *,
+            settled, regime=None, outside=(), diff27=None, phase_lag=None) -> dict:
+    """compare's JSON-ready result (docs/using-the-fmus.md), one shape for every quadrant:
+    the contact FMU's orders oc judged (diff, within tol: ok) against the analytic side
+    (``against``: its orders and their sources in ``analytic``), the runs ra, rc at whirl rate
+    omega [rad/s] (their arrays under "_runs", not JSON)."""
+    st = rc["settle"]
     return {
-        "scene": contact_sc, "quadrant": quadrant(contact_sc),
+        "scene": scene, "quadrant": quadrant(scene),
         "kind": "verification" if verification else "physical",
-        "against": "analytic_fmu", "regime": None, "outside_checked": [],
-        "analytic": {**fmu, "closed_form": None, "traverse": None, "fmu": fmu},
-        "contact": {f"order{k}": _o(*oc[k]) for k in ORDERS},
-        "difference": diff, "difference_eqs_18_27": None, "tolerance": tol,
-        "phase_lag_deg": None, "cycles": st["cycles"], "settled": settled,
-        "cycle_change": st["worst"], "pass": bool(ok and settled),
+        "against": against, "regime": regime, "outside_checked": list(outside),
+        "analytic": analytic,
+        "contact": _orders(oc),
+        "difference": diff, "difference_eqs_18_27": diff27, "tolerance": tol,
+        "phase_lag_deg": phase_lag,
+        "cycles": st["cycles"], "settled": settled, "cycle_change": st["worst"],
+        "pass": bool(ok and settled),
         "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
-        "_runs": {"analytic": ra, "contact": rc, "omega": w, "settle": st},
+        "_runs": {"analytic": ra, "contact": rc, "omega": omega, "settle": st},
     }
 
 
