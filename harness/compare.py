@@ -100,7 +100,6 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     else:
         ref = {k: (trav[f"order{k}"]["amplitude"], trav[f"order{k}"]["phase_deg"]) for k in ORDERS}
         against, tol = "traverse", _tolerance(contact_sc)
-    diff, ok = _judge(oc, ref, tol)
     diff27, _ = _judge(oc, eq27, {})
     analytic = {**_orders(ref), "closed_form": _orders(eq27),
                 "traverse": None if trav is None else
@@ -108,7 +107,8 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
                 "fmu": _orders(oa)}
     # where the judge (the traverse model) was not checked against the contact model
     outside = trav["outside_checked"] if against == "traverse" else []
-    return _result(contact_sc, verification, against, analytic, oc, diff, tol, ok, ra, rc, omega,
+    return _result(contact_sc, against, analytic, oc, ref, tol,
+                   {"analytic": ra, "contact": rc, "omega": omega},
                    regime=rep["regime"], outside=outside, diff27=diff27,
                    phase_lag=None if verification else -diff27["order3"]["phase_deg"],
                    settled=rc["settle"]["settled"])
@@ -125,14 +125,11 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
     rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, w, signals, dt, max_cycles, rel_tol)
     oa, oc = (last_cycle_orders(r["time"], r["Fz_mod"], np.abs(r["whirl_angle"]), ORDERS)
               for r in (ra, rc))
-    verification = is_verification(contact_sc)
-    tol = _tolerance(contact_sc)
-    diff, ok = _judge(oc, oa, tol)
     fmu = _orders(oa)
-    settled = rc["settle"]["settled"] and ra["settle"]["settled"]
-    return _result(contact_sc, verification, "analytic_fmu",
-                   {**fmu, "closed_form": None, "traverse": None, "fmu": fmu}, oc, diff, tol, ok,
-                   ra, rc, w, settled=settled)
+    return _result(contact_sc, "analytic_fmu",
+                   {**fmu, "closed_form": None, "traverse": None, "fmu": fmu}, oc, oa,
+                   _tolerance(contact_sc), {"analytic": ra, "contact": rc, "omega": w},
+                   settled=rc["settle"]["settled"] and ra["settle"]["settled"])
 
 
 def _orders(o):
@@ -140,16 +137,18 @@ def _orders(o):
     return {f"order{k}": _o(*o[k]) for k in ORDERS}
 
 
-def _result(scene, verification, against, analytic, oc, diff, tol, ok, ra, rc, omega, *,
-            settled, regime=None, outside=(), diff27=None, phase_lag=None) -> dict:
+def _result(scene, against, analytic, oc, ref, tol, runs, *, settled, regime=None, outside=(),
+            diff27=None, phase_lag=None) -> dict:
     """compare's JSON-ready result (docs/using-the-fmus.md), one shape for every quadrant:
-    the contact FMU's orders oc judged (diff, within tol: ok) against the analytic side
-    (``against``: its orders and their sources in ``analytic``), the runs ra, rc at whirl rate
-    omega [rad/s] (their arrays under "_runs", not JSON)."""
+    the contact FMU's orders oc judged against the orders ref within tol (``against`` names
+    them; ``analytic`` holds them and their sources); runs: {"analytic", "contact": the runs,
+    "omega": the whirl rate [rad/s]} (their arrays under "_runs", not JSON)."""
+    diff, ok = _judge(oc, ref, tol)
+    ra, rc = runs["analytic"], runs["contact"]
     st = rc["settle"]
     return {
         "scene": scene, "quadrant": quadrant(scene),
-        "kind": "verification" if verification else "physical",
+        "kind": "verification" if is_verification(scene) else "physical",
         "against": against, "regime": regime, "outside_checked": list(outside),
         "analytic": analytic,
         "contact": _orders(oc),
@@ -158,7 +157,7 @@ def _result(scene, verification, against, analytic, oc, diff, tol, ok, ra, rc, o
         "cycles": st["cycles"], "settled": settled, "cycle_change": st["worst"],
         "pass": bool(ok and settled),
         "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
-        "_runs": {"analytic": ra, "contact": rc, "omega": omega, "settle": st},
+        "_runs": {**runs, "settle": st},
     }
 
 
