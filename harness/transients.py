@@ -9,7 +9,7 @@ import math
 
 import numpy as np
 
-from reduced_model.orders import order_spectrum
+from reduced_model.orders import last_cycle_orders, order_spectrum
 from reduced_model.scene import BY_NAME, PARAMS, check_value, defaults, validate
 
 from .fmus import ROOT
@@ -50,9 +50,7 @@ def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE, nudge=0.0
         o = m.step(DT, theta, w * (1.0 + nudge) if i == 0 else w, 0.0, torque)
         y.append(o["Fz_joint"])
         x.append(o["whirl_angle"])
-    x, y = np.array(x), np.array(y)
-    xs = x[-1] - 2 * math.pi + 2 * math.pi * np.arange(720) / 720
-    return m, order_spectrum(np.interp(xs, x, y), 1, (3,))[0][0]
+    return m, last_cycle_orders(DT * np.arange(1, n + 1), y, x, (3,))[3][0]
 
 
 def response(m, inputs, steps, sub=1):
