@@ -274,7 +274,8 @@ def test_the_row_converges_at_40_hz():
     # the substep; oppoint.ROW_WHIRL_STEP).  The bound: the row's chaos moves these means by
     # up to 1 % between realizations and substeps (measured), doubled
     base = {"bearing": 2, "theta": math.radians(8.0), "omega": 2 * math.pi * 40.0}
-    F = 300.0 / (3 * 0.022)
+    from reduced_model.scene import BY_NAME, pressing_load
+    F = pressing_load(0.0, 300.0, BY_NAME["s"].default)
     got = _orders_last_cycle(base, F, cycles=3.0, last=2)
     ref = _orders_last_cycle(dict(base, max_substep=1e-6), F, cycles=3.0, last=2)
     err = np.abs(got / ref - 1.0)

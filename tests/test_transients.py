@@ -193,16 +193,18 @@ def test_runup_command_tracks_orders_of_both_fmus(tmp_path):
 
 def test_runup_of_one_roller_tracks_its_modified_thrust(tmp_path):
     # one roller: orders of Fz_mod (the paper's Fz' = Fz F_press / Fx, section 3.2), as the
-    # issue asks, not of Fz_joint (which is then the roller's Fz); order 3 about a third of the
-    # joint's (21.6-21.7 N at 300 N m and 8 deg; Fz's is 22.4-22.5 N in the transients table),
-    # the analytic FMU within 3 % along the run; the files and the plot name the signal
+    # issue asks, not of Fz_joint (which is then the roller's Fz): order 3 of Fz_mod is
+    # 21.6-21.7 N at 300 N m and 8 deg, of Fz 22.4-22.5 N (the transients table, 2 and 10 Hz);
+    # a run-up reads the settled value within 1 % (test_a_run_up_reads_the_settled_order_3),
+    # so the bound 22.05 N (midway) tells the two apart; the analytic FMU within 3 % along the
+    # run; the files and the plot name the signal
     import json
     from harness.cli import main
     assert main(["runup", "--set", "n_rollers=1", "--from-hz", "4", "--to-hz", "12",
                  "--duration", "0.3", "--out", str(tmp_path)]) == 0
     rows = json.loads((tmp_path / "runup.json").read_text())
     assert len(rows) >= 1 and all(r["signal"] == "Fz_mod" for r in rows)
-    assert all(20 < r["contact_order3"] < 25 for r in rows)
+    assert all(20 < r["contact_order3"] < 22.05 for r in rows)
     assert all(abs(r["order3_diff_pct"]) < 3.0 for r in rows)
 
 
