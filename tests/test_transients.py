@@ -58,10 +58,23 @@ def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, fa
                   refine=20) < bound
 
 
-@pytest.mark.parametrize("dt,fine", [(1e-4, [4] * 7 + [2]), (1e-3, [4, 4, 2])])
+def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
+    # one roller settled at 10 Hz, 8 deg and 3000 N m (45 kN on the roller), then torque +10 %:
+    # single samples of Fz_joint within the issue's 1 % of order 3 of the reference of h/20,
+    # and that reference converged (within 1 % of the one at h/10).  Measured over six
+    # realizations (settling whirl nudged by 0 to 1e-7; benchmarks.md): 0.29-0.72 %, the
+    # reference moving 0.08-0.43 %.  The step input's substeps of h/4 (before 2026-11-27)
+    # missed by 1.41 % (bdf2.BDF_FINE_SPLIT)
+    base = T.settle({"bearing": 2}, 1, 10, torque=3000.0)
+    dev, moved = T.checked_case({"bearing": 2}, 1, 10, "torque", 1.10, base, torque=3000.0)
+    assert moved < 1.0
+    assert dev < 1.0
+
+
+@pytest.mark.parametrize("dt,fine", [(1e-4, [16] * 7 + [2]), (1e-3, [16, 16, 2])])
 def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
     # the mechanism: a step input takes the communication steps of the next 0.8 ms, at least
-    # three, in substeps of h/4, the last h/2 (bdf2.BDF_STEP_IN); a ramp's small change
+    # three, in substeps of h/16, the last h/2 (bdf2.BDF_STEP_IN); a ramp's small change
     # leaves the steady substep
     import sys
     sys.path.insert(0, str(T.ROOT / "fmu_src"))
@@ -79,7 +92,7 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
     steady = taken[0]                 # the ramp's small step (jump 0.004 < GA_JUMP_STEP)
     assert steady == pytest.approx(math.ceil(dt / r.substep(
         T.THETA, w * 1.001, m.pressing(0.0, T.TORQUE), r.v_st(T.THETA, w * 1.001))), abs=1)
-    assert taken[1:] == pytest.approx([k * steady for k in fine] + [steady], abs=4)
+    assert taken[1:] == pytest.approx([k * steady for k in fine] + [steady], abs=max(fine))
     assert r._hs[LY.H_GA] == 1.0                  # the countdown over: BDF2's history valid
 
 

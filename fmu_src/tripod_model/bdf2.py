@@ -19,14 +19,18 @@ from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_I
 # row's steady running (about 3 us) leave the row's response to it 5-12 % of order 3 off a
 # fine reference (one roller, 10 Hz: omega and theta +-10 %).  The row answers a step within
 # about a millisecond, so the communication steps of the next BDF_FINE_TIME (at least
-# BDF_FINE_STEPS of them) take substeps of h/4, the last h/2 (BDF2's step ratio stays within
-# 2).  hs[H_GA]: BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the
-# first of those steps, one up at each after; the last is at BDF_STEP_IN - 1.  Beyond a
-# millisecond the row is chaotic and no finer step follows it sample by sample
-# (docs/benchmarks.md).
+# BDF_FINE_STEPS of them) take substeps of h / BDF_FINE_SPLIT, the last h/2 (its first
+# substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4 (until
+# 2026-11-27): at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
+# the reference by 1.2-1.4 % of order 3 at h/4 (8 deg; at 25 deg theta by 9-12 %), 0.6-0.7 %
+# (2.9 % and 0.8 %) at h/16; at 300 N m no cell moved beyond the row's chaos.  hs[H_GA]:
+# BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the first of those
+# steps, one up at each after; the last is at BDF_STEP_IN - 1.  Beyond a millisecond the row
+# is chaotic and no finer step follows it sample by sample (docs/benchmarks.md).
 BDF_STEP_IN = -3.0
 BDF_FINE_TIME = 8e-4   # [s]
 BDF_FINE_STEPS = 3
+BDF_FINE_SPLIT = 16
 
 
 @njit
@@ -42,7 +46,7 @@ def inputs_jumped(P, hs, jump):
 @njit
 def bdf2_steps(Y, P, drive, h, n, W, NW):
     """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing, after a step
-    input h/4 or h/2 instead (inputs_jumped); W.Y2 carries the previous state and hs[H_SUB] the
+    input h / BDF_FINE_SPLIT or h/2 instead (inputs_jumped); W.Y2 carries the previous state and hs[H_SUB] the
     previous substep from call to call, hs[H_GA] whether they are valid (0: not; 1 or a
     step input's countdown: valid), hs[H_TAKEN] counts substeps."""
     ny = Y.shape[0]
@@ -54,7 +58,7 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
         else:
             hs[H_GA] += 1.0
         last = hs[H_GA] > BDF_STEP_IN - 1.5
-        k = 2 if last else 4
+        k = 2 if last else BDF_FINE_SPLIT
         if last:     # then the steady substep
             hs[H_GA] = 1.0
         h = h / k
