@@ -40,7 +40,7 @@ def resolved_10hz():
     return T.settle({"bearing": 2}, 1, 10)
 
 
-@pytest.mark.parametrize("name,factor,bound", [("omega", 1.10, 1.0), ("torque", 1.10, 1.5)])
+@pytest.mark.parametrize("name,factor,bound", [("omega", 1.10, 1.0), ("torque", 1.10, 2.0)])
 def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, factor, bound):
     # the needle-resolved row, one roller settled at 10 Hz.  The row is chaotic: a 1e-15
     # change of its state moves single samples of Fz_joint by up to 2.3 % of order 3 within
@@ -52,8 +52,9 @@ def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, fa
     # steps.  With the finer substeps over the next 0.8 ms, over twelve other realizations of
     # the row (its settling whirl nudged by 1e-12 to 3e-7: another CPU's rounding is another
     # realization; `benchmarks/transients.py --quick --realizations 12`, 2026-11-27, after the
-    # friction secants of docs/integrators.md): omega 0.08-0.29 %, torque 0.12-1.01 %.  The
-    # torque bound is that spread with a margin, not the 1 %
+    # friction secants of docs/integrators.md), at h/16: omega +10 % 0.09-0.26 %, torque
+    # +10 % 0.14-1.39 % (at h/4: 0.08-0.29 % and 0.12-1.01 %).  The torque bound is that
+    # spread with a margin, not the 1 %
     assert T.case({"bearing": 2}, 1, 10, name, factor, resolved_10hz, mean=T.MEAN_SAMPLES,
                   refine=20) < bound
 
