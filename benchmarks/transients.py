@@ -107,8 +107,8 @@ def main(argv=None):
         for label, theta in RESOLVED_LAUNCH:
             kw = {"theta": theta, "torque": LAUNCH_TORQUE}
             rows.append(table_row(label, params, nr, f, settle(params, nr, f, **kw), **kw))
-    head = ("| bearing | rollers | whirl [Hz] | order 3 [N] | reference h/20 from h/10 | no step | "
-            + " | ".join(f"{n} {100 * (s - 1):+.0f} %" for n in INPUTS for s in SIZES) + " |")
+    head = ("| bearing | rollers | whirl [Hz] | order 3 [N] | reference h/20 from h/10 | "
+            "no step | " + " | ".join(f"{n} {100 * (s - 1):+.0f} %" for n in INPUTS for s in SIZES) + " |")
     lines = [head, "|" + "---|" * (6 + len(INPUTS) * len(SIZES))]
     for b, nr, f, a3, moves, fl, devs in rows:
         mv = "-" if moves is None else f"{moves:.2f}"

@@ -46,9 +46,9 @@ def inputs_jumped(P, hs, jump):
 @njit
 def bdf2_steps(Y, P, drive, h, n, W, NW):
     """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing, after a step
-    input h / BDF_FINE_SPLIT or h/2 instead (inputs_jumped); W.Y2 carries the previous state and hs[H_SUB] the
-    previous substep from call to call, hs[H_GA] whether they are valid (0: not; 1 or a
-    step input's countdown: valid), hs[H_TAKEN] counts substeps."""
+    input h / BDF_FINE_SPLIT or h/2 instead (inputs_jumped); W.Y2 carries the previous state
+    and hs[H_SUB] the previous substep from call to call, hs[H_GA] whether they are valid (0:
+    not; 1 or a step input's countdown: valid), hs[H_TAKEN] counts substeps."""
     ny = Y.shape[0]
     Y2, hs = W.Y2, W.hs
     if hs[H_GA] < 0.0:     # a step input's countdown (BDF_STEP_IN)
