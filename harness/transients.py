@@ -93,55 +93,60 @@ def running_mean(y, samples):
     return np.convolve(y, np.ones(samples) / samples, mode="valid")
 
 
-def _stepped(base, f, name, factor, theta, torque):
-    """From settle's ``base``: the settled state, the default substep there [s] and the inputs
-    with ``name`` scaled by ``factor``."""
+def step_runs(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE,
+              refines=(10,)):
+    """Fz_joint [N] in the 20 steps after the input ``name`` steps by ``factor`` from the
+    settled ``base`` (settle's, at the same f [Hz], theta [rad], torque [N m]): the default's,
+    and {k: the reference's from the same state with the substep h / k} for k in refines."""
     m = base[0]
     st = m.get_state()
     h = m.rollers[0].substep(theta, 2 * math.pi * f, m.pressing(0.0, torque),
                              m.rollers[0].v_st(theta, 2 * math.pi * f))
     inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
     inputs[name] *= factor
-    return st, h, inputs
+    y = response(m, inputs, 20)
+    m.set_state(st)
+    return y, {k: reference(params, n_rollers, st, inputs, 20, h, k) for k in refines}
+
+
+def deviation(y, ref, a3, mean=1):
+    """The largest difference of y from ref [% of a3], both read as running means over
+    ``mean`` samples."""
+    return 100 * np.abs(running_mean(y, mean) - running_mean(ref, mean)).max() / a3
 
 
 def case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE, mean=1,
          refine=10, perturb=0.0):
     """The largest deviation of Fz_joint [% of order 3] in the 20 steps after the input
-    ``name`` steps by ``factor`` from the settled ``base`` (settle's, at the same f [Hz],
-    theta [rad], torque [N m]), against the reference from the same state (substep cut
-    ``refine`` times), both read as running means over ``mean`` samples.  With ``perturb``
-    > 0, against the same model from the state with the roller's spin scaled by 1 + perturb
-    instead: how far rounding alone moves it."""
+    ``name`` steps by ``factor`` from the settled ``base`` against the reference from the same
+    state (substep cut ``refine`` times), both read as running means over ``mean`` samples
+    (step_runs).  With ``perturb`` > 0, against the same model from the state with the
+    roller's spin scaled by 1 + perturb instead: how far rounding alone moves it."""
     m, a3 = base
-    st, h, inputs = _stepped(base, f, name, factor, theta, torque)
+    if not perturb:
+        y, refs = step_runs(params, n_rollers, f, name, factor, base, theta, torque, (refine,))
+        return deviation(y, refs[refine], a3, mean)
+    st = m.get_state()
+    inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
+    inputs[name] *= factor
     y = response(m, inputs, 20)
+    m.set_state(twin(st, perturb))
+    ref = response(m, inputs, 20)
     m.set_state(st)
-    if perturb:
-        m.set_state(twin(st, perturb))
-        ref = response(m, inputs, 20)
-        m.set_state(st)
-    else:
-        ref = reference(params, n_rollers, st, inputs, 20, h, refine)
-    return 100 * np.abs(running_mean(y, mean) - running_mean(ref, mean)).max() / a3
+    return deviation(y, ref, a3, mean)
 
 
 def checked_case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE,
                  mean=1):
     """case's deviation [% of order 3] against the reference at h/20, and whether that
-    reference has stopped moving: how far it is from the one at h/10 (the largest difference
-    over the 20 steps, the same units; a first-order error halves with the substep, so the
-    h/20 reference is about that far from the limit or nearer).  Both read as running means
-    over ``mean`` samples.  (Not checked against coarser references: from a fresh start, h/2
+    reference has stopped moving: how far it is from the one at h/10 (the same units; a
+    first-order error halves with the substep, so the h/20 reference is about that far from
+    the limit or nearer).  (Not checked against coarser references: from a fresh start, h/2
     to h/5 take a 10 % theta step without the default's step-input substeps and miss by
     3-175 %.)"""
-    m, a3 = base
-    st, h, inputs = _stepped(base, f, name, factor, theta, torque)
-    y = running_mean(response(m, inputs, 20), mean)
-    m.set_state(st)
-    r10, r20 = (running_mean(reference(params, n_rollers, st, inputs, 20, h, k), mean)
-                for k in (10, 20))
-    return 100 * np.abs(y - r20).max() / a3, 100 * np.abs(r10 - r20).max() / a3
+    y, refs = step_runs(params, n_rollers, f, name, factor, base, theta, torque, (10, 20))
+    a3 = base[1]
+    return deviation(y, refs[20], a3, mean), deviation(refs[10], refs[20], a3, mean)
 
 
 def runup(params, n_rollers, f0, f1, T, dt=DT):
