@@ -5,7 +5,7 @@ the 20 communication steps after a step of +-1 % or +-10 % in omega, theta or to
     python benchmarks/transients.py [--quick] [--no-resolved] [--md FILE] [--realizations K]
 
 --realizations K: then the needle-resolved row's +-10 % steps again on K other realizations of
-the row (its settling whirl nudged, as another CPU's rounding would; about 50 s each): the
+the row (its settling whirl nudged, as another CPU's rounding would; about 35 s each): the
 range of each cell's 1 ms mean and single samples over them.
 """
 from __future__ import annotations
