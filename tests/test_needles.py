@@ -181,15 +181,15 @@ def test_coupled_solve_against_dense_solve(gaps):
 
 
 def test_fast_tanh_matches_math_tanh():
-    # the row's tanh (one exp instead of libm's tanh) against math.tanh: relative error below
+    # the kernel's tanh (one exp instead of libm's tanh) against math.tanh: relative error below
     # 1e-12 from 1e-12 to saturation, either sign, across the series/exp switch at 1e-4, and
     # NaN stays NaN (the contact tests are written so that NaN skips)
     xs = np.concatenate([np.logspace(-12, 2, 4001), [1e-4, 19.0, 0.0, 1e300]])
     for x in np.concatenate([xs, -xs]):
         want = math.tanh(x)
-        got = needle_laws.tanh_clipped(float(x))
+        got = contact.tanh_clipped(float(x))
         assert abs(got - want) <= 1e-12 * abs(want), x
-    assert math.isnan(needle_laws.tanh_clipped(float("nan")))
+    assert math.isnan(contact.tanh_clipped(float("nan")))
 
 
 def test_pair_blocks_match_per_contact_sums():

@@ -24,6 +24,7 @@ from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX,
 # --- driving motions ---
 
 HX = 2e-4   # whirl-angle step for finite-difference derivatives of the driving motions [rad]
+SIN_HX, COS_HX = math.sin(HX), math.cos(HX)
 
 
 @njit
@@ -35,7 +36,8 @@ def trunnion_line(x, theta, s, pitch, roll):
     (sense chosen so that the slip on the loaded +x flank is V = v1 + v2, model.md).
     Returns (Qz, ax, ay, az); Q = (x0, 0, Qz) with x0 the pressing offset.
     """
-    return _line_at(x, math.tan(theta), _roll_ratio(theta), s, pitch, roll)
+    return _line_at(math.sin(x), math.cos(x), math.tan(theta), _roll_ratio(theta), s, pitch,
+                    roll)
 
 
 @inline
@@ -45,15 +47,16 @@ def _roll_ratio(theta):
 
 
 @inline
-def _line_at(x, T, k, s, pitch, roll):
-    """trunnion_line with T = tan(theta) and k = _roll_ratio(theta) given (line_kinematics
-    evaluates the line at three angles of one theta)."""
-    phi = math.atan(T * math.sin(x)) if pitch else 0.0
-    xi = 0.0
-    if roll:
-        xi = math.asin(k * math.sin(2.0 * x))
-    cp = math.cos(phi)
-    return s * math.tan(phi), math.sin(xi) * cp, math.cos(xi) * cp, math.sin(phi)
+def _line_at(sx, cx, T, k, s, pitch, roll):
+    """trunnion_line at the whirl angle whose sine and cosine are sx, cx, with T = tan(theta)
+    and k = _roll_ratio(theta) given (line_kinematics evaluates the line at three angles of
+    one theta)."""
+    # the pitch and roll angles enter only as tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x
+    # (Eq. 5): no atan, asin, nor sines and cosines of them (they were a third of the step)
+    tp = T * sx if pitch else 0.0
+    cp = 1.0 / math.sqrt(1.0 + tp * tp)        # cos(phi)
+    sxi = k * 2.0 * sx * cx if roll else 0.0    # sin(xi)
+    return s * tp, sxi * cp, math.sqrt(1.0 - sxi * sxi) * cp, tp * cp
 
 
 @njit
@@ -94,9 +97,11 @@ def line_kinematics(x, w, theta, P, L):
     pitch = P[P_PITCH] > 0.5
     roll = P[P_ROLL] > 0.5
     T, k = math.tan(theta), _roll_ratio(theta)
-    q0, a0x, a0y, a0z = _line_at(x, T, k, s, pitch, roll)
-    qp, apx, apy, apz = _line_at(x + HX, T, k, s, pitch, roll)
-    qm, amx, amy, amz = _line_at(x - HX, T, k, s, pitch, roll)
+    sx, cx = math.sin(x), math.cos(x)
+    ds, dc = sx * COS_HX, cx * SIN_HX      # x +- HX by the angle sum: one sine and cosine
+    q0, a0x, a0y, a0z = _line_at(sx, cx, T, k, s, pitch, roll)
+    qp, apx, apy, apz = _line_at(ds + dc, cx * COS_HX - sx * SIN_HX, T, k, s, pitch, roll)
+    qm, amx, amy, amz = _line_at(ds - dc, cx * COS_HX + sx * SIN_HX, T, k, s, pitch, roll)
     i1 = w / (2.0 * HX)
     i2 = w * w / (HX * HX)
     L[L_AX] = a0x
@@ -174,7 +179,24 @@ def tilt_drag(It, L, e1, e2):
 def hertz_normal_force(K, delta):
     """Roller-groove normal force [N] at the approach delta [m]: Eq. (10) with Table 1's point
     contact, f_n = K delta^(3/2) (K [N/m^1.5] from hertz.hertz_point)."""
-    return K * delta ** 1.5
+    return K * delta * math.sqrt(delta)   # (pow costs more)
+
+
+@inline
+def tanh_clipped(x):
+    """tanh(x) from one exp: glibc's tanh takes about 2.4 times as long (the needle row calls it
+    about 1100 times an evaluation: 13 % of the contacts' time; the groove's friction and the
+    lumped row's laws use it too).  Relative error below 3e-13
+    (tests/test_needles.py); NaN stays NaN."""
+    a = abs(x)
+    if a >= 19.0:
+        t = 1.0                      # exact in double precision
+    elif a < 1e-4:
+        t = a * (1.0 - a * a / 3.0)  # series: 1 - e would cancel
+    else:
+        e = math.exp(-2.0 * a)
+        t = (1.0 - e) / (1.0 + e)
+    return t if x >= 0.0 else -t
 
 
 @inline
@@ -182,7 +204,7 @@ def tanh_friction(mu, fn, vt, vst):
     """Regularised friction, Eq. (11) with model.md's law mu(v) = mu tanh(3 v / v_st): returns
     g = tanh(3 |v_t| / v_st) (the friction force is mu f_n g [N]) and its slope
     d(mu f_n g)/d|v_t| [N s/m] at the slip |v_t| [m/s], normal force f_n [N]."""
-    g = math.tanh(3.0 * vt / vst)
+    g = tanh_clipped(3.0 * vt / vst)
     return g, mu * fn * 3.0 / vst * (1.0 - g * g)
 
 
@@ -299,7 +321,7 @@ def row_sliding_friction(P, q, ud, vax, h):
     """Lumped row: the needles' sliding friction on the roller's slide along the trunnion
     [N] (mu_needle, tanh law, on the slide rate ud less the trunnion's own vax [m/s]) under
     the needle loads q [N], and h [s] times its slope [N/m] (the implicit step's term)."""
-    g = math.tanh(3.0 * (ud - vax) / P[P_VST])
+    g = tanh_clipped(3.0 * (ud - vax) / P[P_VST])
     return P[P_MUN] * q * g, h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - g * g)
 
 
@@ -309,7 +331,7 @@ def row_rolling_resistance(P, q, om, spin, h):
     r_bore) against the roller's spin om relative to the trunnion's [rad/s]: its moment
     [N m] under the needle loads q [N], and h [s] times its slope [N m s/rad / s]."""
     vr = (om - spin) * P[P_RB]
-    g = math.tanh(3.0 * vr / P[P_VST])
+    g = tanh_clipped(3.0 * vr / P[P_VST])
     return (P[P_MUR] * q * P[P_RB] * g,
             h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - g * g))
 

@@ -179,6 +179,16 @@ def _ga_newton_direction(GW, nv, trav, A, Q):
 
 
 @inline
+def _ga_step_below_tolerance(GW, nv, hga, r, vs):
+    """Whether the Newton step GW[W_D] changes every velocity by at most GA_NTOL v_st (a
+    rotation's at the radius r [m]; hga = h gamma [s])."""
+    for i in range(nv):
+        if abs(hga * GW[W_D, i]) * (r if V_ROT[i] > 0.0 else 1.0) > GA_NTOL * vs:
+            return False
+    return True
+
+
+@inline
 def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
     """The Newton step halved (up to 8 times) until the scaled residual falls below n0 (the
     tanh friction is steep over v_st); trial point in GW[W_AT], its residual in GW[W_RT].
@@ -200,8 +210,8 @@ def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
 @inline
 def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
-    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces of the last
-    residual evaluation (at the converged a1)."""
+    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces at the converged a1
+    (of the last residual evaluation, or those the converged equation implies: ga_step)."""
     ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -272,6 +282,17 @@ def ga_step(Y, P, drive, h, W):
             _ga_jacobian(Y, Yf, P, drive, h, GW, nv, L, res, Q, co)
             fresh = True
         n0 = _ga_newton_direction(GW, nv, trav, A, Q)
+        if _ga_step_below_tolerance(GW, nv, h * ga, r, vs):
+            # the Newton step from here is below the tolerance: take it and stop, without the
+            # forces at its end (evaluating them only to find the step small was a fifth of
+            # the step's work); there the equation holds to second order in that step, so the
+            # forces are M ((1 - am) a1 + am a0) (what a restart step keeps for the next)
+            am = co[0]
+            for i in range(nv):
+                GW[W_A, i] = GW[W_A, i] + GW[W_D, i]
+                Q[i] = GW[W_M, i] * ((1.0 - am) * GW[W_A, i] + am * GW[W_A0, i])
+            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
+            return True
         lam = _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co)
         conv = True
         for i in range(nv):

@@ -5,28 +5,13 @@ each with the tangent an implicit step needs.
 """
 import math
 
+from .contact import tanh_clipped
 from .jit import inline, njit
 
 
 E10_9 = 10.0 / 9.0
 C_ROLLER = 1.25   # implicit tangent factors of a roller-needle contact (eps = 0.25, contact_tangent)
 C_NEEDLE = 5.0
-
-
-@inline
-def tanh_clipped(x):
-    """tanh(x) from one exp: glibc's tanh takes about 2.4 times as long, and the row calls it
-    about 1100 times an evaluation (13 % of the contacts' time).  Relative error below 3e-13
-    (tests/test_needles.py); NaN stays NaN."""
-    a = abs(x)
-    if a >= 19.0:
-        t = 1.0                      # exact in double precision
-    elif a < 1e-4:
-        t = a * (1.0 - a * a / 3.0)  # series: 1 - e would cancel
-    else:
-        e = math.exp(-2.0 * a)
-        t = (1.0 - e) / (1.0 + e)
-    return t if x >= 0.0 else -t
 
 
 @inline
