@@ -128,10 +128,14 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
 
 @pytest.mark.parametrize("params", [{}, {"bearing": 1}], ids=["ideal", "lumped"])
 def test_the_step_after_a_restart_takes_the_restarts_forces(params):
-    # GA_RESTART has alpha_f = 0: its last Newton evaluation is at t_{n+1}, at the state the
-    # step then writes, so the accelerations it leaves for the regular step after it
-    # (hs[H_FACC:]) are those the forces give at that state, bit for bit; with one substep a
-    # communication step (2e-5 s at 10 Hz, 300 N m) the restart is the step's last
+    # GA_RESTART has alpha_f = 0: its equation holds at t_{n+1}, at the state the step then
+    # writes, so the accelerations it leaves for the regular step after it (hs[H_FACC:]) are
+    # those the forces give at that state: evaluated there, or, where Newton stops on a step
+    # below its tolerance without evaluating them, implied by the equation, off by its residual
+    # there, second order in that step: below 1 % of the tolerance in the velocity change it
+    # makes over the step (measured 1e-4 and 1e-7 of it; the accelerations before the step
+    # would be 10 and 1 tolerances off).  With one substep a communication step (2e-5 s at
+    # 10 Hz, 300 N m) the restart is the step's last
     import sys
     sys.path.insert(0, str(T.ROOT / "fmu_src"))
     import numpy as np
@@ -146,7 +150,11 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
     Q, M = np.zeros(LY.NV), np.zeros(LY.NV)
     nv = genalpha.ga_forces(r.Y.copy(), r.P, drive, r._L.copy(), r._res.copy(), Q, M)
     kept = r._hs[LY.H_FACC:LY.H_FACC + nv]
-    assert np.array_equal(kept, Q[:nv] / M[:nv]) and np.all(kept != 0.0)
+    # each unknown's velocity change over the restart step, h gamma a, against the tolerance
+    # (a rotation's at the roller radius)
+    per_tol = r._OP[LY.OP_H] * genalpha.GA_RESTART[2] / (genalpha.GA_NTOL * r.P[LY.P_VST]) * \
+        np.array([r.P[LY.P_R] if LY.V_ROT[i] > 0.0 else 1.0 for i in range(nv)])
+    assert np.all(np.abs(kept - Q[:nv] / M[:nv]) * per_tol <= 0.01) and np.all(kept != 0.0)
 
 
 @pytest.mark.parametrize("params", [{}, {"bearing": 1}], ids=["ideal", "lumped"])
