@@ -16,7 +16,7 @@ import pytest
 from rounding import solve_error
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
-from tripod_model import contact, hertz, rowsolve, layout as LY, needle_laws, needles as NDL, ring  # noqa: E402
+from tripod_model import contact, hertz, rowsolve, layout as LY, needles as NDL, ring  # noqa: E402
 from tripod_model.model import ContactModel  # noqa: E402
 
 SCENE = {"bearing": 2, "n_needles": 12}

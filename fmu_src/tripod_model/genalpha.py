@@ -50,8 +50,9 @@ GA_STEP_IN_2 = -4.0    # hs[H_GA]: the second of them
 GA_JUMP_STEP = 0.2     # the slip amplitude's change over v_st above which that is taken
 GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is taken
 # hs[H_GA] after a restart step: the next regular step takes its accelerations from the forces
-# at the restart's end (GA_RESTART puts the forces at t_{n+1}, so its last Newton evaluation is
-# that: kept in hs[H_FACC:]; GA_AFTER_RESTART_AFRESH where the drive has moved since: anew)
+# at the restart's end (GA_RESTART puts the forces at t_{n+1}: its last Newton evaluation, or
+# what its converged equation implies there, kept in hs[H_FACC:]; GA_AFTER_RESTART_AFRESH where
+# the drive has moved since: anew)
 GA_AFTER_RESTART = 3.0
 GA_AFTER_RESTART_AFRESH = 2.0
 # hs[H_RING]: the roller's ring (its slide rocking across the groove, oppoint.ring_step), which
@@ -226,9 +227,9 @@ def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     Y[Y_X] += h * w
     hs[H_TAKEN] += 1.0
     # whose history the accelerations are: a restart step's serve a restart at the next jump,
-    # a regular step takes its own from the forces after it (ga_step).  A restart step's forces
-    # are at t_f = t_{n+1} (alpha_f = 0), the state just written, bit for bit: the regular step
-    # takes those (GA_AFTER_RESTART) instead of evaluating them again
+    # a regular step takes its own from the forces after it (ga_step).  A restart step's
+    # equation holds at t_f = t_{n+1} (alpha_f = 0), the state just written: the regular step
+    # takes the forces there (Q, GA_AFTER_RESTART) instead of evaluating them again
     if co[1] == GA_STEP[1]:
         hs[H_GA] = 1.0
     elif co[1] == 0.0:
