@@ -59,6 +59,24 @@ def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, fa
                   refine=20) < bound
 
 
+def test_the_needle_resolved_rows_single_samples_have_no_converged_reference(resolved_10hz):
+    # why the test above judges the row by its 1 ms mean: a 1e-15 change of its state (the
+    # roller's spin) grows e-fold every 20-30 us (benchmarks/needle_chaos.py), some 70 e-folds
+    # over 20 samples of 1e-4 s, and saturates at the row's own rattle.  The table's rounding
+    # row read 0.2-2.3 % and 0.3-2.2 % of order 3 in its last two runs (no step, +-1 % steps).
+    # Asserted: above 0.1 % in the largest of three cells (a growth of 1e12 at least; a row
+    # that stopped being chaotic would leave them near 1e-13), while the 1 ms mean moves by
+    # less than the 1 %.  Measured on three realizations (settling whirl nudged by 0,
+    # 1e-9, 1e-7): the largest single sample 2.15, 1.30 and 1.80 %, the 1 ms mean 0.42, 0.15
+    # and 0.59 %
+    cells = [("omega", 1.0), ("omega", 1.01), ("torque", 1.01)]
+    single = [T.case({"bearing": 2}, 1, 10, n, f, resolved_10hz, perturb=1e-15) for n, f in cells]
+    mean = [T.case({"bearing": 2}, 1, 10, n, f, resolved_10hz, perturb=1e-15,
+                   mean=T.MEAN_SAMPLES) for n, f in cells]
+    assert max(single) > 0.1, single
+    assert max(mean) < 1.0, mean
+
+
 def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
     # one roller settled at 10 Hz, 8 deg and 3000 N m (45 kN on the roller), then torque +10 %:
     # single samples of Fz_joint within the 1 % of order 3 of the reference of h/20,
