@@ -52,7 +52,8 @@ def _line_at(sx, cx, T, k, s, pitch, roll):
     and k = _roll_ratio(theta) given (line_kinematics evaluates the line at three angles of
     one theta)."""
     # the pitch and roll angles enter only as tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x
-    # (Eq. 5): no atan, asin, nor sines and cosines of them (they were a third of the step)
+    # (Eq. 5): no atan, asin, nor sines and cosines of them (with glibc's tanh and pow, libm
+    # took a third of the contact step's time)
     tp = T * sx if pitch else 0.0
     cp = 1.0 / math.sqrt(1.0 + tp * tp)        # cos(phi)
     sxi = k * 2.0 * sx * cx if roll else 0.0    # sin(xi)
