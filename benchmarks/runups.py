@@ -3,7 +3,7 @@ whirled from 2 to 40 Hz over 0.5 s and 3 s, the master holding omega over each c
 step of 1e-4, 2e-5 and 1e-3 s; order 3 of Fz_joint of the revolution nearest 5, 10, 20 and
 35 Hz against the settled constant-speed value at that revolution's mean speed (1e-3 s up to
 10 Hz: faster, it leaves too few samples a revolution to read order 3 to 1 %).  Prints a
-markdown table (about 30 s).
+markdown table (about 15 s).
 
     python benchmarks/runups.py
 """

@@ -102,11 +102,18 @@ def step_runs(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQ
     st = m.get_state()
     h = m.rollers[0].substep(theta, 2 * math.pi * f, m.pressing(0.0, torque),
                              m.rollers[0].v_st(theta, 2 * math.pi * f))
-    inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
-    inputs[name] *= factor
+    inputs = stepped_inputs(f, theta, torque, name, factor)
     y = response(m, inputs, 20)
     m.set_state(st)
     return y, {k: reference(params, n_rollers, st, inputs, 20, h, k) for k in refines}
+
+
+def stepped_inputs(f, theta, torque, name, factor):
+    """The scene's inputs (whirl f [Hz], theta [rad], torque [N m]) with ``name`` scaled by
+    ``factor``: what the master holds after the step."""
+    inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
+    inputs[name] *= factor
+    return inputs
 
 
 def deviation(y, ref, a3, mean=1):
@@ -127,8 +134,7 @@ def case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE, m
         y, refs = step_runs(params, n_rollers, f, name, factor, base, theta, torque, (refine,))
         return deviation(y, refs[refine], a3, mean)
     st = m.get_state()
-    inputs = {"theta": theta, "omega": 2 * math.pi * f, "torque": torque}
-    inputs[name] *= factor
+    inputs = stepped_inputs(f, theta, torque, name, factor)
     y = response(m, inputs, 20)
     m.set_state(twin(st, perturb))
     ref = response(m, inputs, 20)

@@ -55,8 +55,7 @@ def test_an_input_step_opens_the_ring_until_it_rings_down(launch_10hz, name, fac
     # always resolved gave 0.41 % and 0.08 % in 20 samples)
     m, a3 = launch_10hz
     st = m.get_state()
-    inputs = {"theta": T.LAUNCH_THETA, "omega": 2 * math.pi * 10, "torque": T.LAUNCH_TORQUE}
-    inputs[name] *= factor
+    inputs = T.stepped_inputs(10, T.LAUNCH_THETA, T.LAUNCH_TORQUE, name, factor)
     rings, y = [], []
     for _ in range(50):
         y.append(T.response(m, inputs, 1)[0])

@@ -291,7 +291,8 @@ def ga_step(Y, P, drive, h, W):
             am = co[0]
             for i in range(nv):
                 GW[W_A, i] = GW[W_A, i] + GW[W_D, i]
-                Q[i] = GW[W_M, i] * ((1.0 - am) * GW[W_A, i] + am * GW[W_A0, i])
+                if not regular:     # (only a restart step keeps them)
+                    Q[i] = GW[W_M, i] * ((1.0 - am) * GW[W_A, i] + am * GW[W_A0, i])
             _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
             return True
         lam = _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co)
