@@ -74,9 +74,11 @@ def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10):
 
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
-# steps (1 ms): the row is chaotic on the scale of a few samples (a 1e-15 change of the state
-# moves single samples of Fz_joint by up to 2.3 % of order 3 within 20 steps, and references
-# 10 to 160 times finer part by up to 1.7 %), while the 1 ms mean converges (docs/benchmarks.md)
+# steps (1 ms): with the default step (one linear solve a substep; a second takes most of
+# this away, docs/integrators.md) the row is chaotic on the scale of a few samples (a 1e-15
+# change of the state moves single samples of Fz_joint by up to 2.3 % of order 3 within 20
+# steps, and references 10 to 160 times finer part by up to 1.7 %), while the 1 ms mean
+# converges (docs/benchmarks.md)
 MEAN_SAMPLES = 10
 
 

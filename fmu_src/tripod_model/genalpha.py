@@ -182,7 +182,8 @@ def _ga_newton_direction(GW, nv, trav, A, Q):
 @inline
 def _ga_step_below_tolerance(GW, nv, hga, r, vs):
     """Whether the Newton step GW[W_D] changes every velocity by at most GA_NTOL v_st (a
-    rotation's at the radius r [m]; hga = h gamma [s])."""
+    rotation's at the radius r [m]; hga = h gamma [s], times the line search's factor for the
+    step it took): Newton's convergence test, before a step and after one."""
     for i in range(nv):
         if abs(hga * GW[W_D, i]) * (r if V_ROT[i] > 0.0 else 1.0) > GA_NTOL * vs:
             return False
@@ -211,8 +212,9 @@ def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
 @inline
 def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
-    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces at the converged a1
-    (of the last residual evaluation, or those the converged equation implies: ga_step)."""
+    converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces at the
+    converged a1 (of the last residual evaluation, or those the converged equation implies:
+    ga_step)."""
     ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -296,14 +298,10 @@ def ga_step(Y, P, drive, h, W):
             _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
             return True
         lam = _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co)
-        conv = True
         for i in range(nv):
             GW[W_A, i] = GW[W_AT, i]
             GW[W_R, i] = GW[W_RT, i]
-            dv = abs(h * ga * lam * GW[W_D, i]) * (r if V_ROT[i] > 0.0 else 1.0)
-            if dv > GA_NTOL * vs:
-                conv = False
-        if conv:
+        if _ga_step_below_tolerance(GW, nv, h * ga * lam, r, vs):
             _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
             return True
         if it % 3 == 2 or lam < 1.0:
