@@ -5,7 +5,9 @@ and after omega +1 %.  Prints markdown tables:
 - references of ever finer substep (h/10 ... h/160, h the default's) against the finest, as
   single samples and as their 1 ms running mean (harness.transients.MEAN_SAMPLES);
 - the same model from a state moved by 1e-15 or 1e-12 (the roller's spin): how far rounding
-  alone moves it, and the e-folding time of that difference in the state.
+  alone moves it, and the e-folding time of that difference in the state;
+- with a converged step (max_substep = 2 us, harness.transients.CONVERGED), settled with it:
+  how far rounding moves its single samples.
 
     python benchmarks/needle_chaos.py [--md FILE]       (about 1 min)
 """
@@ -27,6 +29,7 @@ REFINES = (10, 20, 40, 80, 160)
 MIN_SUBSTEP = BY_NAME["max_substep"].auto_or_min   # max_substep's smallest value
 CELLS = (("no step", 1.0), ("omega +1 %", 1.01))   # (label, omega's factor)
 TWINS = (1e-15, 1e-12)
+E_FOLD_STEPS = 30   # communication steps of e_folding's runs
 
 
 def row_labels():
@@ -35,6 +38,7 @@ def row_labels():
     for label, _ in CELLS:
         out += [f"{label}: reference h/{k}" for k in REFINES[:-1]] + [f"{label}: default"]
         out += [f"{label}: default from the state moved by {eps:g}" for eps in TWINS]
+        out += [f"{label}: max_substep 2 us, settled with it, from its state moved by 1e-15"]
     return out
 
 
@@ -47,7 +51,7 @@ def fine_run(state, inputs, substep, steps=20):
                        sub=int(round(T.DT / substep)))
 
 
-def e_folding(model, state, inputs, eps, a3, steps=30, sub=10):
+def e_folding(model, state, inputs, eps, a3, steps=E_FOLD_STEPS, sub=10):
     """The e-folding time [s] of the difference between the runs from ``state`` and from its
     twin (eps), the largest over the state's entries scaled by their largest magnitude, fitted
     where it lies between 1e3 eps and 1e-3; and when the twins' Fz_joint first part by 1 % of
@@ -78,6 +82,8 @@ def main(argv=None):
     t0 = time.time()
     m, a3 = T.settle({"bearing": 2}, 1, 10)
     st = m.get_state()
+    m2, _ = T.settle(T.CONVERGED, 1, 10)   # (its order 3 within 0.1 % of a3)
+    st2 = m2.get_state()
     w = 2 * math.pi * 10
     h = m.rollers[0].substep(T.THETA, w, m.pressing(0.0, T.TORQUE), m.rollers[0].v_st(T.THETA, w))
     lines = ["| run | against | single samples [% of order 3] | 1 ms mean [% of order 3] |",
@@ -104,13 +110,22 @@ def main(argv=None):
             m.set_state(st)
             lines.append(f"| {label}: default from the state moved by {eps:g} | default | "
                          f"{pc(yt, y, 1):.2f} | {pc(yt, y, T.MEAN_SAMPLES):.2f} |")
+        m2.set_state(st2)
+        y2 = T.response(m2, inputs, 20)
+        m2.set_state(T.twin(st2, 1e-15))
+        y2t = T.response(m2, inputs, 20)
+        lines.append(f"| {label}: max_substep 2 us, settled with it, from its state moved by "
+                     f"1e-15 | max_substep 2 us | {pc(y2t, y2, 1):.2f} | "
+                     f"{pc(y2t, y2, T.MEAN_SAMPLES):.2f} |")
         print(f"{label}: done ({time.time() - t0:.0f} s)", file=sys.stderr)
     inputs = {"theta": T.THETA, "omega": w, "torque": T.TORQUE}
     fold, part = e_folding(m, st, inputs, 1e-12, a3)
     table = "\n".join(lines)
+    parted = (f"after {1e3 * part:.2f} ms" if part == part
+              else f"at no sample of the {1e3 * E_FOLD_STEPS * T.DT:.0f} ms run")
     tail = (f"\nThe difference a 1e-12 change of the spin makes to the state grows e-fold every "
             f"{1e6 * fold:.0f} us (default step; the largest entry, scaled); the twins' Fz_joint "
-            f"part by 1 % of order 3 after {1e3 * part:.2f} ms.")
+            f"part by 1 % of order 3 {parted}.")
     print(table + "\n" + tail)
     print(f"(order 3: {a3:.2f} N; {time.time() - t0:.0f} s)")
     if a.md:

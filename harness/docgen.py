@@ -211,9 +211,11 @@ def _needle_chaos_rows():
 
 
 def _transients_rows():
-    from harness.transients import LAUNCH_ROW, RESOLVED_LAUNCH, RESOLVED_ROWS
+    from harness.transients import (LAUNCH_ROW, RESOLVED_LAUNCH, RESOLVED_ROWS,
+                                    RESOLVED_CONVERGED)
     return (["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + list(RESOLVED_ROWS)
-            + [label for label, _ in RESOLVED_LAUNCH])
+            + [label for label, _ in RESOLVED_LAUNCH]
+            + [label for label, *_ in RESOLVED_CONVERGED])
 
 
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)

@@ -28,6 +28,15 @@ RESOLVED_ROWS = ("needle-resolved", "needle-resolved, rounding (1e-15)",
 # and its rows at a launch's torque (single samples): (label, theta [rad])
 RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
                    ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
+# the same row with a converged step (max_substep = 2 us, about 0.7 of the automatic one):
+# single samples and the 1e-15 twin at 300 N m, single samples at a launch's torque and angle:
+# (label, theta [rad], torque [N m], case's keywords)
+CONVERGED = {"bearing": 2, "max_substep": 2e-6}
+RESOLVED_CONVERGED = (("needle-resolved, max_substep 2 us", THETA, TORQUE, {}),
+                      ("needle-resolved, max_substep 2 us, rounding (1e-15)", THETA, TORQUE,
+                       {"perturb": 1e-15}),
+                      ("needle-resolved, max_substep 2 us, 3000 N m, 25 deg", LAUNCH_THETA,
+                       LAUNCH_TORQUE, {}))
 
 
 def _model(params, n_rollers, **extra):
@@ -65,7 +74,7 @@ def response(m, inputs, steps, sub=1):
 def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10):
     """From ``state``, the same inputs with the substep h / refine and the communication step
     DT / sub, accelerations afresh."""
-    r = _model(params, n_rollers, max_substep=h / refine)
+    r = _model(dict(params, max_substep=h / refine), n_rollers)
     r.set_state(state)
     from tripod_model.layout import H_GA   # (on the path _model put it)
     for roller in r.rollers:

@@ -80,6 +80,73 @@ def test_with_one_pass_the_needle_rows_single_samples_move_with_rounding(resolve
     assert max(mean) < 1.0, mean
 
 
+@pytest.fixture(scope="module")
+def resolved_10hz_converged():
+    return T.settle(T.CONVERGED, 1, 10)
+
+
+@pytest.mark.parametrize("name,factor", [("omega", 1.01), ("omega", 1.10), ("torque", 1.10),
+                                         ("torque", 0.99)])
+def test_with_a_converged_step_the_rows_single_samples_meet_one_percent(
+        resolved_10hz_converged, name, factor):
+    # the needle-resolved row with max_substep = 2 us (about 0.7 of the automatic substep, 1.9
+    # times the run time), one roller settled at 10 Hz, 300 N m, 8 deg: single samples of
+    # Fz_joint within the issue's 1 % of order 3 of the reference of h/20, and that reference
+    # converged (within 1 % of the one at h/10).  Measured on two realizations at 1.99 us:
+    # omega +1 % 0.50 %, omega +10 % 0.16 %, torque +10 % 0.24-0.42 %, torque -1 % 0.06-0.08 %
+    # (references moving by at most 0.32 %); theta +1 % 0.76-0.77 %, not asserted: too near
+    # the bound for another CPU's realization.  The default (2.9 us) misses by 0.4-2.8 %:
+    # docs/integrators.md#needle-resolved-bearing
+    dev, moved = T.checked_case(T.CONVERGED, 1, 10, name, factor, resolved_10hz_converged)
+    assert moved < 1.0
+    assert dev < 1.0
+
+
+def test_with_a_converged_step_rounding_leaves_single_samples(resolved_10hz_converged):
+    # the counterpart of the one-pass test above: from the row settled at 2 us a 1e-15 change
+    # of the state moves single samples by 0.02-0.10 % of order 3 in these cells (two
+    # realizations at 1.99 us); the default: 0.3-2.2 %.  Asserted: below half the issue's 1 %
+    cells = [("omega", 1.0), ("omega", 1.01), ("torque", 0.99)]
+    single = [T.case(T.CONVERGED, 1, 10, n, f, resolved_10hz_converged, perturb=1e-15)
+              for n, f in cells]
+    assert max(single) < 0.5, single
+
+
+def _spin_alternation(params, state, theta, torque, substeps=400):
+    """From ``state``, the share of ``substeps`` needle-row substeps (one a communication
+    step, at the step's own substep) at which the second difference of the roller's spin
+    changes sign: about 0.2-0.5 for smooth motion, 1 for a period-2 oscillation."""
+    import numpy as np
+    m = T._model(params, 1)
+    from tripod_model.layout import H_SUB, Y_OM   # (on the path _model put it)
+    m.set_state(state)
+    w = 2 * math.pi * 10
+    m.step(T.DT, theta, w, 0.0, torque)
+    h = m.rollers[0]._hs[H_SUB]
+    om = []
+    for _ in range(substeps):
+        m.step(h, theta, w, 0.0, torque)
+        om.append(m.rollers[0].Y[Y_OM])
+    d2 = np.diff(om, 2)
+    return float(np.mean(np.sign(d2[1:]) != np.sign(d2[:-1])))
+
+
+def test_a_converged_step_removes_the_default_steps_period_2_oscillation():
+    # one roller at 25 deg and 2000 N m (30 kN), settled with the default step: its velocities
+    # oscillate from substep to substep, the second difference of the spin changing sign at
+    # every substep (measured 1.00 over 400), which no motion the 2.6 us substep resolves
+    # does.  From the same state at half that substep it changes sign at 0.14 of them, as
+    # smooth motion does (300 N m, 8 deg: 0.21-0.29); a second linear solve a substep at the
+    # default substep (a scratch copy): 0.22-0.27
+    theta, torque = math.radians(25.0), 2000.0
+    m, _ = T.settle({"bearing": 2}, 1, 10, theta=theta, torque=torque)
+    st = m.get_state()
+    h = m.rollers[0].substep(theta, 2 * math.pi * 10, m.pressing(0.0, torque),
+                             m.rollers[0].v_st(theta, 2 * math.pi * 10))
+    assert _spin_alternation({"bearing": 2}, st, theta, torque) > 0.9
+    assert _spin_alternation({"bearing": 2, "max_substep": h / 2}, st, theta, torque) < 0.6
+
+
 def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
     # one roller settled at 10 Hz, 8 deg and 3000 N m (45 kN on the roller), then torque +10 %:
     # single samples of Fz_joint within the issue's 1 % of order 3 of the reference of h/20,
