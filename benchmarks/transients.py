@@ -73,7 +73,7 @@ def main(argv=None):
     ap.add_argument("--quick", action="store_true", help="one roller count, ideal bearing")
     ap.add_argument("--md", help="write the table as markdown to this file")
     ap.add_argument("--no-resolved", action="store_true",
-                    help="leave out the needle-resolved bearing's rows (about 70 s)")
+                    help="leave out the needle-resolved bearing's rows (most of the run)")
     ap.add_argument("--realizations", type=int, default=0, metavar="K",
                     help=f"then the needle row's +-10 %% steps on K (at most {len(NUDGES)}) "
                          "other realizations")
