@@ -77,7 +77,7 @@ def _loop_substep(reps, Y0, Yp0, Y, P, drive, h, W, NW):
 
 
 def substep_profile(m, reps=1000):
-    """[us] per substep of the default (integrator 4: BDF2, one contact evaluation a substep),
+    """[us] per substep of the default (integrator 4: BDF2, one contact evaluation a Newton pass),
     timed inside numba on the model's state, the best of 5 rounds of reps each: every needle
     contact with the implicit system's blocks (roller and row in one system), its solve (block
     Cholesky along the open ring, forward for seven right-hand sides, and the roller's Schur
@@ -168,7 +168,9 @@ def main():
     adaptive = m.p["integrator"] == 3
     per_cycle = m.substeps / CYCLES
     attempts = (m._hs[LY.H_TAKEN] + m._hs[LY.H_REJECTED]) / CYCLES if adaptive else per_cycle
-    evals = 3 if m.p["integrator"] in (1, 3) else 1
+    # contact evaluations a substep: the extrapolated steps three, BDF2 one a Newton pass (a
+    # refused pass has evaluated too)
+    evals = 3 if m.p["integrator"] in (1, 3) else m.p["newton_passes"]
     checks = contact_checks(m)
     rate = attempts * CYCLES * evals * checks / r["wall"]
     m = ContactModel(sv)           # a loaded, rolling state at 0.03 s for the profile

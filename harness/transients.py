@@ -28,15 +28,19 @@ RESOLVED_ROWS = ("needle-resolved", "needle-resolved, rounding (1e-15)",
 # and its rows at a launch's torque (single samples): (label, theta [rad])
 RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
                    ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
-# the same row with a converged step (max_substep = 2 us, about 0.7 of the automatic one):
-# single samples and the 1e-15 twin at 300 N m, single samples at a launch's torque and angle:
-# (label, theta [rad], torque [N m], case's keywords)
+# the same row with a converged step: max_substep = 2 us (about 0.7 of the automatic one),
+# single samples and the 1e-15 twin at 300 N m and single samples at a launch's torque and
+# angle; two Newton passes a substep at that launch: (label, parameters, theta [rad],
+# torque [N m], case's keywords)
 CONVERGED = {"bearing": 2, "max_substep": 2e-6}
-RESOLVED_CONVERGED = (("needle-resolved, max_substep 2 us", THETA, TORQUE, {}),
-                      ("needle-resolved, max_substep 2 us, rounding (1e-15)", THETA, TORQUE,
-                       {"perturb": 1e-15}),
-                      ("needle-resolved, max_substep 2 us, 3000 N m, 25 deg", LAUNCH_THETA,
-                       LAUNCH_TORQUE, {}))
+TWO_PASSES = {"bearing": 2, "newton_passes": 2}
+RESOLVED_CONVERGED = (("needle-resolved, max_substep 2 us", CONVERGED, THETA, TORQUE, {}),
+                      ("needle-resolved, max_substep 2 us, rounding (1e-15)", CONVERGED, THETA,
+                       TORQUE, {"perturb": 1e-15}),
+                      ("needle-resolved, max_substep 2 us, 3000 N m, 25 deg", CONVERGED,
+                       LAUNCH_THETA, LAUNCH_TORQUE, {}),
+                      ("needle-resolved, two passes, 3000 N m, 25 deg", TWO_PASSES,
+                       LAUNCH_THETA, LAUNCH_TORQUE, {}))
 
 
 def _model(params, n_rollers, **extra):

@@ -137,6 +137,14 @@ PARAMS: tuple[Param, ...] = (
           "(step_tolerance), 1 the same at the fixed "
           "automatic substep, 0 linearly implicit Euler, 2 explicit (symplectic) Euler for "
           "comparison", kind="int", models=_C),
+    Param("newton_passes", 1, "1", 1, 4,
+          "needle-resolved bearing, integrator 4: linear solves of each BDF2 substep, each "
+          "after the first linearized at the state the one before reached (Newton; a pass "
+          "that would move the state more than the one before is refused); 1 (default) = "
+          "linearly implicit; 2 converges the step (no period-2 oscillation at a launch's "
+          "angle and load, single samples after omega and torque steps within 1 %) at a 36 % "
+          "longer substep and 1.8x the run time (docs/integrators.md)",
+          kind="int", models=_C),
     Param("step_tolerance", 0.0, "1", 0.0, 1.0,
           "integrator 3: largest error of one substep in the roller's slip velocities, as a "
           "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (the split step's "

@@ -136,8 +136,8 @@ def test_a_converged_step_removes_the_default_steps_period_2_oscillation():
     # oscillate from substep to substep, the second difference of the spin changing sign at
     # every substep (measured 1.00 over 400), which no motion the 2.6 us substep resolves
     # does.  From the same state at half that substep it changes sign at 0.14 of them, as
-    # smooth motion does (300 N m, 8 deg: 0.21-0.29); a second linear solve a substep at the
-    # default substep (a scratch copy): 0.22-0.27
+    # smooth motion does (300 N m, 8 deg: 0.21-0.29); with two Newton passes a substep
+    # (newton_passes = 2) at their own, 36 % longer substep at 0.27
     theta, torque = math.radians(25.0), 2000.0
     m, _ = T.settle({"bearing": 2}, 1, 10, theta=theta, torque=torque)
     st = m.get_state()
@@ -145,6 +145,25 @@ def test_a_converged_step_removes_the_default_steps_period_2_oscillation():
                              m.rollers[0].v_st(theta, 2 * math.pi * 10))
     assert _spin_alternation({"bearing": 2}, st, theta, torque) > 0.9
     assert _spin_alternation({"bearing": 2, "max_substep": h / 2}, st, theta, torque) < 0.6
+    assert _spin_alternation(T.TWO_PASSES, st, theta, torque) < 0.6
+
+
+@pytest.fixture(scope="module")
+def launch_two_passes():
+    return T.settle(T.TWO_PASSES, 1, 10, theta=T.LAUNCH_THETA, torque=T.LAUNCH_TORQUE)
+
+
+@pytest.mark.parametrize("name,factor", [("omega", 1.0), ("omega", 1.01), ("torque", 0.99)])
+def test_two_newton_passes_follow_the_row_at_a_launchs_angle(launch_two_passes, name, factor):
+    # one roller settled at 10 Hz, 25 deg and 3000 N m (45 kN) with newton_passes = 2: single
+    # samples of Fz_joint within the 1 % of order 3 of the reference of h/20 with no
+    # step and after +-1 % steps, the reference within 1 % of h/10.  Measured 0.00-0.17 %
+    # (no step, omega and torque cells, one realization); the default there keeps its period-2
+    # oscillation and misses these cells by 1.3-1.5 % (the transients table)
+    kw = {"theta": T.LAUNCH_THETA, "torque": T.LAUNCH_TORQUE}
+    dev, moved = T.checked_case(T.TWO_PASSES, 1, 10, name, factor, launch_two_passes, **kw)
+    assert moved < 1.0
+    assert dev < 1.0
 
 
 def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():

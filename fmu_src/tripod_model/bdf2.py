@@ -10,8 +10,8 @@ from .contact import groove_stiffness_x, tilt_drag
 from .euler import extrapolated_step
 from .genalpha import GA_JUMP_STEP, GA_LOAD_RELAX
 from .rowsolve import coupled_solve
-from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_IS, P_IT, P_M, P_TRAV,
-    V_POS, V_VEL, Y_LEN, Y_X)
+from .layout import (H_GA, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, N_RN, P_DF,
+    P_IS, P_IT, P_M, P_NPASS, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN, Y_OM, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
@@ -23,10 +23,12 @@ from .layout import (H_GA, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, P_DF, P_I
 # substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4 (until
 # 2026-11-27): at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
 # the reference by 1.2-1.4 % of order 3 at h/4 (8 deg; at 25 deg theta by 9-12 %), 0.6-0.7 %
-# (2.9 % and 0.8 %) at h/16; at 300 N m no cell moved beyond the row's chaos.  hs[H_GA]:
-# BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the first of those
-# steps, one up at each after; the last is at BDF_STEP_IN - 1.  Beyond a millisecond the row
-# is chaotic and no finer step follows it sample by sample (docs/benchmarks.md).
+# (2.9 % and 0.8 %) at h/16 (one Newton pass).  Not from GA_JUMP_RELAX (0.02 v_st, an omega
+# step of about 0.5 %), though with two Newton passes that takes omega +-1 % from 0.97 % to
+# 0.09-0.13 % and theta +-1 % from 3-5 % to 0.6 % (docs/integrators.md): a master's 1 % noise,
+# or a run-up at 1e-3 s at low speed, would make every step a step input (16x the substeps).
+# hs[H_GA]: BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the first of
+# those steps, one up at each after; the last is at BDF_STEP_IN - 1.
 BDF_STEP_IN = -3.0
 BDF_FINE_TIME = 8e-4   # [s]
 BDF_FINE_STEPS = 3
@@ -41,6 +43,7 @@ def inputs_jumped(P, hs, jump):
     (BDF_STEP_IN)."""
     if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > GA_JUMP_STEP or P[P_DF] > GA_LOAD_RELAX):
         hs[H_GA] = BDF_STEP_IN
+
 
 
 @njit
@@ -86,20 +89,48 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     at the predicted state y_L: velocities extrapolated linearly, positions
     q_L = a1 q_n - a2 q_{n-1} + g v_L (the BDF2 position rule, so the correction e moves
     positions by g e_v and the stiffness needs no K v term): (M + g D + g^2 K) e_v =
-    g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a step; second order with
-    any tangent (the linearization error is O(e^2) with e = O(h^2))."""
-    Yp, YL, A, b = W.Y2, W.Y1, W.A, W.b
+    g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a pass; second order with
+    any tangent (the linearization error is O(e^2) with e = O(h^2)).
+
+    P[P_NPASS] passes (newton_passes, default 1): each later one solves the same equation
+    again, linearized at the state the pass before reached (Newton), unless its correction is
+    larger than the one before (not contracting: then that pass's state stays; counted in
+    hs[H_REJECTED]).  One pass leaves, at large joint angles and high loads, a period-2
+    oscillation of the roller's velocities from substep to substep (the step's own, not the
+    model's) and makes the row's single samples depend on rounding; a second removes both
+    (docs/integrators.md#needle-resolved-bearing)."""
+    Yp, YL = W.Y2, W.Y1
     r = h / hp
     a1 = (1.0 + r) ** 2 / (1.0 + 2.0 * r)
     a2 = r * r / (1.0 + 2.0 * r)
     g = (1.0 + r) / (1.0 + 2.0 * r) * h
+    n = int(NW.NP[N_N])
+    _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
+    YL[Y_X] = Y[Y_X] + h * drive.w
+    limit = math.inf
+    for _ in range(max(1, int(P[P_NPASS]))):
+        e = _bdf2_pass(Y, Yp, YL, P, drive, g, (a1, a2), W, NW, n, limit)
+        if e < 0.0:      # not contracting: Newton would go astray; keep the pass before
+            W.hs[H_REJECTED] += 1.0
+            break
+        limit = e
+    for i in range(Y.shape[0]):
+        Yp[i] = Y[i]
+        Y[i] = YL[i]
+
+
+@njit
+def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
+    """One linear solve of bdf2_substep's equation, linearized at YL (the predicted state, or
+    the one the pass before reached), YL moved by its correction; a = (a1, a2).  Returns the
+    correction's size (_correction_size) [m/s], or -1 without moving YL where it exceeds
+    ``limit``."""
+    A, b = W.A, W.b
+    a1, a2 = a
     m = P[P_M]
     It = P[P_IT]
     NP = NW.NP
-    n = int(NP[N_N])
-    _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
-    x = Y[Y_X] + h * drive.w
-    YL[Y_X] = x
+    x = YL[Y_X]
     # the groove friction and the spin moment implicit with their secants: saturated, the
     # friction's tangent is ~0 and the step applied it explicitly, h mu f_n r^2 / I_s on the
     # spin; above 11-15 kN (a third of a launch) that overshot the tanh's range and the spin
@@ -126,7 +157,26 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
             FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
             AN[j, i, i] += mj[i]
     coupled_solve(A, b, NW, g, n, trav)
-    _bdf2_correct(Y, Yp, YL, b, FN, g, n)
+    e = _correction_size(b, FN, n, P[P_R], NP[N_RN])
+    if e > limit:
+        return -1.0
+    _bdf2_correct(YL, b, FN, g, n)
+    return e
+
+
+@njit
+def _correction_size(b, FN, n, r, rn):
+    """Root sum of squares of a pass's velocity corrections [m/s]: b the roller's, FN each
+    needle's, rotations [rad/s] times the roller's radius r or the needle's rn [m]."""
+    s = 0.0
+    for i in range(6):
+        v = b[i] * r if V_VEL[i] in (Y_OM, Y_B1D, Y_B2D) else b[i]
+        s += v * v
+    for j in range(n):
+        for i in range(6):
+            v = FN[j, i] * rn if i >= 3 else FN[j, i]
+            s += v * v
+    return math.sqrt(s)
 
 
 @njit
@@ -150,10 +200,9 @@ def _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n):
 
 
 @njit
-def _bdf2_correct(Y, Yp, YL, b, FN, g, n):
-    """bdf2_substep's new state: the predicted one plus the velocity corrections (b: the
-    roller's unknowns, FN: each needle's), positions moved by g times them; Yp <- y_n,
-    Y <- y_{n+1}."""
+def _bdf2_correct(YL, b, FN, g, n):
+    """A pass's new state in YL: YL plus the velocity corrections (b: the roller's unknowns,
+    FN: each needle's), positions moved by g times them."""
     for i in range(6):
         vi, qi = V_VEL[i], V_POS[i]
         YL[vi] += b[i]
@@ -167,6 +216,3 @@ def _bdf2_correct(Y, Yp, YL, b, FN, g, n):
             YL[q + i] += g * FN[j, i]
         YL[q + 3] += g * FN[j, 4]
         YL[q + 4] -= g * FN[j, 3]
-    for i in range(Y.shape[0]):
-        Yp[i] = Y[i]
-        Y[i] = YL[i]

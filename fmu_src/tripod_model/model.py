@@ -69,6 +69,7 @@ class ContactModel:
         P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == K.BEAR_RESOLVED else 1e-3)
         P[K.P_VST0] = p["v_st"]
         P[K.P_HSUB] = p["max_substep"]
+        P[K.P_NPASS] = p["newton_passes"]
         P[K.P_HC] = p["contact_damping"]
         P[K.P_ZROW] = p["row_damping"]
         # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
@@ -479,7 +480,11 @@ class JointModel:
         if self.p["integrator"] == K.INT_DEFAULT and self.p["bearing"] != K.BEAR_RESOLVED:
             text += (f"; generalized-alpha, {int(hs[K.H_FALLBACK])} step(s) handed to the extrapolated "
                      f"substeps when Newton did not converge")
-        elif self.p["integrator"] >= K.INT_ADAPTIVE:
+        elif self.p["integrator"] == K.INT_DEFAULT:      # BDF2, the needle-resolved bearing
+            if self.p["newton_passes"] > 1:
+                text += (f"; BDF2, {int(hs[K.H_REJECTED])} Newton pass(es) refused as not "
+                         f"contracting")
+        elif self.p["integrator"] == K.INT_ADAPTIVE:
             text += f"; {int(hs[K.H_REJECTED])} substep(s) rejected by the error estimate"
         return text
 
