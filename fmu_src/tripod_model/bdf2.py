@@ -45,7 +45,6 @@ def inputs_jumped(P, hs, jump):
         hs[H_GA] = BDF_STEP_IN
 
 
-
 @njit
 def bdf2_steps(Y, P, drive, h, n, W, NW):
     """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing, after a step
@@ -123,8 +122,8 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
 def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
     """One linear solve of bdf2_substep's equation, linearized at YL (the predicted state, or
     the one the pass before reached), YL moved by its correction; a = (a1, a2).  Returns the
-    correction's size (_correction_size) [m/s], or -1 without moving YL where it exceeds
-    ``limit``."""
+    correction's size (_correction_size) [m/s; 0 with one pass], or -1 without moving YL
+    where it exceeds ``limit``."""
     A, b = W.A, W.b
     a1, a2 = a
     m = P[P_M]
@@ -157,7 +156,8 @@ def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
             FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
             AN[j, i, i] += mj[i]
     coupled_solve(A, b, NW, g, n, trav)
-    e = _correction_size(b, FN, n, P[P_R], NP[N_RN])
+    # (one pass, the default, has no use for the size)
+    e = _correction_size(b, FN, n, P[P_R], NP[N_RN]) if P[P_NPASS] > 1.5 else 0.0
     if e > limit:
         return -1.0
     _bdf2_correct(YL, b, FN, g, n)
