@@ -6,8 +6,8 @@ and after omega +1 %.  Prints markdown tables:
   single samples and as their 1 ms running mean (harness.transients.MEAN_SAMPLES);
 - the same model from a state moved by 1e-15 or 1e-12 (the roller's spin): how far rounding
   alone moves it, and the e-folding time of that difference in the state;
-- with a converged step (max_substep = 2 us, harness.transients.CONVERGED), settled with it:
-  how far rounding moves its single samples.
+- with one Newton pass a substep (newton_passes = 1, harness.transients.ONE_PASS, the default
+  until 2026-11-28), settled with it: how far rounding moves its single samples.
 
     python benchmarks/needle_chaos.py [--md FILE]       (about 1 min)
 """
@@ -38,7 +38,7 @@ def row_labels():
     for label, _ in CELLS:
         out += [f"{label}: reference h/{k}" for k in REFINES[:-1]] + [f"{label}: default"]
         out += [f"{label}: default from the state moved by {eps:g}" for eps in TWINS]
-        out += [f"{label}: max_substep 2 us, settled with it, from its state moved by 1e-15"]
+        out += [f"{label}: one pass, settled with it, from its state moved by 1e-15"]
     return out
 
 
@@ -82,7 +82,7 @@ def main(argv=None):
     t0 = time.time()
     m, a3 = T.settle({"bearing": 2}, 1, 10)
     st = m.get_state()
-    m2, _ = T.settle(T.CONVERGED, 1, 10)   # (its order 3 within 0.1 % of a3)
+    m2, _ = T.settle(T.ONE_PASS, 1, 10)
     st2 = m2.get_state()
     w = 2 * math.pi * 10
     h = m.rollers[0].substep(T.THETA, w, m.pressing(0.0, T.TORQUE), m.rollers[0].v_st(T.THETA, w))
@@ -114,8 +114,8 @@ def main(argv=None):
         y2 = T.response(m2, inputs, 20)
         m2.set_state(T.twin(st2, 1e-15))
         y2t = T.response(m2, inputs, 20)
-        lines.append(f"| {label}: max_substep 2 us, settled with it, from its state moved by "
-                     f"1e-15 | max_substep 2 us | {pc(y2t, y2, 1):.2f} | "
+        lines.append(f"| {label}: one pass, settled with it, from its state moved by "
+                     f"1e-15 | one pass | {pc(y2t, y2, 1):.2f} | "
                      f"{pc(y2t, y2, T.MEAN_SAMPLES):.2f} |")
         print(f"{label}: done ({time.time() - t0:.0f} s)", file=sys.stderr)
     inputs = {"theta": T.THETA, "omega": w, "torque": T.TORQUE}

@@ -18,7 +18,7 @@ from pathlib import Path
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,  # noqa: E402
                                 MEAN_SAMPLES, RESOLVED_LAUNCH, RESOLVED_ROWS,
-                                RESOLVED_CONVERGED, SIZES, case, checked_case, deviation,
+                                RESOLVED_ONE_PASS, SIZES, case, checked_case, deviation,
                                 settle, step_runs)
 
 
@@ -109,10 +109,10 @@ def main(argv=None):
         for label, theta in RESOLVED_LAUNCH:
             kw = {"theta": theta, "torque": LAUNCH_TORQUE}
             rows.append(table_row(label, params, nr, f, settle(params, nr, f, **kw), **kw))
-        # with a converged step: max_substep = 2 us, or two Newton passes a substep
+        # with one Newton pass a substep, the default until 2026-11-28
         # (docs/integrators.md#needle-resolved-bearing)
         bases = {}
-        for label, p, theta, torque, extra in RESOLVED_CONVERGED:
+        for label, p, theta, torque, extra in RESOLVED_ONE_PASS:
             kw = {"theta": theta, "torque": torque}
             key = (tuple(sorted(p.items())), theta, torque)
             if key not in bases:

@@ -211,11 +211,11 @@ def _needle_chaos_rows():
 
 
 def _transients_rows():
-    from harness.transients import (LAUNCH_ROW, RESOLVED_LAUNCH, RESOLVED_ROWS,
-                                    RESOLVED_CONVERGED)
+    from harness.transients import (LAUNCH_ROW, RESOLVED_LAUNCH, RESOLVED_ONE_PASS,
+                                    RESOLVED_ROWS)
     return (["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + list(RESOLVED_ROWS)
             + [label for label, _ in RESOLVED_LAUNCH]
-            + [label for label, *_ in RESOLVED_CONVERGED])
+            + [label for label, *_ in RESOLVED_ONE_PASS])
 
 
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)

@@ -33,7 +33,7 @@ SCENES = {
     "lumped_genalpha": ({"bearing": 1}, 0.5),
     "lumped_adaptive": ({"bearing": 1, "integrator": 3}, 0.3),
     "resolved_12": ({"bearing": 2, "n_needles": 12}, 0.05),
-    "resolved_12_two_passes": ({"bearing": 2, "n_needles": 12, "newton_passes": 2}, 0.05),
+    "resolved_12_one_pass": ({"bearing": 2, "n_needles": 12, "newton_passes": 1}, 0.05),
     "resolved_12_split": ({"bearing": 2, "n_needles": 12, "integrator": 3}, 0.05),
     "three_rollers": ({"n_rollers": 3}, 0.2),
 }

@@ -28,19 +28,15 @@ RESOLVED_ROWS = ("needle-resolved", "needle-resolved, rounding (1e-15)",
 # and its rows at a launch's torque (single samples): (label, theta [rad])
 RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
                    ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
-# the same row with a converged step: max_substep = 2 us (about 0.7 of the automatic one),
-# single samples and the 1e-15 twin at 300 N m and single samples at a launch's torque and
-# angle; two Newton passes a substep at that launch: (label, parameters, theta [rad],
-# torque [N m], case's keywords)
-CONVERGED = {"bearing": 2, "max_substep": 2e-6}
-TWO_PASSES = {"bearing": 2, "newton_passes": 2}
-RESOLVED_CONVERGED = (("needle-resolved, max_substep 2 us", CONVERGED, THETA, TORQUE, {}),
-                      ("needle-resolved, max_substep 2 us, rounding (1e-15)", CONVERGED, THETA,
-                       TORQUE, {"perturb": 1e-15}),
-                      ("needle-resolved, max_substep 2 us, 3000 N m, 25 deg", CONVERGED,
-                       LAUNCH_THETA, LAUNCH_TORQUE, {}),
-                      ("needle-resolved, two passes, 3000 N m, 25 deg", TWO_PASSES,
-                       LAUNCH_THETA, LAUNCH_TORQUE, {}))
+# the same row with one Newton pass a substep (newton_passes = 1, the default until
+# 2026-11-28): single samples and the 1e-15 twin at 300 N m, single samples at a launch's
+# torque and angle: (label, parameters, theta [rad], torque [N m], case's keywords)
+ONE_PASS = {"bearing": 2, "newton_passes": 1}
+RESOLVED_ONE_PASS = (("needle-resolved, one pass", ONE_PASS, THETA, TORQUE, {}),
+                     ("needle-resolved, one pass, rounding (1e-15)", ONE_PASS, THETA, TORQUE,
+                      {"perturb": 1e-15}),
+                     ("needle-resolved, one pass, 3000 N m, 25 deg", ONE_PASS, LAUNCH_THETA,
+                      LAUNCH_TORQUE, {}))
 
 
 def _model(params, n_rollers, **extra):
@@ -87,11 +83,11 @@ def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10):
 
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
-# steps (1 ms): with the default step (one linear solve a substep; a second takes most of
-# this away, docs/integrators.md) the row is chaotic on the scale of a few samples (a 1e-15
-# change of the state moves single samples of Fz_joint by up to 2.3 % of order 3 within 20
-# steps, and references 10 to 160 times finer part by up to 1.7 %), while the 1 ms mean
-# converges (docs/benchmarks.md)
+# steps (1 ms): with one linear solve a substep (newton_passes = 1) the row is chaotic on the
+# scale of a few samples (a 1e-15 change of the state moves single samples of Fz_joint by up
+# to 2.3 % of order 3 within 20 steps, and references 10 to 160 times finer part by up to
+# 1.7 %), while the 1 ms mean converges (docs/benchmarks.md); the default's second pass
+# takes most of that away (docs/integrators.md)
 MEAN_SAMPLES = 10
 
 

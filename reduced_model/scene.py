@@ -137,14 +137,18 @@ PARAMS: tuple[Param, ...] = (
           "(step_tolerance), 1 the same at the fixed "
           "automatic substep, 0 linearly implicit Euler, 2 explicit (symplectic) Euler for "
           "comparison", kind="int", models=_C),
-    Param("newton_passes", 1, "1", 1, 4,
-          "needle-resolved bearing, integrator 4: linear solves of each BDF2 substep, each "
-          "after the first linearized at the state the one before reached (Newton; a pass "
-          "that would move the state more than the one before is refused); 1 (default) = "
-          "linearly implicit; 2 converges the step (no period-2 oscillation at a launch's "
-          "angle and load, single samples after omega and torque steps within 1 %) at a 36 % "
-          "longer substep and 1.8x the run time (docs/integrators.md)",
+    Param("newton_passes", 2, "1", 1, 4,
+          "needle-resolved bearing, integrator 4: the most linear solves of each BDF2 substep, "
+          "each after the first linearized at the state the one before reached (Newton) and "
+          "made only where the one before moved the velocities by more than newton_tol (a "
+          "pass that would move them more than the one before is refused); 1 = linearly "
+          "implicit, at a 27 % shorter substep (docs/integrators.md)",
           kind="int", models=_C),
+    Param("newton_tol", 3e-4, "m/s", 0.0, 1.0,
+          "needle-resolved bearing with newton_passes > 1: a Newton pass is the last where its "
+          "correction (root sum of squares over the roller's and the needles' velocities, "
+          "rotations times their radius) is at most this; 0 = every pass",
+          models=_C),
     Param("step_tolerance", 0.0, "1", 0.0, 1.0,
           "integrator 3: largest error of one substep in the roller's slip velocities, as a "
           "fraction of v_st; 0 = automatic: 1e-3, or 3e-3 with bearing 2 (the split step's "

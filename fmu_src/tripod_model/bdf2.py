@@ -8,10 +8,10 @@ from .jit import njit
 from .assembly import hold_slide, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x, tilt_drag
 from .euler import extrapolated_step
-from .genalpha import GA_JUMP_STEP, GA_LOAD_RELAX
+from .genalpha import GA_JUMP_RELAX, GA_JUMP_STEP, GA_LOAD_RELAX
 from .rowsolve import coupled_solve
-from .layout import (H_GA, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N, N_RN, P_DF,
-    P_IS, P_IT, P_M, P_NPASS, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN, Y_OM, Y_X)
+from .layout import (H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N,
+    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN, Y_OM, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
@@ -33,6 +33,13 @@ BDF_STEP_IN = -3.0
 BDF_FINE_TIME = 8e-4   # [s]
 BDF_FINE_STEPS = 3
 BDF_FINE_SPLIT = 16
+# A smaller jump of the slip, above GA_JUMP_RELAX v_st (an omega step of about 0.5 %; a master's
+# ramp moves it by about 0.004 v_st a step), restarts BDF2 by one backward-Euler substep (the
+# same step with no history, r = 0): the velocities from before the jump, carried across it, are
+# a first-order error in the substep.  Omega +-1 % at 300 N m, single samples against h/20 (two
+# Newton passes at h w = 0.75): 0.97 % of order 3 with the history, 0.70-0.72 % restarted.
+# hs[H_GA] = BDF_RESTART: the next substep restarts so.
+BDF_RESTART = 2.0
 
 
 @njit
@@ -40,9 +47,11 @@ def inputs_jumped(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
     the slip's amplitude over v_st, -1 for none; P[P_DF] the pressing load's relative change):
     a step input takes the communication steps of the next BDF_FINE_TIME in finer substeps
-    (BDF_STEP_IN)."""
+    (BDF_STEP_IN), a smaller jump of the slip one backward-Euler substep first (BDF_RESTART)."""
     if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > GA_JUMP_STEP or P[P_DF] > GA_LOAD_RELAX):
         hs[H_GA] = BDF_STEP_IN
+    elif hs[H_GA] == 1.0 and jump > GA_JUMP_RELAX:
+        hs[H_GA] = BDF_RESTART
 
 
 @njit
@@ -50,7 +59,7 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
     """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing, after a step
     input h / BDF_FINE_SPLIT or h/2 instead (inputs_jumped); W.Y2 carries the previous state
     and hs[H_SUB] the previous substep from call to call, hs[H_GA] whether they are valid (0:
-    not; 1 or a step input's countdown: valid), hs[H_TAKEN] counts substeps."""
+    not; 1, BDF_RESTART or a step input's countdown: valid), hs[H_TAKEN] counts substeps."""
     ny = Y.shape[0]
     Y2, hs = W.Y2, W.hs
     if hs[H_GA] < 0.0:     # a step input's countdown (BDF_STEP_IN)
@@ -73,6 +82,9 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
                 Y2[i] = Y[i]
             extrapolated_step(Y, P, drive, h, W, NW)
             hs[H_GA] = 1.0
+        elif hs[H_GA] == BDF_RESTART:    # the slip jumped: no history across it
+            bdf2_substep(Y, P, drive, h, math.inf, W, NW)
+            hs[H_GA] = 1.0
         else:
             bdf2_substep(Y, P, drive, h, hs[H_SUB], W, NW)
         hs[H_SUB] = h
@@ -81,8 +93,8 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
 
 @njit
 def bdf2_substep(Y, P, drive, h, hp, W, NW):
-    """One linearly implicit BDF2 step of h [s] (the previous step hp) with the needle-resolved
-    bearing: Y = y_n -> y_{n+1}, Yp = W.Y2 = y_{n-1} -> y_n, YL = W.Y1 work.
+    """One linearly implicit BDF2 step of h [s] (the previous step hp; inf: backward Euler) with
+    the needle-resolved bearing: Y = y_n -> y_{n+1}, Yp = W.Y2 = y_{n-1} -> y_n, YL = W.Y1 work.
 
     y_{n+1} - a1 y_n + a2 y_{n-1} = g f(y_{n+1}) (variable-step BDF2, g = beta h), linearized
     at the predicted state y_L: velocities extrapolated linearly, positions
@@ -91,13 +103,15 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a pass; second order with
     any tangent (the linearization error is O(e^2) with e = O(h^2)).
 
-    P[P_NPASS] passes (newton_passes, default 1): each later one solves the same equation
-    again, linearized at the state the pass before reached (Newton), unless its correction is
-    larger than the one before (not contracting: then that pass's state stays; counted in
-    hs[H_REJECTED]).  One pass leaves, at large joint angles and high loads, a period-2
-    oscillation of the roller's velocities from substep to substep (the step's own, not the
-    model's) and makes the row's single samples depend on rounding; a second removes both
-    (docs/integrators.md#needle-resolved-bearing)."""
+    Up to P[P_NPASS] passes (newton_passes, default 2): each later one solves the same
+    equation again, linearized at the state the pass before reached (Newton), where that pass's
+    correction exceeded P[P_NTOL] (newton_tol) and unless its own is larger (not contracting:
+    then that pass's state stays; counted in hs[H_REJECTED]).  One pass leaves, at large joint
+    angles and high loads, a period-2 oscillation of the roller's velocities from substep to
+    substep (the step's own, not the model's) and makes the row's single samples depend on
+    rounding; a second where the first moved the velocities by more than 3e-4 m/s (a third of
+    the substeps at 300 N m, four fifths at 45 kN and 25 deg) removes both at about the cost
+    of one pass, its substep 36 % longer (docs/integrators.md#needle-resolved-bearing)."""
     Yp, YL = W.Y2, W.Y1
     r = h / hp
     a1 = (1.0 + r) ** 2 / (1.0 + 2.0 * r)
@@ -107,7 +121,11 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
     YL[Y_X] = Y[Y_X] + h * drive.w
     limit = math.inf
-    for _ in range(max(1, int(P[P_NPASS]))):
+    for k in range(max(1, int(P[P_NPASS]))):
+        if k > 0:
+            if limit <= P[P_NTOL]:   # the linearization's error, O(e^2), is small enough
+                break
+            W.hs[H_PASSES] += 1.0
         e = _bdf2_pass(Y, Yp, YL, P, drive, g, (a1, a2), W, NW, n, limit)
         if e < 0.0:      # not contracting: Newton would go astray; keep the pass before
             W.hs[H_REJECTED] += 1.0

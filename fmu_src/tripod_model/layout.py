@@ -11,7 +11,7 @@ from reduced_model import scene
 (P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
  P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
  P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_VP, P_HC, P_ZROW, P_DF,
- P_FLANK, P_HFREE, P_RINGA, P_NPASS, P_LEN, *_) = range(128)
+ P_FLANK, P_HFREE, P_RINGA, P_NPASS, P_NTOL, P_LEN, *_) = range(128)
 # P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
 # what the operating point derived from them (oppoint.py); P_VP: the plunge speed [m/s] of the
 # step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
@@ -20,7 +20,8 @@ from reduced_model import scene
 # centre sits off the track's mid-plane [m] (contact.flank_centre; 0: one cylinder); P_HFREE:
 # the generalized-alpha substep without the ring's bound [s] (0: none), P_RINGA: the slide's
 # acceleration below which the ring counts as quiet [m/s^2] (oppoint.derive, genalpha.ga_steps);
-# P_NPASS: newton_passes, the linear solves of a BDF2 substep (bdf2.bdf2_substep)
+# P_NPASS: newton_passes, the most linear solves of a BDF2 substep (bdf2.bdf2_substep); P_NTOL:
+# newton_tol [m/s], the correction below which a pass is the last
 # --- the bearings and integrators: the values of the parameters `bearing` and `integrator`
 # as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEAR],
 # P[P_INTEG] against these
@@ -62,11 +63,13 @@ V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 # valid); H_FALLBACK: steps handed to the adaptive substeps; H_ACC..: the algorithmic
 # accelerations of the NV unknowns (generalized-alpha); H_FACC..: their accelerations from the
 # forces at the end of a restart step (genalpha.GA_AFTER_RESTART); H_RING: the roller's ring
-# (RING_OPEN or RING_QUIET, genalpha.ga_steps)
+# (RING_OPEN or RING_QUIET, genalpha.ga_steps); H_PASSES: BDF2's Newton passes after the first,
+# counted (the needle-resolved bearing's; it has no generalized-alpha accelerations to keep)
 H_SUB, H_TAKEN, H_REJECTED, H_GA, H_FALLBACK, H_ACC = range(6)
 H_FACC = H_ACC + NV
 H_RING = H_FACC + NV
 H_LEN = H_RING + 1
+H_PASSES = H_ACC
 RING_OPEN, RING_QUIET = 0.0, 1.0   # hs[H_RING]: resolved (the start's value), quiet
 # --- output vector layout ---
 (O_FX, O_FY, O_FZ, O_CY, O_CZ, O_SLIP, O_SPIN, O_FN, O_X, O_PL, O_LEN) = range(11)

@@ -70,6 +70,7 @@ class ContactModel:
         P[K.P_VST0] = p["v_st"]
         P[K.P_HSUB] = p["max_substep"]
         P[K.P_NPASS] = p["newton_passes"]
+        P[K.P_NTOL] = p["newton_tol"]
         P[K.P_HC] = p["contact_damping"]
         P[K.P_ZROW] = p["row_damping"]
         # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
@@ -482,8 +483,8 @@ class JointModel:
                      f"substeps when Newton did not converge")
         elif self.p["integrator"] == K.INT_DEFAULT:      # BDF2, the needle-resolved bearing
             if self.p["newton_passes"] > 1:
-                text += (f"; BDF2, {int(hs[K.H_REJECTED])} Newton pass(es) refused as not "
-                         f"contracting")
+                text += (f"; BDF2, a second Newton pass in {int(hs[K.H_PASSES])} substep(s), "
+                         f"{int(hs[K.H_REJECTED])} pass(es) refused as not contracting")
         elif self.p["integrator"] == K.INT_ADAPTIVE:
             text += f"; {int(hs[K.H_REJECTED])} substep(s) rejected by the error estimate"
         return text
