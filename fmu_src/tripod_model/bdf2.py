@@ -11,7 +11,8 @@ from .euler import extrapolated_step
 from .genalpha import GA_JUMP_RELAX, GA_JUMP_STEP, GA_LOAD_RELAX
 from .rowsolve import coupled_solve
 from .layout import (H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N,
-    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN, Y_OM, Y_X)
+    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN,
+    Y_OM, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
@@ -174,7 +175,7 @@ def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
             FN[j, i] -= mj[i] * (YL[q + 5 + i] - a1 * Y[q + 5 + i] + a2 * Yp[q + 5 + i]) / g
             AN[j, i, i] += mj[i]
     coupled_solve(A, b, NW, g, n, trav)
-    # (one pass, the default, has no use for the size)
+    # (one pass has no use for the size)
     e = _correction_size(b, FN, n, P[P_R], NP[N_RN]) if P[P_NPASS] > 1.5 else 0.0
     if e > limit:
         return -1.0

@@ -69,8 +69,7 @@ class ContactModel:
         P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == K.BEAR_RESOLVED else 1e-3)
         P[K.P_VST0] = p["v_st"]
         P[K.P_HSUB] = p["max_substep"]
-        P[K.P_NPASS] = p["newton_passes"]
-        P[K.P_NTOL] = p["newton_tol"]
+        P[K.P_NPASS], P[K.P_NTOL] = p["newton_passes"], p["newton_tol"]
         P[K.P_HC] = p["contact_damping"]
         P[K.P_ZROW] = p["row_damping"]
         # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
