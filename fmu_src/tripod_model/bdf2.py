@@ -37,8 +37,9 @@ BDF_FINE_SPLIT = 16
 # A smaller jump of the slip, above GA_JUMP_RELAX v_st (an omega step of about 0.5 %; a master's
 # ramp moves it by about 0.004 v_st a step), restarts BDF2 by one backward-Euler substep (the
 # same step with no history, r = 0): the velocities from before the jump, carried across it, are
-# a first-order error in the substep.  Omega +-1 % at 300 N m, single samples against h/20 (two
-# Newton passes at h w = 0.75): 0.97 % of order 3 with the history, 0.70-0.72 % restarted.
+# a first-order error in the substep.  Omega +-1 % at 300 N m, single samples against h/20 (the
+# default's passes): 0.89-0.99 % of order 3 with the history (sixteen realizations),
+# 0.64-0.83 % restarted (five).
 # hs[H_GA] = BDF_RESTART: the next substep restarts so.
 BDF_RESTART = 2.0
 
@@ -111,8 +112,9 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     angles and high loads, a period-2 oscillation of the roller's velocities from substep to
     substep (the step's own, not the model's) and makes the row's single samples depend on
     rounding; a second where the first moved the velocities by more than 3e-4 m/s (a third of
-    the substeps at 300 N m, four fifths at 45 kN and 25 deg) removes both at about the cost
-    of one pass, its substep 36 % longer (docs/integrators.md#needle-resolved-bearing)."""
+    the substeps in the paper's scene, half at 300 N m, nearly all at 30-45 kN and 25 deg)
+    removes both, its substep 36 % longer: 1.25 times one pass's run in the paper's scene
+    (docs/integrators.md#needle-resolved-bearing)."""
     Yp, YL = W.Y2, W.Y1
     r = h / hp
     a1 = (1.0 + r) ** 2 / (1.0 + 2.0 * r)
