@@ -175,9 +175,10 @@ def pareto(points, t_margin=0.0, e_margin=0.0):
 
 # Model families whose single runs are realizations of a chaotic system, with the spread one
 # realization to the next (docs/validation.md, `needle_speed.py --ensemble 6`): the needle
-# row's order 3 spreads by 0.1 % with its default step (1 % with the split extrapolated one),
-# and one setting's run time by up to +-20 % on this shared machine.  Each setting is timed
-# on one realization, so smaller differences are no evidence that one setting beats another.
+# row's order 3 spreads by 0.02 % with its default step (0.1 % with one Newton pass, 1 % with
+# the split extrapolated one), and one setting's run time by up to +-20 % on this shared
+# machine.  Each setting is timed on one realization, so smaller differences are no evidence
+# that one setting beats another.
 CHAOTIC = {"contact bearing 2": (0.20, 0.003)}
 
 
