@@ -11,8 +11,7 @@ from .euler import extrapolated_step
 from .genalpha import GA_JUMP_RELAX, GA_JUMP_STEP, GA_LOAD_RELAX
 from .rowsolve import coupled_solve
 from .layout import (H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N,
-    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_VEL, Y_B1D, Y_B2D, Y_LEN,
-    Y_OM, Y_X)
+    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
@@ -24,10 +23,11 @@ from .layout import (H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3
 # substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4 (until
 # 2026-11-27): at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
 # the reference by 1.2-1.4 % of order 3 at h/4 (8 deg; at 25 deg theta by 9-12 %), 0.6-0.7 %
-# (2.9 % and 0.8 %) at h/16 (one Newton pass).  Not from GA_JUMP_RELAX (0.02 v_st, an omega
-# step of about 0.5 %), though with two Newton passes that takes omega +-1 % from 0.97 % to
-# 0.09-0.13 % and theta +-1 % from 3-5 % to 0.6 % (docs/integrators.md): a master's 1 % noise,
-# or a run-up at 1e-3 s at low speed, would make every step a step input (16x the substeps).
+# (2.9 % and 0.8 %) at h/16 (one Newton pass).  A step input from GA_JUMP_STEP on, not from
+# GA_JUMP_RELAX (0.02 v_st, an omega step of about 0.5 %), though with two Newton passes that
+# takes omega +-1 % from 0.97 % to 0.09-0.13 % and theta +-1 % from 3-5 % to 0.6 %
+# (docs/integrators.md): a master's 1 % noise, or a run-up at 1e-3 s at low speed, would make
+# every step a step input (16x the substeps).  Those smaller jumps take BDF_RESTART instead.
 # hs[H_GA]: BDF_STEP_IN from inputs_jumped, BDF_STEP_IN minus their number at the first of
 # those steps, one up at each after; the last is at BDF_STEP_IN - 1.
 BDF_STEP_IN = -3.0
@@ -191,7 +191,7 @@ def _correction_size(b, FN, n, r, rn):
     needle's, rotations [rad/s] times the roller's radius r or the needle's rn [m]."""
     s = 0.0
     for i in range(6):
-        v = b[i] * r if V_VEL[i] in (Y_OM, Y_B1D, Y_B2D) else b[i]
+        v = b[i] * (r if V_ROT[i] > 0.0 else 1.0)
         s += v * v
     for j in range(n):
         for i in range(6):

@@ -33,14 +33,13 @@ CYCLE_SUBSTEPS = 1960.0
 # resolved); docs/integrators.md
 RING_QUIET_FORCE = 3e-4
 # The BDF2 substep with the needle-resolved bearing takes at most this whirl angle [rad]
-# (10 Hz: 8 us, not binding; 40 Hz: 2 us).  One-pass BDF2 (the default) linearizes once a
-# substep, the needles' friction by its secant; the linearization error grows with speed: one
-# roller's order 1 at 300 N m and 8 deg read 1 % high at 25 Hz and 4.5 % at 40 and 80 Hz at
-# the row's 2.9 us (a second linear solve at the corrected state, or half the substep, removes
-# it).  At this
-# bound 0.7 % at 40 Hz and 0.4 % at 80 Hz, means over three realizations against h/4 to h/8
-# (docs/integrators.md).  Kept with newton_passes = 2, which removes that error at its root
-# (not measured whether it allows a longer bound)
+# (10 Hz: 8 us, not binding; 40 Hz: 2 us).  Measured with one-pass BDF2 (newton_passes = 1,
+# the default until 2026-11-28), which linearizes once a substep, the needles' friction by its
+# secant: the linearization error grows with speed, one roller's order 1 at 300 N m and 8 deg
+# read 1 % high at 25 Hz and 4.5 % at 40 and 80 Hz at the row's 2.9 us (a second linear solve
+# at the corrected state, or half the substep, removes it).  At this bound 0.7 % at 40 Hz and
+# 0.4 % at 80 Hz, means over three realizations against h/4 to h/8 (docs/integrators.md).
+# Kept with the default's second pass (not measured whether that allows a longer bound)
 ROW_WHIRL_STEP = 5e-4
 
 
