@@ -21,7 +21,7 @@ ROOT = Path(__file__).resolve().parents[1]
 _NEEDLES = r'''
 import sys, time
 sys.path.insert(0, sys.argv[1] + "/fmu_src"); sys.path.insert(0, sys.argv[1])
-from tripod_model.model import simulate
+from tripod_model.simulate import simulate
 simulate({"bearing": 2}, cycles=0.002)            # compile / load the cache
 t0 = time.perf_counter(); simulate({"bearing": 2}, cycles=0.1); print(time.perf_counter() - t0)
 '''

@@ -37,7 +37,7 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
         raise ValueError(f"dt_out = {dt_out:g} s is not a whole number of steps h = {h:g} s")
     n_out = int(round(cycles * 2 * math.pi / w / (every * h)))
     Y, P, W = m.Y, m.P, m._W
-    drive = LY.Drive(theta, w, x0)
+    drive = LY.Drive(theta, w, x0, 0.0)
     step = genalpha.ga_step.py_func          # the step in Python; its force evaluations compiled
     out = np.zeros(n_out)
     failed = 0

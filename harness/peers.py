@@ -40,7 +40,7 @@ def solve_ivp_run(method: str = "LSODA", rtol: float = 1e-6, params=None, cycles
     x0 = m.pressing_offset(F)
     Y, P, L, res, Q, M = m.Y.copy(), m.P, m._L, m._res, m._b, m._GW[LY.W_M]
     xs = Y[LY.Y_X]
-    drive = LY.Drive(theta, w, x0)
+    drive = LY.Drive(theta, w, x0, 0.0)
 
     def rhs(t, y):
         Y[LY.Y_X] = xs + w * t

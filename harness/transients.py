@@ -62,24 +62,32 @@ def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE, nudge=0.0
     return m, last_cycle_orders(DT * np.arange(1, n + 1), y, x, (3,))[3][0]
 
 
-def response(m, inputs, steps, sub=1):
+def response(m, inputs, steps, sub=1, before=None):
+    """Fz_joint [N] at the end of each of ``steps`` communication steps DT at ``inputs``, taken
+    in steps of DT / sub.  ``before``: the inputs before a step; where the model ramps a load
+    change over its step (ContactModel.load_ramped) the torque then follows that ramp over the
+    first DT's sub steps, so a finer reference sees the same input history."""
     out = []
+    ramp = before is not None and sub > 1 and m.rollers[0].load_ramped
     for i in range(steps * sub):
-        o = m.step(DT / sub, inputs["theta"], inputs["omega"], 0.0, inputs["torque"])
+        tq = inputs["torque"]
+        if ramp and i < sub:
+            tq = before["torque"] + (tq - before["torque"]) * (i + 1) / sub
+        o = m.step(DT / sub, inputs["theta"], inputs["omega"], 0.0, tq)
         if (i + 1) % sub == 0:
             out.append(o["Fz_joint"])
     return np.array(out)
 
 
-def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10):
+def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10, before=None):
     """From ``state``, the same inputs with the substep h / refine and the communication step
-    DT / sub, accelerations afresh."""
+    DT / sub, accelerations afresh; ``before``: the inputs before a step (response)."""
     r = _model(dict(params, max_substep=h / refine), n_rollers)
     r.set_state(state)
     from tripod_model.layout import H_GA   # (on the path _model put it)
     for roller in r.rollers:
         roller._hs[H_GA] = 0.0
-    return response(r, inputs, steps, sub=sub)
+    return response(r, inputs, steps, sub=sub, before=before)
 
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
@@ -114,9 +122,11 @@ def step_runs(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQ
     h = m.rollers[0].substep(theta, 2 * math.pi * f, m.pressing(0.0, torque),
                              m.rollers[0].v_st(theta, 2 * math.pi * f))
     inputs = stepped_inputs(f, theta, torque, name, factor)
+    before = stepped_inputs(f, theta, torque, name, 1.0)
     y = response(m, inputs, 20)
     m.set_state(st)
-    return y, {k: reference(params, n_rollers, st, inputs, 20, h, k) for k in refines}
+    return y, {k: reference(params, n_rollers, st, inputs, 20, h, k, before=before)
+               for k in refines}
 
 
 def stepped_inputs(f, theta, torque, name, factor):

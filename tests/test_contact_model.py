@@ -8,7 +8,8 @@ import pytest
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
 from tripod_model import hertz  # noqa: E402
-from tripod_model.model import ContactModel, simulate  # noqa: E402
+from tripod_model.model import ContactModel  # noqa: E402
+from tripod_model.simulate import simulate  # noqa: E402
 
 
 def test_hertz_against_model_md_orders():

@@ -83,19 +83,19 @@ def test_with_one_pass_the_needle_rows_single_samples_move_with_rounding(resolve
 
 
 @pytest.mark.parametrize("name,factor", [("omega", 1.01), ("omega", 0.99), ("omega", 1.10),
-                                         ("torque", 1.10), ("torque", 0.99)])
+                                         ("torque", 1.10), ("torque", 0.99), ("torque", 0.90)])
 def test_the_needle_rows_single_samples_meet_one_percent(resolved_10hz, name, factor):
     # the default (a second Newton pass where the first moved the velocities by more than
     # newton_tol, a backward-Euler substep after a smaller jump of the slip), one roller
     # settled at 10 Hz, 300 N m, 8 deg: single samples of Fz_joint within the 1 % of
     # order 3 of the reference of h/20, and that reference converged (within 1 % of h/10).
-    # Measured here (the transients table's realization) 0.64, 0.83, 0.61, 0.05 and 0.09 %; on
-    # four others (settling whirl nudged by 1e-11 to 3e-7): omega +1 % 0.68-0.75 %, omega -1 %
-    # 0.72 %, omega +10 % 0.61-0.62 %, torque +10 % 0.07-0.18 %, torque -1 % 0.09-0.22 %,
-    # references moving by at most 0.60 %.  One pass a substep missed these cells by 0.4-2.8 %
-    # (docs/integrators.md#needle-resolved-bearing).  Theta steps and torque -10 % are left
-    # out: in some realizations no reference converges there (h/10, h/20 and h/28 part by
-    # 0.7-2.1 % after torque -10 %), and here a 1e-15 twin moves torque -10 % by 1.07 %
+    # Measured here (the transients table's realization) 0.64, 0.83, 0.61, 0.03, 0.15 and
+    # 0.07 %; on four others (settling whirl nudged by 1e-11 to 3e-7): omega +1 % 0.68-0.75 %,
+    # omega -1 % 0.72 %, omega +10 % 0.61-0.62 %, torque +10 % 0.02-0.08 %, torque -1 %
+    # 0.05-0.16 %, torque -10 % 0.04-0.10 %, references moving by at most 0.60 %.  One pass a
+    # substep missed these cells by 0.4-2.8 % (docs/integrators.md#needle-resolved-bearing);
+    # torque -10 % read 1.24 % here while a load step jumped the row's offset (the test
+    # below).  Theta steps are left out: no reference converges there with any substep
     dev, moved = T.checked_case({"bearing": 2}, 1, 10, name, factor, resolved_10hz)
     assert moved < 1.0
     assert dev < 1.0
@@ -104,8 +104,9 @@ def test_the_needle_rows_single_samples_meet_one_percent(resolved_10hz, name, fa
 def test_rounding_leaves_the_needle_rows_single_samples(resolved_10hz):
     # the counterpart of the one-pass test above: from the row settled with the default a
     # 1e-15 change of the state moves single samples by 0.01-0.15 % of order 3 in these cells
-    # (four realizations); one pass: 0.3-2.2 %.  Asserted: below half the 1 %
-    cells = [("omega", 1.0), ("omega", 1.01), ("torque", 0.99)]
+    # (four realizations; torque -10 % 0.01-0.07 % on five, 1.07 % here while a load step
+    # jumped the row's offset); one pass: 0.3-2.2 %.  Asserted: below half the 1 %
+    cells = [("omega", 1.0), ("omega", 1.01), ("torque", 0.99), ("torque", 0.90)]
     single = [T.case({"bearing": 2}, 1, 10, n, f, resolved_10hz, perturb=1e-15)
               for n, f in cells]
     assert max(single) < 0.5, single
@@ -171,7 +172,8 @@ def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
     # single samples of Fz_joint within the 1 % of order 3 of the reference of h/20,
     # and that reference converged (within 1 % of the one at h/10).  Measured over six
     # realizations (settling whirl nudged by 0 to 1e-7; benchmarks.md): 0.29-0.72 %, the
-    # reference moving 0.08-0.43 %.  The step input's substeps of h/4 (before 2026-11-27)
+    # reference moving 0.08-0.43 %; with the row's offset ramped over the load step
+    # (2026-11-29) 0.06 % on three (nudged by 0, 1e-9, 1e-7), the reference within 0.02 %.  The step input's substeps of h/4 (before 2026-11-27)
     # missed by 1.41 % (bdf2.BDF_FINE_SPLIT)
     base = T.settle({"bearing": 2}, 1, 10, torque=3000.0)
     dev, moved = T.checked_case({"bearing": 2}, 1, 10, "torque", 1.10, base, torque=3000.0)
@@ -197,6 +199,51 @@ def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
         hs[LY.H_GA] = 1.0
         bdf2.inputs_jumped(P, hs, jump)
         assert hs[LY.H_GA] == want, (jump, hs[LY.H_GA])
+
+
+def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
+    # the mechanism: the needle-resolved bearing's pressing offset moves from the old load's
+    # value to the new one's over the step in which the load changed (model.ContactModel._run),
+    # ending where the held load puts it; no ramp at the first step, at an unchanged load, or
+    # after a restore at the load the state was stepped at
+    m = T._model({"bearing": 2, "n_needles": 12}, 1)
+    from tripod_model import kernel
+    seen, run = [], kernel.run_substeps
+    monkeypatch.setattr(kernel, "run_substeps",
+                        lambda Y, P, drive, *a: (seen.append(drive), run(Y, P, drive, *a))[1])
+    w, dt = 2 * math.pi * 10, 1e-4
+    for tq in (300.0, 300.0, 270.0, 270.0):
+        m.step(dt, T.THETA, w, 0.0, tq)
+    st = m.get_state()
+    m.step(dt, T.THETA, w, 0.0, 270.0)
+    m.set_state(st)
+    m.step(dt, T.THETA, w, 0.0, 300.0)
+    m.set_state(st)   # again, now with the offset of 300 N m cached: the old one is computed
+    m.step(dt, T.THETA, w, 0.0, 300.0)
+    r = m.rollers[0]
+    x300, x270 = (r.pressing_offset(m.pressing(0.0, tq)) for tq in (300.0, 270.0))
+    assert [d.x0_rate for d in seen[:2]] == [0.0, 0.0]
+    assert seen[2].x0_rate == pytest.approx((x270 - x300) / dt, rel=1e-12)
+    assert seen[2].x0 == x270
+    assert [d.x0_rate for d in seen[3:5]] == [0.0, 0.0]
+    assert seen[5].x0_rate == pytest.approx((x300 - x270) / dt, rel=1e-12)
+    assert seen[6] == seen[5]
+
+
+def test_a_load_step_leaves_the_needle_row_deterministic():
+    # torque -10 % at 300 N m on the realization (settling whirl nudged by 1e-9) where the
+    # offset's jump at once (until 2026-11-29) missed the reference of h/20 by 1.63 % of order
+    # 3, that reference 1.47 % from h/10: the jump drove the roller into the groove at infinite
+    # speed and the row answered chaotically.  With the offset ramped over the step: single
+    # samples within the 1 %, the reference converged (within 1 % of h/10), and a
+    # 1e-15 change of the state moving them by less than half of it.  Measured 0.04 %, the
+    # reference 0.01 % from h/10, the twin 0.01 %; on four other realizations 0.07-0.10 %
+    base = T.settle({"bearing": 2}, 1, 10, nudge=1e-9)
+    dev, moved = T.checked_case({"bearing": 2}, 1, 10, "torque", 0.90, base)
+    twin = T.case({"bearing": 2}, 1, 10, "torque", 0.90, base, perturb=1e-15)
+    assert moved < 1.0
+    assert dev < 1.0
+    assert twin < 0.5
 
 
 @pytest.mark.parametrize("dt,fine", [(1e-4, [16] * 7 + [2]), (1e-3, [16, 16, 2])])
@@ -273,7 +320,7 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
         m.step(2e-5, T.THETA, w * (1 + 1e-4 * i), 0.0, T.TORQUE)
     r = m.rollers[0]
     assert r._OP[LY.OP_N] == 1 and r._hs[LY.H_GA] == genalpha.GA_AFTER_RESTART
-    drive = LY.Drive(r._OP[LY.OP_THETA], r._OP[LY.OP_W], r._OP[LY.OP_X0])
+    drive = LY.Drive(r._OP[LY.OP_THETA], r._OP[LY.OP_W], r._OP[LY.OP_X0], 0.0)
     Q, M = np.zeros(LY.NV), np.zeros(LY.NV)
     nv = genalpha.ga_forces(r.Y.copy(), r.P, drive, r._L.copy(), r._res.copy(), Q, M)
     kept = r._hs[LY.H_FACC:LY.H_FACC + nv]

@@ -10,8 +10,8 @@ from .contact import groove_stiffness_x, tilt_drag
 from .euler import extrapolated_step
 from .genalpha import GA_JUMP_RELAX, GA_JUMP_STEP, GA_LOAD_RELAX
 from .rowsolve import coupled_solve
-from .layout import (H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N,
-    N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
+from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN,
+    N_N, N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
@@ -61,7 +61,9 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
     """n BDF2 substeps of h [s] (bdf2_substep) with the needle-resolved bearing, after a step
     input h / BDF_FINE_SPLIT or h/2 instead (inputs_jumped); W.Y2 carries the previous state
     and hs[H_SUB] the previous substep from call to call, hs[H_GA] whether they are valid (0:
-    not; 1, BDF_RESTART or a step input's countdown: valid), hs[H_TAKEN] counts substeps."""
+    not; 1, BDF_RESTART or a step input's countdown: valid), hs[H_TAKEN] counts substeps.
+    drive.x0 is the pressing offset at the step's end; with drive.x0_rate it ramps there over
+    the n substeps."""
     ny = Y.shape[0]
     Y2, hs = W.Y2, W.hs
     if hs[H_GA] < 0.0:     # a step input's countdown (BDF_STEP_IN)
@@ -76,7 +78,11 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
             hs[H_GA] = 1.0
         h = h / k
         n = n * k
-    for _ in range(n):
+    ramp = drive
+    for i in range(n):
+        if ramp.x0_rate != 0.0:   # the offset's ramp (a load change): its value at the substep's end
+            drive = Drive(ramp.theta, ramp.w, ramp.x0 - ramp.x0_rate * ((n - 1 - i) * h),
+                          ramp.x0_rate)
         if hs[H_GA] == 0.0 or h > 2.0 * hs[H_SUB]:
             # no history yet (or a step more than twice the last, where variable-step BDF2
             # nears its stability limit): one extrapolated split step (re)starts it

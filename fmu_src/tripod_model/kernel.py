@@ -161,7 +161,7 @@ def _roller(Y, P, OP, W, out, jump):
     """One roller's step at the inputs in its OP, its operating point derived (oppoint.derive:
     jump), W its work arrays (layout.Work)."""
     inputs_moved(P, W.hs, jump)
-    run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0]), OP[OP_H],
+    run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0], 0.0), OP[OP_H],
                  0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 
 

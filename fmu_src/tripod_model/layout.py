@@ -113,9 +113,11 @@ OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (kern
 OUT_PLUNGE = OUTPUT_NAMES.index("plunge")
 
 # --- records passed through the kernel (numba takes namedtuples as typed records) ---
-# the step's driving inputs: joint angle theta [rad], whirl rate w [rad/s] and the trunnion
-# axis' pressing offset x0 [m] (oppoint.derive)
-Drive = namedtuple("Drive", "theta w x0")
+# the step's driving inputs: joint angle theta [rad], whirl rate w [rad/s], the trunnion
+# axis' pressing offset x0 [m] (oppoint.derive; at the step's end) and its rate x0_rate [m/s]
+# over the step (the needle-resolved bearing's ramp after a load change, model.ContactModel._run;
+# 0 otherwise)
+Drive = namedtuple("Drive", "theta w x0 x0_rate")
 # one roller's work arrays (model.ContactModel makes them): the trunnion line L (L_LEN), the
 # contact's result res (R_LEN), two states Y1, Y2 (like Y), the slip sensitivities G (NV x 3),
 # the implicit step's system A (NV x NV) and b (NV), the integrators' history hs (H_LEN), the

@@ -228,6 +228,12 @@ class ContactModel:
         return float(self.Y[K.Y_X]) - self.phase
 
     @property
+    def load_ramped(self):
+        """Whether a load change moves the pressing offset to its new value over the step (the
+        needle-resolved bearing, _run) rather than at once."""
+        return self.NW is not None
+
+    @property
     def step_dt(self):
         """The communication step [s] the operating point is set for."""
         return float(self._OP[K.OP_DT])
@@ -271,13 +277,23 @@ class ContactModel:
             return
         from . import kernel
         OP = self._OP
+        # the load the last step ran at (none before the first: its key's theta is NaN)
+        F_was = (scene_mod.pressing_load(OP[K.OP_KEY + 2], OP[K.OP_KEY + 3], self.p["s"])
+                 if OP[K.OP_KEY] == OP[K.OP_KEY] else math.nan)
         kernel.inputs_moved(self.P, self._hs, kernel.derive_op(self.P, OP))
-        if self.NW is not None and self._x0_for != OP[K.OP_F]:
-            self._x0 = self.pressing_offset(OP[K.OP_F])     # the row's static offset (numpy)
-            self._x0_for = OP[K.OP_F]
-        x0 = self._x0 if self.NW is not None else OP[K.OP_X0]
         n = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
-        kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0),
+        x0, rate = OP[K.OP_X0], 0.0
+        if self.NW is not None:
+            x_was = self._x0 if self._x0_for == F_was else None   # (0.5 ms a pressing_offset)
+            if self._x0_for != OP[K.OP_F]:   # the row's static offset (numpy)
+                self._x0, self._x0_for = self.pressing_offset(OP[K.OP_F]), OP[K.OP_F]
+            x0 = self._x0
+            # a load change moves the offset there over the step, not at once: a jump drove the
+            # trunnion into the row at infinite speed (docs/integrators.md)
+            if n > 0 and F_was == F_was and F_was != OP[K.OP_F]:
+                x_was = self.pressing_offset(F_was) if x_was is None else x_was
+                rate = (x0 - x_was) / OP[K.OP_DT]
+        kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
                             OP[K.OP_H], n, self.out, self._W, self.NW)
 
     def kernel_name(self) -> str:
@@ -341,35 +357,6 @@ def fast_argv(arrays):
     array the caller keeps alive as long as it calls the step with it."""
     assert len(arrays) == K.FA_LEN
     return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
-
-
-def simulate(params=None, theta=None, omega=None, F_press=None, cycles=2.0, dt=1e-4,
-             duration=None):
-    """Run the model in-process at constant inputs; returns dict of arrays incl. t and whirl.
-
-    Runs ``cycles`` whirl cycles, or ``duration`` [s] when given (needed at omega = 0).
-    For tests and quick looks; users run the FMU.  Inputs default to the parameter table.
-    """
-    d = scene_mod.defaults("contact")
-    theta = d["theta"] if theta is None else theta
-    omega = d["omega"] if omega is None else omega
-    F_press = d["F_press"] if F_press is None else F_press
-    params = {k: v for k, v in (params or {}).items() if k not in ("theta", "omega", "F_press")}
-    m = JointModel(dict(params, theta=theta, omega=omega, F_press=F_press))
-    if duration is None:
-        duration = cycles * 2 * math.pi / omega
-    nsteps = int(round(duration / dt))
-    rec = {k: np.empty(nsteps) for k, _, _ in OUTPUTS}
-    t = np.arange(1, nsteps + 1) * dt
-    for i in range(nsteps):
-        o = m.step(dt, theta, omega, F_press)
-        for k in rec:
-            rec[k][i] = o[k]
-    rec["t"] = t
-    rec["whirl"] = omega * t
-    rec["substeps"] = m.rollers[0].substeps
-    rec["params"] = m.p
-    return rec
 
 
 def _joint_outputs(outs, s, F):
