@@ -109,7 +109,8 @@ def substep_profile(m, reps=1000):
     a = (NW, n, h, A0, NW.FR.copy(), np.empty((6, 6)), np.empty(6), AN0, FN0)
     tr = timed(_loop_solve, *a) - timed(_loop_copy, *a)
     W = m._W._replace(Y2=m._Y2.copy())   # the model's own previous state left as it is
-    ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m.P, LY.Drive(th, om, m._x0, 0.0), h, W, NW)
+    drive = LY.Drive(th, om, m._x0, 0.0)
+    ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m.P, drive, h, W, NW)
     touching = [int(np.sum(NW.ND[:, k] > 0)) for k in (LY.D_BORE, LY.D_TRUN, LY.D_NEIGH)]
     return tc, tr, ts, touching
 

@@ -17,9 +17,9 @@ from pathlib import Path
 
 sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,  # noqa: E402
-                                MEAN_SAMPLES, RESOLVED_LAUNCH, RESOLVED_ROWS,
-                                RESOLVED_ONE_PASS, SIZES, case, checked_case, deviation,
-                                settle, step_runs)
+                                MEAN_SAMPLES, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
+                                RESOLVED_ROWS, RESOLVED_ONE_PASS, SIZES, case, checked_case,
+                                cycle_case, deviation, settle, step_runs)
 
 
 def table_row(label, params, nr, f, base, **kw):
@@ -35,6 +35,20 @@ def table_row(label, params, nr, f, base, **kw):
         got = [checked_case(params, nr, f, name, fac, base, **kw) for name, fac in cells]
         devs, moves = [d for d, _ in got], max(mv for _, mv in got)
     print(f"{label}, {nr} roller(s), {f} Hz: worst {max(devs[1:]):.2f} %, reference moved "
+          f"{moves}", file=sys.stderr)
+    return label, nr, f, base[1], moves, devs[0], devs[1:]
+
+
+def cycle_row(label, params, nr, f, base):
+    """table_row's tuple for order 3 over the whirl cycle after the step (cycle_case): the
+    no-step cell and the theta steps, the other cells None (not measured: each costs about
+    50 s with the needle-resolved row)."""
+    cells = [("omega", 1.0)] + [(name, fac) for name in INPUTS for fac in SIZES]
+    got = [cycle_case(params, nr, f, name, fac, base) if name == "theta" or fac == 1.0
+           else None for name, fac in cells]
+    devs = [None if g is None else g[0] for g in got]
+    moves = max(g[1] for g in got if g is not None)
+    print(f"{label}: worst {max(d for d in devs if d is not None):.2f} %, reference moved "
           f"{moves}", file=sys.stderr)
     return label, nr, f, base[1], moves, devs[0], devs[1:]
 
@@ -105,6 +119,9 @@ def main(argv=None):
         for label, kw in ((RESOLVED_ROWS[0], {}), (RESOLVED_ROWS[1], {"perturb": 1e-15}),
                           (RESOLVED_ROWS[2], {"mean": MEAN_SAMPLES})):
             rows.append(table_row(label, params, nr, f, base, **kw))
+        # order 3 over the cycle after each theta step, whose single samples have no
+        # converged reference (docs/integrators.md#needle-resolved-bearing)
+        rows.append(cycle_row(RESOLVED_CYCLE_ROW, params, nr, f, base))
         # the same row at a launch's torque, single samples (docs/benchmarks.md)
         for label, theta in RESOLVED_LAUNCH:
             kw = {"theta": theta, "torque": LAUNCH_TORQUE}
@@ -125,7 +142,7 @@ def main(argv=None):
     for b, nr, f, a3, moves, fl, devs in rows:
         mv = "-" if moves is None else f"{moves:.2f}"
         lines.append(f"| {b} | {nr} | {f} | {a3:.1f} | {mv} | {fl:.2f} | "
-                     + " | ".join(f"{d:.2f}" for d in devs) + " |")
+                     + " | ".join("-" if d is None else f"{d:.2f}" for d in devs) + " |")
     table = "\n".join(lines)
     print(table)
     print(f"(largest deviation of Fz_joint in the 20 steps of {DT:g} s after the step, % of "

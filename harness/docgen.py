@@ -211,9 +211,10 @@ def _needle_chaos_rows():
 
 
 def _transients_rows():
-    from harness.transients import (LAUNCH_ROW, RESOLVED_LAUNCH, RESOLVED_ONE_PASS,
-                                    RESOLVED_ROWS)
+    from harness.transients import (LAUNCH_ROW, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
+                                    RESOLVED_ONE_PASS, RESOLVED_ROWS)
     return (["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + list(RESOLVED_ROWS)
+            + [RESOLVED_CYCLE_ROW]
             + [label for label, _ in RESOLVED_LAUNCH]
             + [label for label, *_ in RESOLVED_ONE_PASS])
 

@@ -25,6 +25,8 @@ LAUNCH_THETA, LAUNCH_TORQUE = math.radians(25.0), 3000.0
 # its needle-resolved rows: single samples; single samples against a 1e-15 twin; the 1 ms mean
 RESOLVED_ROWS = ("needle-resolved", "needle-resolved, rounding (1e-15)",
                  "needle-resolved, 1 ms mean")
+# and order 3 over the whirl cycle after each theta step (cycle_case; the other cells left out)
+RESOLVED_CYCLE_ROW = "needle-resolved, order 3 over the cycle after"
 # and its rows at a launch's torque (single samples): (label, theta [rad])
 RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
                    ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
@@ -62,12 +64,11 @@ def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE, nudge=0.0
     return m, last_cycle_orders(DT * np.arange(1, n + 1), y, x, (3,))[3][0]
 
 
-def response(m, inputs, steps, sub=1, before=None):
-    """Fz_joint [N] at the end of each of ``steps`` communication steps DT at ``inputs``, taken
-    in steps of DT / sub.  ``before``: the inputs before a step; where the model ramps a load
-    change over its step (ContactModel.load_ramped) the torque then follows that ramp over the
-    first DT's sub steps, so a finer reference sees the same input history."""
-    out = []
+def _outputs(m, inputs, steps, sub=1, before=None):
+    """The model's outputs at the end of each of ``steps`` communication steps DT at
+    ``inputs``, taken in steps of DT / sub.  ``before``: the inputs before a step; where the
+    model ramps a load change over its step (ContactModel.load_ramped) the torque then follows
+    that ramp over the first DT's sub steps, so a finer reference sees the same input history."""
     ramp = before is not None and sub > 1 and m.rollers[0].load_ramped
     for i in range(steps * sub):
         tq = inputs["torque"]
@@ -75,19 +76,29 @@ def response(m, inputs, steps, sub=1, before=None):
             tq = before["torque"] + (tq - before["torque"]) * (i + 1) / sub
         o = m.step(DT / sub, inputs["theta"], inputs["omega"], 0.0, tq)
         if (i + 1) % sub == 0:
-            out.append(o["Fz_joint"])
-    return np.array(out)
+            yield o
 
 
-def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10, before=None):
-    """From ``state``, the same inputs with the substep h / refine and the communication step
-    DT / sub, accelerations afresh; ``before``: the inputs before a step (response)."""
+def response(m, inputs, steps, sub=1, before=None):
+    """Fz_joint [N] at the end of each of ``steps`` communication steps DT (_outputs)."""
+    return np.array([o["Fz_joint"] for o in _outputs(m, inputs, steps, sub, before)])
+
+
+def _reference_model(params, n_rollers, state, h, refine):
+    """The model at ``state`` with the substep h / refine, accelerations afresh."""
     r = _model(dict(params, max_substep=h / refine), n_rollers)
     r.set_state(state)
     from tripod_model.layout import H_GA   # (on the path _model put it)
     for roller in r.rollers:
         roller._hs[H_GA] = 0.0
-    return response(r, inputs, steps, sub=sub, before=before)
+    return r
+
+
+def reference(params, n_rollers, state, inputs, steps, h, refine=10, sub=10, before=None):
+    """From ``state``, the same inputs with the substep h / refine and the communication step
+    DT / sub, accelerations afresh; ``before``: the inputs before a step (_outputs)."""
+    return response(_reference_model(params, n_rollers, state, h, refine), inputs, steps,
+                    sub=sub, before=before)
 
 
 # the needle-resolved row's output, read as its running mean over MEAN_SAMPLES communication
@@ -174,6 +185,39 @@ def checked_case(params, n_rollers, f, name, factor, base, theta=THETA, torque=T
     y, refs = step_runs(params, n_rollers, f, name, factor, base, theta, torque, (10, 20))
     a3 = base[1]
     return deviation(y, refs[20], a3, mean), deviation(refs[10], refs[20], a3, mean)
+
+
+# order 3 over the whirl cycle that ends CYCLE_AFTER cycles after a step (the first tenth of a
+# cycle left out): how a held theta step on the needle-resolved row is judged, whose single
+# samples have no converged reference (docs/integrators.md#needle-resolved-bearing)
+CYCLE_AFTER = 1.1
+
+
+def cycle_order(m, inputs, f, sub=1, before=None):
+    """Order 3 of Fz_joint [N] as a complex amplitude (phase from whirl angle 0) over the whirl
+    cycle ending CYCLE_AFTER cycles at f [Hz] after a step to ``inputs`` (_outputs)."""
+    steps = int(round(CYCLE_AFTER / f / DT))
+    outs = list(_outputs(m, inputs, steps, sub, before))
+    a, ph = last_cycle_orders(DT * np.arange(1, steps + 1), [o["Fz_joint"] for o in outs],
+                              [o["whirl_angle"] for o in outs], (3,))[3]
+    return a * np.exp(1j * math.radians(ph))
+
+
+def cycle_case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQUE):
+    """checked_case's pair for order 3 over the cycle after the step (cycle_order): its
+    distance [% of the settled order 3] from the reference's at h/20, and that reference's
+    from the one at h/10."""
+    m, a3 = base
+    st = m.get_state()
+    w = 2 * math.pi * f
+    h = m.rollers[0].substep(theta, w, m.pressing(0.0, torque), m.rollers[0].v_st(theta, w))
+    inputs = stepped_inputs(f, theta, torque, name, factor)
+    before = stepped_inputs(f, theta, torque, name, 1.0)
+    y = cycle_order(m, inputs, f)
+    m.set_state(st)
+    refs = {k: cycle_order(_reference_model(params, n_rollers, st, h, k), inputs, f, 10, before)
+            for k in (10, 20)}
+    return 100 * abs(y - refs[20]) / a3, 100 * abs(refs[10] - refs[20]) / a3
 
 
 def runup(params, n_rollers, f0, f1, T, dt=DT):

@@ -80,7 +80,7 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
         n = n * k
     ramp = drive
     for i in range(n):
-        if ramp.x0_rate != 0.0:   # the offset's ramp (a load change): its value at the substep's end
+        if ramp.x0_rate != 0.0:   # the offset's ramp after a load change: at the substep's end
             drive = Drive(ramp.theta, ramp.w, ramp.x0 - ramp.x0_rate * ((n - 1 - i) * h),
                           ramp.x0_rate)
         if hs[H_GA] == 0.0 or h > 2.0 * hs[H_SUB]:
