@@ -129,15 +129,20 @@ def step_runs(params, n_rollers, f, name, factor, base, theta=THETA, torque=TORQ
     settled ``base`` (settle's, at the same f [Hz], theta [rad], torque [N m]): the default's,
     and {k: the reference's from the same state with the substep h / k} for k in refines."""
     m = base[0]
-    st = m.get_state()
-    h = m.rollers[0].substep(theta, 2 * math.pi * f, m.pressing(0.0, torque),
-                             m.rollers[0].v_st(theta, 2 * math.pi * f))
-    inputs = stepped_inputs(f, theta, torque, name, factor)
-    before = stepped_inputs(f, theta, torque, name, 1.0)
+    st, h, inputs, before = _step_setup(m, f, name, factor, theta, torque)
     y = response(m, inputs, 20)
     m.set_state(st)
     return y, {k: reference(params, n_rollers, st, inputs, 20, h, k, before=before)
                for k in refines}
+
+
+def _step_setup(m, f, name, factor, theta, torque):
+    """The settled model m's state, its substep h [s] at the scene (f [Hz], theta [rad],
+    torque [N m]), the inputs after the step and before it."""
+    w = 2 * math.pi * f
+    h = m.rollers[0].substep(theta, w, m.pressing(0.0, torque), m.rollers[0].v_st(theta, w))
+    return (m.get_state(), h, stepped_inputs(f, theta, torque, name, factor),
+            stepped_inputs(f, theta, torque, name, 1.0))
 
 
 def stepped_inputs(f, theta, torque, name, factor):
@@ -208,11 +213,7 @@ def cycle_case(params, n_rollers, f, name, factor, base, theta=THETA, torque=TOR
     distance [% of the settled order 3] from the reference's at h/20, and that reference's
     from the one at h/10."""
     m, a3 = base
-    st = m.get_state()
-    w = 2 * math.pi * f
-    h = m.rollers[0].substep(theta, w, m.pressing(0.0, torque), m.rollers[0].v_st(theta, w))
-    inputs = stepped_inputs(f, theta, torque, name, factor)
-    before = stepped_inputs(f, theta, torque, name, 1.0)
+    st, h, inputs, before = _step_setup(m, f, name, factor, theta, torque)
     y = cycle_order(m, inputs, f)
     m.set_state(st)
     refs = {k: cycle_order(_reference_model(params, n_rollers, st, h, k), inputs, f, 10, before)

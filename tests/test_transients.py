@@ -218,8 +218,8 @@ def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
 def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
     # the mechanism: the needle-resolved bearing's pressing offset moves from the old load's
     # value to the new one's over the step in which the load changed (model.ContactModel._run),
-    # ending where the held load puts it; no ramp at the first step, at an unchanged load, or
-    # after a restore at the load the state was stepped at
+    # ending where the held load puts it; no ramp at the first step, at an unchanged load,
+    # after a restore at the load the state was stepped at, or with a comparison integrator
     m = T._model({"bearing": 2, "n_needles": 12}, 1)
     from tripod_model import kernel
     seen, run = [], kernel.run_substeps
@@ -242,6 +242,12 @@ def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
     assert [d.x0_rate for d in seen[3:5]] == [0.0, 0.0]
     assert seen[5].x0_rate == pytest.approx((x300 - x270) / dt, rel=1e-12)
     assert seen[6] == seen[5]
+    # a comparison integrator moves its offset at once (only BDF2's substeps follow the ramp)
+    split = T._model({"bearing": 2, "n_needles": 12, "integrator": 3}, 1)
+    seen.clear()
+    for tq in (300.0, 270.0):
+        split.step(dt, T.THETA, w, 0.0, tq)
+    assert [d.x0_rate for d in seen] == [0.0, 0.0]
 
 
 def test_a_load_step_leaves_the_needle_row_deterministic():

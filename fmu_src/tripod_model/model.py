@@ -229,9 +229,10 @@ class ContactModel:
 
     @property
     def load_ramped(self):
-        """Whether a load change moves the pressing offset to its new value over the step (the
-        needle-resolved bearing, _run) rather than at once."""
-        return self.NW is not None
+        """Whether a load change moves the pressing offset to its new value over the step
+        rather than at once (_run): the needle-resolved bearing's default step, whose substeps
+        follow the ramp (bdf2.bdf2_steps); the comparison integrators keep the jump."""
+        return self.NW is not None and self.p["integrator"] == K.INT_DEFAULT
 
     @property
     def step_dt(self):
@@ -290,7 +291,7 @@ class ContactModel:
             x0 = self._x0
             # a load change moves the offset there over the step, not at once: a jump drove the
             # trunnion into the row at infinite speed (docs/integrators.md)
-            if n > 0 and F_was == F_was and F_was != OP[K.OP_F]:
+            if n > 0 and self.load_ramped and F_was == F_was and F_was != OP[K.OP_F]:
                 x_was = self.pressing_offset(F_was) if x_was is None else x_was
                 rate = (x0 - x_was) / OP[K.OP_DT]
         kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
