@@ -13,7 +13,7 @@ UV := .uv/bin/uv
 # uv installs uv.lock exactly; it never downloads a Python of its own
 UV_ENV := UV_PROJECT_ENVIRONMENT=$(VENV) UV_PYTHON_DOWNLOADS=never UV_NO_PROGRESS=1
 
-.PHONY: demo example test venv lock fmu bench native-check docs docs-quick clean
+.PHONY: demo example test venv lock fmu bench native-check docs docs-quick clean cross-tools
 
 venv: $(STAMP)
 
@@ -67,7 +67,13 @@ native-check: $(STAMP)
 	command -v valgrind >/dev/null 2>&1 || { apt-get update -qq && apt-get install -y -qq valgrind; }
 	$(BIN)/python benchmarks/memcheck.py --out out/memcheck
 
-test: $(STAMP)
+# the win64 cross build (mingw-w64) and, to run what it builds, wine64 (Debian's packages)
+cross-tools:
+	@command -v x86_64-w64-mingw32-gcc >/dev/null 2>&1 && [ -x /usr/lib/wine/wine64 ] || \
+	  { [ "$$(id -u)" = 0 ] && apt-get update -qq && apt-get install -y -qq gcc-mingw-w64-x86-64 \
+	  wine64 >/dev/null; } || { echo "make: the win64 build and its tests need mingw-w64 and wine64 (as root: apt-get install gcc-mingw-w64-x86-64 wine64)"; exit 1; }
+
+test: $(STAMP) cross-tools
 	$(BIN)/python -m pytest -q
 
 # regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
@@ -81,11 +87,12 @@ docs: docs-quick
 	$(BIN)/python benchmarks/fmu_speed.py --md out/speed.md
 	$(BIN)/python benchmarks/transients.py --md out/transients.md
 	$(BIN)/python benchmarks/needle_chaos.py --md out/needle_chaos.md
+	$(BIN)/python -m benchmarks.step_budget --md out/step_budget.md
 	$(BIN)/tripod-thrust example --out out/example
 	cp out/example/launch.png out/example/order_map.png out/example/thrust_orders.png docs/
 	$(BIN)/python -m harness.docgen --bench out/bench/bench.md --stress out/stress/stress.md \
 	  --speed out/speed.md --peers out/bench/peers.md --example out/example/launch.md \
-	  --transients out/transients.md --chaos out/needle_chaos.md
+	  --transients out/transients.md --chaos out/needle_chaos.md --budget out/step_budget.md
 	cp out/bench/work_precision.png docs/
 
 # only what the code alone determines (seconds to minutes): no timings

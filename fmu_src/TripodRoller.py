@@ -17,6 +17,7 @@ from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
 from tripod_model import native
 from tripod_model.layout import H_TAKEN, OP_FP, OP_THETA, OP_TQ, OP_VP, OP_W
 from tripod_model.model import JointModel, fast_argv
+from tripod_model.state_check import BadState, check_joint_state
 
 _INPUTS = ("theta", "omega", "F_press", "torque", "plunge_speed")
 # the inputs the compiled step takes from the native layer: those, and the shaft angle (held for
@@ -159,7 +160,12 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
         return True
 
     def _fast_failed(self, current_time, code):
-        """A compiled step failed (2: a non-finite output; else an exception in it)."""
+        """A compiled step failed (2: a non-finite output; 3: a roller's adaptive substeps ran
+        out of their budget, kernel.step; else an exception in it)."""
+        if code == 3:
+            self.log(f"step refused at t = {current_time:g} s: {self.model.refusal()}",
+                     Fmi2Status.error)
+            return
         why = ("non-finite output" if code == 2 else
                "the compiled step stopped on an arithmetic error (a division by zero or an "
                "overflow: a parameter at the edge of its range)")
@@ -189,16 +195,20 @@ class TripodRoller(Guarded, DataState, Fmi2Slave):
             return
         for n in _INPUTS:
             check_value(n, state["vars"][n])
-        if self.model is not None:
-            model = self.model.get_state()
-        else:   # the model this instance's parameters and the state's inputs build
+        joint = self.model
+        if joint is None:   # the model this instance's parameters and the state's inputs build
             try:
                 values = self._param_values()
                 values.update({n: state["vars"][n] for n in _INPUTS})
-                model = JointModel(values).get_state()
+                joint = JointModel(values)
             except (ValueError, ArithmeticError) as e:
                 raise StateError(f"this instance's parameters cannot take the state: {e}") from None
-        same_layout(state["model"], model, "model")
+        same_layout(state["model"], joint.get_state(), "model")
+        try:   # what the model can step, beyond the format
+            check_joint_state(state["model"], joint.p, *(state["vars"][n] for n in
+                                                         ("theta", "omega", "plunge_speed")))
+        except BadState as e:
+            raise StateError(f"the state cannot be stepped: {e}") from None
 
     def _set_fmu_state(self, state):
         if self._needs_check(state):   # before anything changes

@@ -5,7 +5,8 @@ without numba at run time.
 numba compiles the step in a fresh process (an empty cache, so the LLVM module is at hand; a
 generic x86-64 CPU, so the library runs on any machine the FMU goes to), llvmlite emits it as
 position-independent object code, and the C compiler links it with native/aot_stubs.c (the
-symbols of numba's error path) and libm.  About 20 s.
+symbols of numba's error path) and libm.  About 20 s.  For win64 the same IR is retargeted to
+x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).
 """
 from __future__ import annotations
 
@@ -19,42 +20,92 @@ from pathlib import Path
 FMU_SRC = Path(__file__).resolve().parent
 STUBS = FMU_SRC / "native" / "aot_stubs.c"
 
+# per target: the LLVM triple numba's IR is retargeted to (None: the host's), the C compiler
+# that links it, the library's name and the libraries it may import
+TARGETS = {
+    "linux64": {"triple": None, "cc": None, "lib": "_step.so"},
+    # mingw-w64: the -gnu triple, whose stack probe (___chkstk_ms) libgcc provides; linked with
+    # -static-libgcc so the DLL imports only what every Windows has
+    "win64": {"triple": "x86_64-w64-windows-gnu", "cc": "x86_64-w64-mingw32-gcc",
+              "lib": "_step.dll", "imports": ("KERNEL32.dll", "msvcrt.dll")},
+}
+
 _EMIT = r"""
 import json, sys
 import llvmlite.binding as llvm
 import numba
 from tripod_model import kernel, native
-llvm.initialize_native_target()
-llvm.initialize_native_asmprinter()
+triple = sys.argv[3] or None
 mod = llvm.parse_assembly(kernel.c_step()._library.get_llvm_str())
+if triple:   # numba stamps the host's triple and data layout on its IR: the target's instead
+    llvm.initialize_all_targets()
+    llvm.initialize_all_asmprinters()
+    target = llvm.Target.from_triple(triple)
+else:
+    llvm.initialize_native_target()
+    llvm.initialize_native_asmprinter()
+    target = llvm.Target.from_default_triple()
+tm = target.create_target_machine(cpu="generic", features="", opt=3, reloc="pic")
+if triple:
+    mod.triple = triple
+    mod.data_layout = str(tm.target_data)
 mod.verify()
-tm = llvm.Target.from_default_triple().create_target_machine(cpu="generic", features="",
-                                                             opt=3, reloc="pic")
 open(sys.argv[1], "wb").write(tm.emit_object(mod))
 json.dump({"symbol": kernel.c_step().native_name, "hash": native.source_hash(),
-           "numba": numba.__version__, "cpu": "generic"}, open(sys.argv[2], "w"))
+           "numba": numba.__version__, "cpu": "generic", "triple": triple or llvm.get_default_triple()},
+          open(sys.argv[2], "w"))
 """
 
 
-def build_step_library(dest: Path) -> tuple[Path, Path]:
-    """dest/_step.so and dest/_step.json (native.LIB, native.META) from today's sources."""
+def cross_compiler(target: str) -> str | None:
+    """The C compiler that links ``target``'s library (None: not installed here)."""
+    import shutil
+    cc = TARGETS[target]["cc"]
+    if cc is None:
+        return os.environ.get("CC") or "cc"
+    return shutil.which(cc)
+
+
+def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]:
+    """dest/_step.so (linux64) or dest/_step.dll (win64), and dest/_step.json (native.META),
+    from today's sources.  win64 is cross-compiled (mingw-w64): numba's LLVM IR retargeted to
+    Windows, emitted as a COFF object, linked with the stubs; its imports are checked."""
     if sys.platform != "linux":
         raise RuntimeError(f"the prebuilt kernel builds on Linux only, not {sys.platform}")
+    spec = TARGETS[target]
+    cc = cross_compiler(target)
+    if cc is None:
+        raise RuntimeError(f"{spec['cc']} is needed to build the {target} kernel "
+                           "(apt-get install gcc-mingw-w64-x86-64)")
     dest.mkdir(parents=True, exist_ok=True)
-    lib, meta = dest / "_step.so", dest / "_step.json"
+    lib, meta = dest / spec["lib"], dest / "_step.json"
     with tempfile.TemporaryDirectory() as tmp:
         obj = Path(tmp) / "step.o"
+        # SVML off: its __svml_* functions exist in no Windows C runtime
         env = dict(os.environ, TRIPOD_NUMBA_CACHE=tmp, NUMBA_CPU_NAME="generic",
-                   NUMBA_CPU_FEATURES="", TRIPOD_NUMBA="1", PYTHONPATH=str(FMU_SRC))
-        p = subprocess.run([sys.executable, "-c", _EMIT, str(obj), str(meta)], env=env,
+                   NUMBA_CPU_FEATURES="", TRIPOD_NUMBA="1", PYTHONPATH=str(FMU_SRC),
+                   NUMBA_DISABLE_INTEL_SVML="1")
+        p = subprocess.run([sys.executable, "-c", _EMIT, str(obj), str(meta),
+                            spec["triple"] or ""], env=env,
                            capture_output=True, text=True, timeout=900)
         if p.returncode != 0:
             raise RuntimeError(f"compiling the prebuilt kernel failed:\n{p.stderr[-3000:]}")
-        cc = os.environ.get("CC") or "cc"
-        cmd = cc.split()[:1] + ["-shared", "-fPIC", "-O2", str(obj), str(STUBS), "-o", str(lib),
-                                "-lm"]
+        extra = ["-static-libgcc"] if spec["triple"] else ["-fPIC"]
+        cmd = cc.split()[:1] + ["-shared", "-O2", str(obj), str(STUBS), "-o", str(lib),
+                                "-lm"] + extra
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"linking the prebuilt kernel failed:\n{p.stderr}")
+    if spec.get("imports"):
+        bad = sorted(set(dll_imports(lib)) - set(spec["imports"]))
+        if bad:
+            raise RuntimeError(f"{lib.name} imports {bad}, beyond {list(spec['imports'])}")
     json.loads(meta.read_text())   # written whole
     return lib, meta
+
+
+def dll_imports(lib: Path) -> list[str]:
+    """The DLLs a Windows library imports (its import table, read with mingw's objdump)."""
+    p = subprocess.run(["x86_64-w64-mingw32-objdump", "-p", str(lib)], capture_output=True,
+                       text=True, check=True)
+    return [ln.split("DLL Name:")[1].strip() for ln in p.stdout.splitlines() if "DLL Name:" in ln]

@@ -107,15 +107,18 @@ def analytic_step_library(force=False) -> Path:
     return _compile(ANALYTIC_SRC, ANALYTIC_LIB, ["-fvisibility=default", "-ffp-contract=off"])
 
 
-def prebuilt_kernel(force=False) -> tuple[Path, Path]:
-    """build/aot/_step.{so,json}: the contact kernel's step compiled ahead of time (aot.py),
-    rebuilt when missing or stale: built from other kernel sources than today's (the content
-    hash the FMU checks when it loads the library, native.source_hash, which covers the
-    reduced model's modules the kernel compiles too), or older than aot.py and its stubs."""
-    lib, meta = AOT_DIR / "_step.so", AOT_DIR / "_step.json"
+def prebuilt_kernel(force=False, target="linux64") -> tuple[Path, Path]:
+    """build/aot/_step.{so,json} (win64: build/aot-win64/_step.{dll,json}, cross-compiled): the
+    contact kernel's step compiled ahead of time (aot.py), rebuilt when missing or stale: built
+    from other kernel sources than today's (the content hash the FMU checks when it loads the
+    library, native.source_hash, which covers the reduced model's modules the kernel compiles
+    too), or older than aot.py and its stubs."""
     for path in (str(FMU_SRC), str(ROOT)):
         if path not in sys.path:
             sys.path.insert(0, path)
+    import aot
+    dest = AOT_DIR if target == "linux64" else BUILD / f"aot-{target}"
+    lib, meta = dest / aot.TARGETS[target]["lib"], dest / "_step.json"
     if not force and lib.exists() and meta.exists():
         from tripod_model import native
         try:
@@ -125,8 +128,7 @@ def prebuilt_kernel(force=False) -> tuple[Path, Path]:
         if (built == native.source_hash()
                 and all(lib.stat().st_mtime >= f.stat().st_mtime for f in AOT)):
             return lib, meta
-    import aot
-    return aot.build_step_library(AOT_DIR)
+    return aot.build_step_library(dest, target)
 
 
 def _requirements(names) -> str:

@@ -12,7 +12,7 @@ import numpy as np
 from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import INT_OUTPUTS, OUTPUTS, params_for
+from reduced_model.scene import INT_OUTPUTS, OUTPUTS, StepRefused, params_for
 
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 
@@ -110,6 +110,9 @@ class Guarded:
             return False
         try:
             return self._advance(current_time, step_size)
+        except StepRefused as e:
+            self.log(f"step refused at t = {current_time:g} s: {e}", Fmi2Status.error)
+            return False
         except ValueError as e:
             self.log(f"invalid input at t = {current_time:g} s: {e}", Fmi2Status.error)
             return False
@@ -182,7 +185,10 @@ def decode_state(data, guid, structural):
     try:
         head = json.loads(data[start:start + n].decode("utf-8"))
     except (UnicodeDecodeError, ValueError) as e:
-        raise StateError(f"corrupt header ({e.__class__.__name__})") from None
+        raise StateError(f"corrupt state: its header is not JSON ({e.__class__.__name__})") \
+            from None
+    except RecursionError:   # (the decoder's own limit: arrays nested about 1000 deep)
+        raise StateError("corrupt state: its header is nested too deep") from None
     version = head.get("version") if isinstance(head, dict) else "?"
     if version != STATE_VERSION:
         raise StateError(f"state format version {version} is not {STATE_VERSION}")
@@ -192,7 +198,7 @@ def decode_state(data, guid, structural):
     theirs = head.get("structural")
     if theirs != structural:
         if not isinstance(theirs, dict):
-            raise StateError("corrupt header (no structural parameters)")
+            raise StateError("corrupt state: its header has no structural parameters")
         diff = [f"{k} = {str(theirs.get(k, '(none)'))[:20]} (this instance: {v})"
                 for k, v in structural.items() if theirs.get(k, "(none)") != v][:4]
         raise StateError("state taken with other structural parameters: " +
@@ -201,13 +207,13 @@ def decode_state(data, guid, structural):
 
     def dec(v, depth=0):
         if depth > 32:
-            raise StateError("state nested too deep")
+            raise StateError("corrupt state: nested too deep")
         if isinstance(v, list):
             return [dec(x, depth + 1) for x in v]
         if isinstance(v, dict):
             if set(v) == {"@float"}:
                 if v["@float"] not in ("inf", "-inf", "nan"):
-                    raise StateError("corrupt non-finite float")
+                    raise StateError("corrupt state: a non-finite float misspelt")
                 return float(v["@float"])
             if set(v) == {"@array"}:
                 return _array(v["@array"], body)
@@ -222,7 +228,7 @@ def _array(spec, body):
         all(type(d) is int and 0 <= d <= MAX_STATE_BYTES for d in spec[1]) and \
         type(spec[2]) is int and spec[2] >= 0
     if not ok:
-        raise StateError(f"corrupt array description {str(spec)[:80]}")
+        raise StateError(f"corrupt state: array description {str(spec)[:80]}")
     dt = np.dtype(_DTYPES[spec[0]])
     count = math.prod(spec[1])
     end = spec[2] + count * dt.itemsize

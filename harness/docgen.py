@@ -219,7 +219,14 @@ def _transients_rows():
             + [label for label, *_ in RESOLVED_ONE_PASS])
 
 
+def _step_budget_rows():
+    from harness.step_budget import SCENES
+    return [label for label, *_ in SCENES]
+
+
 MEASURED = {   # name: (rows today's code measures, the command that writes the block)
+    "benchmarks/step_budget.py": (_step_budget_rows,
+                                  "python -m benchmarks.step_budget --md FILE"),
     "make example": (_example_rows, "make example"),
     "benchmarks/transients.py": (_transients_rows, "python benchmarks/transients.py --md FILE"),
     "benchmarks/needle_chaos.py": (_needle_chaos_rows,
@@ -279,12 +286,15 @@ def update_exact(files=FILES) -> list[Path]:
 def update_measured(bench_md: Path | None = None, stress_md: Path | None = None,
                     speed_md: Path | None = None, peers_md: Path | None = None,
                     example_md: Path | None = None, transients_md: Path | None = None,
-                    chaos_md: Path | None = None, files=FILES) -> list[Path]:
+                    chaos_md: Path | None = None, budget_md: Path | None = None,
+                    files=FILES) -> list[Path]:
     """Write the measured blocks from one run's outputs: bench.md of `tripod-thrust bench`,
     stress.md of `tripod-thrust stress`, the table `make bench` prints, peers.md of
     `tripod-thrust bench --peer`, launch.md of `make example`, the tables of
-    benchmarks/transients.py and benchmarks/needle_chaos.py."""
+    benchmarks/transients.py, benchmarks/needle_chaos.py and benchmarks/step_budget.py."""
     new_blocks = {}
+    if budget_md:
+        new_blocks["benchmarks/step_budget.py"] = Path(budget_md).read_text()
     if transients_md:
         new_blocks["benchmarks/transients.py"] = Path(transients_md).read_text()
     if chaos_md:
@@ -332,6 +342,8 @@ if __name__ == "__main__":
                     help="the table of `python benchmarks/transients.py --md FILE.md`")
     ap.add_argument("--chaos", metavar="FILE.md",
                     help="the tables of `python benchmarks/needle_chaos.py --md FILE.md`")
+    ap.add_argument("--budget", metavar="FILE.md",
+                    help="the table of `python -m benchmarks.step_budget --md FILE.md`")
     ap.add_argument("--check", action="store_true", help="only report stale blocks (exit 1)")
     a = ap.parse_args()
     if a.check:
@@ -340,6 +352,6 @@ if __name__ == "__main__":
         sys.exit(1 if bad else 0)
     # measured blocks first: the README's speed summary is read from them
     for p in dict.fromkeys(update_measured(a.bench, a.stress, a.speed, a.peers, a.example,
-                                             a.transients, a.chaos)
+                                             a.transients, a.chaos, a.budget)
                            + update_exact()):
         print("updated", p.relative_to(ROOT))

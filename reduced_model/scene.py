@@ -266,6 +266,11 @@ def load_text(scene: dict) -> str:
 STEP_ROUNDING = 64 * sys.float_info.epsilon
 
 
+class StepRefused(RuntimeError):
+    """A step the model cannot finish within its budget (its message says what ran out and
+    where): the FMU refuses it (fmi2Discard) with that message."""
+
+
 def same_step(dt, dt0, t):
     """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
     a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
@@ -344,6 +349,9 @@ def check_param(p: Param, value) -> None:
         bad = v >= p.hi if p.hi_open else v > p.hi
     if not bad and p.auto_or_min is not None:
         bad = 0.0 < v < p.auto_or_min
+    if not bad and v != 0.0 and abs(v) < sys.float_info.min:   # no physical value: refused
+        raise ValueError(f"{name} = {v!r} is subnormal (below {sys.float_info.min:.4g} in "
+                         f"magnitude): give 0 or a value in {p.range_text()}")
     if bad:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
 

@@ -12,10 +12,15 @@ import pickle
 import random
 import struct
 import sys
+import time
 import zlib
 
-from fmpy import extract, read_model_description
-from fmpy.fmi2 import FMU2Slave
+from ctypes import byref
+
+from fmpy import calloc, extract, free, read_model_description
+from fmpy.fmi2 import (FMU2Slave, fmi2CallbackAllocateMemoryTYPE, fmi2CallbackFreeMemoryTYPE,
+                       fmi2CallbackFunctions, fmi2CallbackLoggerTYPE)
+from fmpy.logging import addLoggerProxy
 
 fmu, spec = sys.argv[1], json.loads(sys.argv[2])
 md = read_model_description(fmu)
@@ -25,10 +30,19 @@ OUT = [vr[n] for n in ("Fx", "Fz", "Fz_mod", "Fz_joint", "Fz_2", "Fz_3")]
 HEADER = 24                          # the native layer's: magic, phase, reserved, time
 
 
+LOG = []
+CALLBACKS = fmi2CallbackFunctions()
+CALLBACKS.logger = fmi2CallbackLoggerTYPE(
+    lambda c, n, status, cat, msg: LOG.append(msg.decode(errors="replace")))
+CALLBACKS.allocateMemory = fmi2CallbackAllocateMemoryTYPE(calloc)
+CALLBACKS.freeMemory = fmi2CallbackFreeMemoryTYPE(free)
+addLoggerProxy(byref(CALLBACKS))    # the FMU's printf-style message, formatted
+
+
 def make(ints=None, name="a"):
     s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
                   instanceName=name)
-    s.instantiate()
+    s.instantiate(loggingOn=bool(spec.get("log")), callbacks=CALLBACKS)
     s.setupExperiment(startTime=0.0)
     s.enterInitializationMode()
     for k, v in (ints or {}).items():
@@ -37,11 +51,18 @@ def make(ints=None, name="a"):
     return s
 
 
+SLOWEST = [0.0]   # the slowest doStep [s] after a state was set (the fuzz benchmark's)
+
+
 def steps(s, n, t0, moving=False):
     for i in range(n):
         if moving:
             s.setReal([vr["theta"]], [0.17 + 0.001 * math.sin(i)])
-        s.doStep(t0 + i * 1e-4, 1e-4)
+        t = time.perf_counter()
+        try:
+            s.doStep(t0 + i * 1e-4, 1e-4)
+        finally:
+            SLOWEST[0] = max(SLOWEST[0], time.perf_counter() - t)
     return s.getReal(OUT)
 
 
@@ -56,6 +77,96 @@ def reseal(blob, tree_edit):
     h = json.dumps(head).encode()
     data = body[:8] + struct.pack("<I", len(h)) + h + arrays
     return blob[:HEADER] + data + struct.pack("<I", zlib.crc32(data))
+
+
+def _float_arrays(h):
+    """(offset [bytes], count) of every float64 array in the decoded header's state tree."""
+    found, stack = [], [h["state"]]
+    while stack:
+        v = stack.pop()
+        if isinstance(v, dict):
+            if "@array" in v:
+                dt, shape, off = v["@array"]
+                if dt == "<f8" and math.prod(shape) > 0:
+                    found.append((off, math.prod(shape)))
+            else:
+                stack += v.values()
+        elif isinstance(v, list):
+            stack += v
+    return sorted(found)
+
+
+# values a structure-aware fuzz writes into a state's arrays: plausible-looking and wrong
+MUTANTS = (0.5, 1.0, 3.0, -3.0, 0.01, -0.01, 1e-3, 0.0, 1e6, -1e6, 1.8e308, -1.8e308,
+           float("nan"), float("inf"), 5e-324)
+
+
+def _float_leaves(h):
+    """(container, key) of every float in the decoded header's state tree (the analytic FMU
+    keeps its march there; non-finite floats are {"@float": ...})."""
+    found, stack = [], [h["state"]]
+    while stack:
+        v = stack.pop()
+        items = v.items() if isinstance(v, dict) else enumerate(v) if isinstance(v, list) else ()
+        if isinstance(v, dict) and ("@array" in v or "@float" in v):
+            continue
+        for k, x in items:
+            if type(x) is float or (isinstance(x, dict) and "@float" in x):
+                found.append((v, k))
+            else:
+                stack.append(x)
+    return found
+
+
+def _json_float(x):
+    return x if math.isfinite(x) else {"@float": repr(x)}
+
+
+def mutate(blob, rng, count):
+    """A good state with ``count`` values inside it changed (in its float arrays or its
+    header's floats; to MUTANTS or the old value times a random factor) and its checksum made
+    valid again."""
+    body = bytearray(blob[HEADER:-4])
+    n = struct.unpack_from("<I", body, 8)[0]
+    head = json.loads(bytes(body[12:12 + n]))
+    arrays, leaves = _float_arrays(head), _float_leaves(head)
+    payload = bytearray(body[12 + n:])
+    for _ in range(count):
+        pick = rng.randrange(len(arrays) + len(leaves))
+        if pick < len(arrays):
+            off, cnt = arrays[pick]
+            at = off + 8 * rng.randrange(cnt)
+            old = struct.unpack_from("<d", payload, at)[0]
+        else:
+            box, key = leaves[pick - len(arrays)]
+            old = box[key] if type(box[key]) is float else float(box[key]["@float"])
+        new = rng.choice(MUTANTS) if rng.random() < 0.7 else old * rng.choice((-1, 10, 1e3))
+        if pick < len(arrays):
+            struct.pack_into("<d", payload, at, new)
+        else:
+            box[key] = _json_float(new)
+    h = json.dumps(head).encode()
+    data = bytes(body[:8]) + struct.pack("<I", len(h)) + h + bytes(payload)
+    return blob[:HEADER] + data + struct.pack("<I", zlib.crc32(data))
+
+
+def set_array_value(blob, path, index, value):
+    """A state with one value of the array at ``path`` (keys into the state tree) set, and its
+    checksum made valid again."""
+    body = bytearray(blob[HEADER:-4])
+    n = struct.unpack_from("<I", body, 8)[0]
+    node = json.loads(bytes(body[12:12 + n]))["state"]
+    for k in path:
+        node = node[k]
+    struct.pack_into("<d", body, 12 + n + node["@array"][2] + 8 * index, value)
+    data = bytes(body)
+    return blob[:HEADER] + data + struct.pack("<I", zlib.crc32(data))
+
+
+ARRAY_EDITS = {   # name: (path, index, value); the contact FMU
+    "slide-half-a-metre": (("model", 0, "Y"), 1, 0.5),
+    "slide-three-mm": (("model", 0, "Y"), 1, 3e-3),
+}
 
 
 def _first_array(h):
@@ -153,8 +264,12 @@ for k in range(spec.get("resealed", 0)):
     b[i] = rng.randrange(256)
     data = bytes(b[HEADER:-4])
     cases[f"resealed-{k}-{i}"] = bytes(b[:HEADER]) + data + struct.pack("<I", zlib.crc32(data))
+for k in range(spec.get("mutations", 0)):
+    cases[f"mutated-{k}"] = mutate(good, rng, 1 + k % 3)
 for name in spec.get("crafted", ()):
-    cases[name] = reseal(good, CRAFTED[name])
+    cases[name] = (set_array_value(good, *ARRAY_EDITS[name]) if name in ARRAY_EDITS else
+                   reseal(good, CRAFTED[name]))
+SLOWEST[0] = 0.0    # (the source's and target's own steps above not counted)
 for name, blob in cases.items():
     res["cases"][name] = try_state(target, blob)
     if res["cases"][name] != "refused":   # it stepped: a fresh target for the next case
@@ -180,5 +295,8 @@ for name, value in spec.get("inputs", ()):
         res.setdefault("inputs", {})[f"{name}={value}"] = \
             ("discard" if "2" in str(getattr(e, "status", "")) or "Discard" in str(e) else
              f"error: {e}") + ("" if kept else " (outputs changed)")
+res["slowest_step_s"] = SLOWEST[0]
+if spec.get("log"):
+    res["log"] = "\n".join(LOG)
 res["code_ran"] = os.path.exists(marker)
 print(json.dumps(res))

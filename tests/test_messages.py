@@ -24,11 +24,15 @@ except Exception:
 
 @pytest.mark.parametrize("name", ["TripodRoller", "TripodRollerAnalytic"])
 @pytest.mark.parametrize("sv", [{"omega": 1e-310}, {"F_press": 5e-324}, {"v_st": 5e-324},
-                                {"m_roller": 1e-12}])
+                                {"m_roller": 1e-12}, {"torque": 2.2e-308},
+                                {"m_roller": 1e-310}])
 def test_edge_values_run_finite_or_are_refused_in_one_line(name, sv):
     p = subprocess.run([sys.executable, "-c", _RUN, str(ensure_fmu(name)), json.dumps(sv)],
                        capture_output=True, text=True, timeout=120)
     r = json.loads(p.stdout.strip().splitlines()[-1])
+    (var, value), = sv.items()
+    if 0 < abs(value) < 2.2250738585072014e-308:   # a subnormal: refused, naming it
+        assert any(f"{var} = {value!r} is subnormal" in m for m in r.get("refused", [])), r
     if "ok" in r:
         assert r["ok"] is True
     else:

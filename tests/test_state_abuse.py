@@ -111,3 +111,46 @@ def test_an_in_memory_state_of_another_layout_is_refused(name):
     r = json.loads(p.stdout.strip().splitlines()[-1])
     assert r == {"other-instance": "refused", "own": "set",
                  "own-after-reset-to-other-layout": "refused"}, r
+
+
+@pytest.mark.parametrize("name,ints", [
+    ("TripodRoller", {}),
+    ("TripodRoller", {"bearing": 1, "n_rollers": 3}),
+    ("TripodRoller", {"bearing": 2, "n_needles": 12}),
+    ("TripodRollerAnalytic", {"n_rollers": 3}),
+], ids=["contact", "contact-lumped-3", "contact-resolved", "analytic-3"])
+def test_states_with_wrong_values_are_refused_or_stepped(name, ints, tmp_path):
+    """A structure-aware fuzz (issue: bounded time): one to three values inside a valid state's
+    arrays changed to plausible-looking wrong ones (tests/state_abuse.py: MUTANTS), checksum
+    recomputed.  Each is refused at set, or its next 20 steps end with finite outputs or are
+    refused with a reason; none hangs (the worker's timeout) and none steps to a non-finite
+    output with fmi2OK.  The good state still restores after them all."""
+    r = abuse(name, tmp_path, ints=ints, mutations=150, seed=7)
+    cases = r["cases"]
+    assert cases.pop("good") == "finite"
+    mutated = {k: v for k, v in cases.items() if k.startswith("mutated-")}
+    assert len(mutated) == 150
+    wrong = {k: v for k, v in mutated.items() if v not in ("refused", "finite", "refused-later")}
+    assert not wrong, wrong
+    assert r["good_after"] == "finite"
+
+
+def test_a_roller_off_its_trunnion_is_refused_at_set(tmp_path):
+    """The issue's state: a contact state after some steps with the roller's slide u set to
+    0.5 m (the whole joint is 0.022 m): refused at fmi2SetFMUstate, not stepped (it ran for
+    minutes before the budget); the reason names the value."""
+    r = abuse("TripodRoller", tmp_path, crafted=["slide-half-a-metre"], log=True)
+    assert r["cases"]["slide-half-a-metre"] == "refused"
+    assert "slide u = 0.5 m is outside +-0.006 m" in r["log"], r["log"][-2000:]
+
+
+def test_a_state_inside_the_bounds_that_cannot_be_stepped_meets_the_budget(tmp_path):
+    """The roller's slide set to 3 mm (inside the state check's 6 mm; runs reach 0.1 mm): the
+    state is taken, and its next step is refused (fmi2Discard) once the adaptive substeps have
+    tried their budget (about 0.15 s; before, such states ran for tens of seconds), with one
+    line saying so."""
+    r = abuse("TripodRoller", tmp_path, crafted=["slide-three-mm"], log=True)
+    assert r["cases"]["slide-three-mm"] == "refused-later"
+    line = next(m for m in r["log"].splitlines() if "step refused" in m)
+    assert "roller 1: the adaptive substeps stopped at" in line
+    assert "the substeps tried reached their budget" in line

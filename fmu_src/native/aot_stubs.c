@@ -2,13 +2,16 @@
    Python C API, on its error path only (a division by zero raising inside the compiled step).
    Stubbed here, hidden, so the library loads in any host, with or without Python symbols, and
    an error makes the step return 0 (the native layer and model.py report it) instead of
-   raising.  Nothing on the normal path calls them. */
+   raising.  Nothing on the normal path calls them.  (A Windows DLL must resolve every symbol
+   when it is linked: the list is the cross-built object's undefined symbols but libm's.) */
 #include <stddef.h>
 #include <stdint.h>
 
 #define HIDDEN __attribute__((visibility("hidden")))
 
 HIDDEN void *PyExc_RuntimeError = NULL;
+HIDDEN void *PyExc_StopIteration = NULL;
+HIDDEN void *PyExc_SystemError = NULL;
 
 HIDDEN void numba_gil_ensure(void *state) { (void)state; }
 HIDDEN void numba_gil_release(void *state) { (void)state; }
@@ -29,5 +32,6 @@ HIDDEN void *PyUnicode_FromString(const char *s) { (void)s; return NULL; }
 HIDDEN void *PyBytes_FromStringAndSize(const char *s, int64_t n) { (void)s; (void)n; return NULL; }
 HIDDEN void PyErr_WriteUnraisable(void *o) { (void)o; }
 HIDDEN void PyErr_SetString(void *t, const char *s) { (void)t; (void)s; }
+HIDDEN void PyErr_SetNone(void *t) { (void)t; }
 HIDDEN void PyErr_Clear(void) {}
 HIDDEN void Py_DecRef(void *o) { (void)o; }

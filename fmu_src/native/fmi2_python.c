@@ -754,12 +754,12 @@ static int same_step(double h, double h0, double t)
 }
 
 /* Whether x is a value the k-th input of the fast step may take (its range, as the slave's
-   check_value: finite, within [lo, hi] or with an open end excluded).  Without a slot to
-   write it to, the slave checks it. */
+   check_value: finite, not subnormal, within [lo, hi] or with an open end excluded).  Without
+   a slot to write it to, the slave checks it. */
 static int fast_in_range(const Inst *c, int k, double x)
 {
     if (!c->fast_in_slot[k]) return 1;
-    if (!isfinite(x)) return 0;
+    if (!isfinite(x) || fpclassify(x) == FP_SUBNORMAL) return 0;
     if (c->fast_in_lo_open[k] ? x <= c->fast_in_lo[k] : x < c->fast_in_lo[k]) return 0;
     if (c->fast_in_hi_open[k] ? x >= c->fast_in_hi[k] : x > c->fast_in_hi[k]) return 0;
     return 1;

@@ -6,9 +6,12 @@ import math
 
 from .jit import inline, njit
 from .linalg import solve_small
+from .budget import ADAPT_FLOOR, ADAPT_TRIES_MIN, ADAPT_TRIES_PER
 from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row_terms, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x, row_damping, tilt_drag
-from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, H_REJECTED, H_SUB, H_TAKEN, P_BEAR, P_HMAX, P_IT,
+from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, FAIL_ESTIMATE, FAIL_FLOOR, FAIL_NONE,
+    FAIL_TRIES, H_FAIL, H_FAIL_DONE, H_FAIL_H, H_REJECTED, H_SUB, H_TAKEN, H_USE_FLOOR,
+    H_USE_TRIES, P_BEAR, P_HMAX, P_IT,
     P_M, P_R, P_TOL, P_TRAV, P_VST, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
 
 
@@ -100,19 +103,40 @@ def step_error(Y, Y1, P):
 def adaptive_steps(Y, P, drive, T, h0, W, NW):
     """Advance Y by T [s] with extrapolated substeps chosen by their own error estimate
     (step_error <= 1; up to P[P_HMAX]); hs[H_SUB] carries the substep from call to call (h0 [s]
-    the first), hs[H_TAKEN] counts accepted, hs[H_REJECTED] rejected substeps."""
+    the first), hs[H_TAKEN] counts accepted, hs[H_REJECTED] rejected substeps.
+
+    Returns False when the span cannot be finished within the budget (ADAPT_FLOOR,
+    ADAPT_TRIES_*): hs[H_FAIL] says why (FAIL_ESTIMATE, FAIL_FLOOR, FAIL_TRIES), hs[H_FAIL_DONE]
+    and hs[H_FAIL_H] where; Y is then where the last accepted substep left it."""
     ny = Y.shape[0]
     Y1, Y2, hs = W.Y1, W.Y2, W.hs
+    hmax = P[P_HMAX]
+    floor = ADAPT_FLOOR * hmax
+    budget = ADAPT_TRIES_MIN + ADAPT_TRIES_PER * math.ceil(T / hmax)
+    tries = 0.0
     t = 0.0
     hc = hs[H_SUB] if hs[H_SUB] > 0.0 else h0
+    hs[H_FAIL] = FAIL_NONE
     while t < T * (1.0 - 1e-12):
         last = hc >= T - t
         hh = T - t if last else hc
+        fail = FAIL_NONE
+        if tries >= budget:
+            fail = FAIL_TRIES
+        elif not last and hh < floor:
+            fail = FAIL_FLOOR
+        if fail != FAIL_NONE:
+            return _stopped(hs, fail, t / T, hh)
+        tries += 1.0
+        if not last:
+            hs[H_USE_FLOOR] = max(hs[H_USE_FLOOR], floor / hh)
         for i in range(ny):
             Y1[i] = Y[i]
             Y2[i] = Y[i]
         _whole_and_halves(Y2, Y1, P, drive, hh, W, NW)
         err = step_error(Y2, Y1, P)
+        if not math.isfinite(err):
+            return _stopped(hs, FAIL_ESTIMATE, t / T, hh)
         fac = 0.9 / math.sqrt(max(err, 1e-12))   # local error of the whole step ~ h^2
         fac = min(4.0, max(0.2, fac))
         if err <= 1.0:
@@ -120,8 +144,20 @@ def adaptive_steps(Y, P, drive, T, h0, W, NW):
             t += hh
             hs[H_TAKEN] += 1.0
             if not last:            # a step cut short to land on T says nothing of hc
-                hc = min(hc * fac, P[P_HMAX])
+                hc = min(hc * fac, hmax)
         else:
             hs[H_REJECTED] += 1.0
             hc = hh * fac
     hs[H_SUB] = hc
+    hs[H_USE_TRIES] = max(hs[H_USE_TRIES], tries / budget)
+    return True
+
+
+@inline
+def _stopped(hs, why, done, h):
+    """The adaptive substeps stopped short (adaptive_steps): why (FAIL_*), the share done, the
+    substep [s]."""
+    hs[H_FAIL], hs[H_FAIL_DONE], hs[H_FAIL_H] = why, done, h
+    hs[H_USE_TRIES] = 1.0
+    return False
+

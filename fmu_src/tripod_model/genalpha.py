@@ -353,7 +353,8 @@ def ga_steps(Y, P, drive, h, n, W, NW):
     communication step and the next, a large jump over one substep, a small one by one
     GA_RESTART step; a step whose Newton fails by the adaptive substeps.  With the ring
     quiet (hs[H_RING]) the communication step h n in fewer steps of at most P_HFREE; with it
-    open, whether the step's slide acceleration lets it close."""
+    open, whether the step's slide acceleration lets it close.  Returns False where the
+    adaptive substeps ran out of their budget (euler.adaptive_steps: hs[H_FAIL])."""
     hs = W.hs
     if hs[H_RING] == RING_QUIET and P[P_HFREE] > h:
         T = h * n
@@ -367,14 +368,16 @@ def ga_steps(Y, P, drive, h, n, W, NW):
             # a step input: this communication step and the next by the error-controlled
             # L-stable extrapolated substeps (the slip relaxing onto the new inputs' value,
             # and what the step set ringing), then the accelerations afresh from the forces
-            adaptive_steps(Y, P, drive, h * n, 0.25 * h, W, NW)
+            if not adaptive_steps(Y, P, drive, h * n, 0.25 * h, W, NW):
+                return False
             hs[H_GA] = GA_STEP_IN_2 if hs[H_GA] == GA_STEP_IN else 0.0
             regular = False
             break
         if hs[H_GA] == GA_RELAX:
             # a large jump: its boundary layer (the slip relaxing onto the new inputs'
             # value) by the adaptive substeps over one substep
-            adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
+            if not adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW):
+                return False
             hs[H_GA] = 0.0    # then the accelerations afresh from the forces
             regular = False
             continue
@@ -388,9 +391,11 @@ def ga_steps(Y, P, drive, h, n, W, NW):
         else:
             # Newton did not converge (a very steep friction law): this step by the
             # error-controlled extrapolated substeps instead, then start afresh
-            adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW)
-            hs[H_GA] = 0.0
             hs[H_FALLBACK] += 1.0
+            if not adaptive_steps(Y, P, drive, h, 0.25 * h, W, NW):
+                return False
+            hs[H_GA] = 0.0
             regular = False
     if regular:
         hs[H_RING] = RING_QUIET if amax < P[P_RINGA] else RING_OPEN
+    return True

@@ -23,6 +23,7 @@ from . import layout as K
 from . import oppoint
 from .jit import c_function, carray, compiled_copies, njit
 from .assembly import resolved_forces
+from .budget import MAX_SUBSTEPS
 from . import bdf2, genalpha
 from .bdf2 import bdf2_steps
 from .contact import groove_contact, line_kinematics, roller_motion
@@ -68,18 +69,28 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     INT_ADAPTIVE: the same with its substep chosen by its own error estimate
     (euler.adaptive_steps); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
     (genalpha.ga_steps), BDF2 with the needle-resolved one (bdf2.bdf2_steps).
+
+    Returns False, the outputs not written, where the step is longer than MAX_SUBSTEPS substeps
+    (refused before it starts) or the adaptive substeps ran out of their budget
+    (euler.adaptive_steps); hs[H_FAIL] says which (budget.py).
     """
     hs = W.hs
+    hs[K.H_FAIL] = K.FAIL_NONE
+    if n > MAX_SUBSTEPS:     # refused before it starts (budget.py)
+        hs[K.H_FAIL], hs[K.H_FAIL_DONE], hs[K.H_FAIL_H] = K.FAIL_LONG, h * n, h
+        return False
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
     if P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
-        ga_steps(Y, P, drive, h, n, W, NW)
+        if not ga_steps(Y, P, drive, h, n, W, NW):
+            return False
         n = 0
     elif P[P_INTEG] == INT_DEFAULT:   # the needle-resolved bearing: BDF2, roller and row in one system
         if NW is not None:    # (always, here; the test lets numba drop it from the others)
             bdf2_steps(Y, P, drive, h, n, W, NW)
         n = 0
     elif P[P_INTEG] >= INT_ADAPTIVE:
-        adaptive_steps(Y, P, drive, h * n, h, W, NW)
+        if not adaptive_steps(Y, P, drive, h * n, h, W, NW):
+            return False
         n = 0
     extrap = P[P_INTEG] == INT_EXTRAPOLATED
     for _ in range(n):
@@ -105,6 +116,7 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     out[O_FN] = res[R_FN]
     out[O_X] = Y[Y_X]
     out[O_PL] = Y[Y_PL]
+    return True
 
 
 # --- the step as a C function (the native layer's) ---
@@ -159,16 +171,18 @@ def joint_into(out, n, s, F, dst):
 @njit
 def _roller(Y, P, OP, W, out, jump):
     """One roller's step at the inputs in its OP, its operating point derived (oppoint.derive:
-    jump), W its work arrays (layout.Work)."""
+    jump), W its work arrays (layout.Work).  False: the step ran out of its budget
+    (run_substeps)."""
     inputs_moved(P, W.hs, jump)
-    run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0], 0.0), OP[OP_H],
-                 0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
+    return run_substeps(Y, P, K.Drive(OP[OP_THETA], OP[OP_W], OP[OP_X0], 0.0), OP[OP_H],
+                        0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 
 
 def step(args):
     """One communication step at the inputs in OP (their operating point derived again when
-    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output (nothing
-    written; the state has moved, as in the Python step).  args: the arrays' addresses in
+    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output, 3: a
+    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; euler.adaptive_steps)
+    (2, 3: nothing written; the state has moved, as in the Python step).  args: the arrays' addresses in
     layout's FA_ places.
 
     OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays).  OP is then a header
@@ -188,7 +202,8 @@ def step(args):
                    carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
                    carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
         P1 = carray(pP, (K.P_LEN,))
-        _roller(carray(pY, (K.Y_LEN,)), P1, head, W, out, derive_op(P1, head))
+        if not _roller(carray(pY, (K.Y_LEN,)), P1, head, W, out, derive_op(P1, head)):
+            return 3
         if not outputs_into(out, head[OP_F], dst):
             return 2
         # (the same output array seen as one row: no reshape, whose helper the prebuilt
@@ -213,8 +228,9 @@ def step(args):
             jump = derive_op(P[0], row)
         else:
             copy_op(P[0], OP[1], P[i], row)
-        _roller(Y[i], P[i], row, K.Work(L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i], hs[i], GW[i]),
-                out[i], jump)
+        if not _roller(Y[i], P[i], row, K.Work(L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i],
+                                                hs[i], GW[i]), out[i], jump):
+            return 3
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
         return 2

@@ -68,7 +68,14 @@ V_ROT = (0.0, 1.0, 0.0, 1.0, 1.0, 0.0)
 H_SUB, H_TAKEN, H_REJECTED, H_GA, H_FALLBACK, H_ACC = range(6)
 H_FACC = H_ACC + NV
 H_RING = H_FACC + NV
-H_LEN = H_RING + 1
+# the step's budget (budget.py): H_FAIL why the last step stopped short (FAIL_*; 0: it did
+# not), H_FAIL_DONE the share of the adaptive substeps' span done then and H_FAIL_H their
+# substep [s] (FAIL_LONG, kernel.run_substeps: the step's length [s] and substep);
+# H_USE_TRIES the largest share of a call's budget of tries used so far, H_USE_FLOOR the
+# largest ratio floor / substep tried (both < 1 while the budget never binds)
+H_FAIL, H_FAIL_DONE, H_FAIL_H, H_USE_TRIES, H_USE_FLOOR = range(H_RING + 1, H_RING + 6)
+H_LEN = H_USE_FLOOR + 1
+FAIL_NONE, FAIL_ESTIMATE, FAIL_FLOOR, FAIL_TRIES, FAIL_LONG = 0.0, 1.0, 2.0, 3.0, 4.0
 H_PASSES = H_ACC
 RING_OPEN, RING_QUIET = 0.0, 1.0   # hs[H_RING]: resolved (the start's value), quiet
 # --- output vector layout ---

@@ -16,7 +16,8 @@ from . import hertz, layout as K, native, needle_setup, oppoint, start_slide   #
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
 from reduced_model.thrust import fz_mod, spin_inertia
-from reduced_model.scene import same_step
+from reduced_model.scene import StepRefused, same_step
+from .budget import refusal
 
 
 class ContactModel:
@@ -272,9 +273,12 @@ class ContactModel:
             if self._argv is None:
                 arrays = self.fast_arrays()
                 self._argv = fast_argv(arrays[:3] + (self._fout,) + arrays[3:])
-            if fn(self._argv.ctypes.data) == 0:
+            rc = fn(self._argv.ctypes.data)
+            if rc == 0:
                 raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
                                          "(a division by zero)")
+            if rc == 3:
+                raise StepRefused(refusal(self._hs, self.P))
             return
         from . import kernel
         OP = self._OP
@@ -294,8 +298,9 @@ class ContactModel:
             if n > 0 and self.load_ramped and F_was == F_was and F_was != OP[K.OP_F]:
                 x_was = self.pressing_offset(F_was) if x_was is None else x_was
                 rate = (x0 - x_was) / OP[K.OP_DT]
-        kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
-                            OP[K.OP_H], n, self.out, self._W, self.NW)
+        if not kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
+                                   OP[K.OP_H], n, self.out, self._W, self.NW):
+            raise StepRefused(refusal(self._hs, self.P))
 
     def kernel_name(self) -> str:
         """Which compiled kernel steps this roller (for the FMU's log)."""
@@ -452,6 +457,13 @@ class JointModel:
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
         return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque, plunge_speed)
                                for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
+
+    def refusal(self) -> str:
+        """Why the last step ran out of its budget, and in which roller (budget.refusal)."""
+        for i, r in enumerate(self.rollers):
+            if r._hs[K.H_FAIL] != K.FAIL_NONE:
+                return f"roller {i + 1}: {refusal(r._hs, r.P)}"
+        return "no roller ran out of its budget"
 
     def get_state(self) -> list:
         return [r.get_state() for r in self.rollers]

@@ -211,7 +211,7 @@ def derive(P, OP):
     F = pressing_load(Fp, tq, P[P_S])
     vst = v_st(P, theta, omega, vp)
     h = substep(P, theta, omega, F, vst, True)
-    n = max(1, int(math.ceil(dt / h - 1e-9)))
+    n = max(1, int(math.ceil(min(dt / h - 1e-9, 2.0 ** 53))))   # (a host's huge dt: no overflow)
     # the load's relative change, from the key (a restored state carries the key, not OP_F)
     F0 = pressing_load(OP[OP_KEY + 2], OP[OP_KEY + 3], P[P_S])
     P[P_DF] = abs(F - F0) / max(abs(F), abs(F0), 1e-300) if jump >= 0.0 else 0.0

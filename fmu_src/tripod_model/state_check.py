@@ -1,0 +1,103 @@
+"""What a roller's model state (ContactModel.get_state) must hold to be stepped: checked when a
+host sets a state (the FMU's fmi2SetFMUstate), beyond its format.  Plain Python.
+
+The bounds come from the scene, each far outside what a run reaches (benchmarks/step_budget.py
+and tests/test_budget.py measure both):
+- every value finite (the inputs' key may be NaN: no step taken yet);
+- the roller on its trunnion: its slide u within half the needle length of the row's middle
+  (beyond it the roller is off its needles; runs reach about 1e-4 m of the default's 6 mm);
+- with the lumped bearing, the roller's radial offsets within the needle diameter (the row's
+  thickness: beyond it the trunnion would pass through the needles; runs reach 5e-5 m of
+  1.6 mm) and its tilts within the angle that takes half a needle across the row's thickness;
+- speeds within SPEED_MARGIN x the fastest the driven motion makes at the state's inputs:
+  (s + r_roller) |omega| (1 + tan theta) + |plunge speed|, at least 1 m/s (runs reach a tenth
+  of it), the spin and tilt rates within that over the bore radius;
+- the whirl angle within the shaft angle's range; the history's substep within 0-1 s, the
+  transition velocity within its parameter's range.
+"""
+import math
+
+import numpy as np
+
+from reduced_model.scene import BY_NAME
+from . import layout as K
+
+SPEED_MARGIN = 10.0
+
+
+class BadState(ValueError):
+    """A model state that cannot be stepped, with the reason."""
+
+
+def _finite(name, v):
+    a = np.asarray(v, dtype=float)
+    if not np.isfinite(a).all():
+        raise BadState(f"{name} holds a non-finite value")
+
+
+def speed_bound(p: dict, theta: float, omega: float, vp: float) -> float:
+    """The fastest a roller's point may move [m/s] at these inputs (module docstring)."""
+    kin = (p["s"] + p["r_roller"]) * abs(omega) * (1.0 + abs(math.tan(theta))) + abs(vp)
+    return SPEED_MARGIN * max(kin, 1.0)
+
+
+def _within(name, value, bound, unit, why):
+    if not abs(value) <= bound:
+        raise BadState(f"{name} = {value:.4g} {unit} is outside +-{bound:.4g} {unit} ({why})")
+
+
+def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float) -> None:
+    """Raise BadState naming the value if the roller state ``st`` cannot be stepped; p: the
+    model's parameters, theta [rad], omega [rad/s], vp [m/s]: the inputs it is to be stepped
+    at (the larger of those and of its own key count)."""
+    for name in ("Y", "out", "hs", "Y2", "ND"):
+        if st.get(name) is not None:
+            _finite(name, st[name])
+    for name in ("vst", "time"):
+        _finite(name, st[name])
+    if not st["started"]:   # the first step starts it afresh (ContactModel.start)
+        return
+    key = np.asarray(st["inputs"], dtype=float)
+    if np.isinf(key).any():
+        raise BadState("the inputs it was stepped at hold an infinite value")
+    if key[0] == key[0]:    # NaN: no step yet
+        theta, omega, vp = max(abs(theta), abs(key[0])), max(abs(omega), abs(key[1])), \
+            max(abs(vp), abs(key[4]))
+    if not (st["time"] >= 0.0 and st["substeps"] >= 0):
+        raise BadState("its time or substep count is negative")
+    vst = BY_NAME["v_st"]
+    if not 0.0 < st["vst"] <= vst.hi:
+        raise BadState(f"v_st = {st['vst']:.4g} m/s is outside (0, {vst.hi:g}] m/s")
+    hs = st["hs"]
+    if not 0.0 <= hs[K.H_SUB] <= 1.0:
+        raise BadState(f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s")
+    v = speed_bound(p, min(theta, math.pi / 4), omega, vp)
+    rb = p["r_bore"]
+    for label, Y in (("", st["Y"]), (" (previous step)", st["Y2"])):
+        _within("whirl angle" + label, Y[K.Y_X], BY_NAME["shaft_angle"].hi + 2 * math.pi,
+                "rad", "the shaft angle's range")
+        _within("slide u" + label, Y[K.Y_U], 0.5 * p["l_needle"], "m",
+                "half the needle length: the roller off its needles")
+        _within("slide speed" + label, Y[K.Y_UD], v, "m/s", "the scene's speeds")
+        _within("spin" + label, Y[K.Y_OM], v / p["r_roller"], "rad/s", "the scene's speeds")
+        if p["bearing"] == K.BEAR_IDEAL:
+            continue
+        tilt = math.atan(p["d_needle"] / (0.5 * p["l_needle"]))
+        for n, i in (("radial offset e", K.Y_E), ("radial offset w", K.Y_W)):
+            _within(n + label, Y[i], p["d_needle"], "m", "the needle diameter")
+        for n, i in (("tilt b1", K.Y_B1), ("tilt b2", K.Y_B2)):
+            _within(n + label, Y[i], tilt, "rad", "half a needle across the row")
+        for n, i in (("radial speed e'", K.Y_ED), ("radial speed w'", K.Y_WD)):
+            _within(n + label, Y[i], v, "m/s", "the scene's speeds")
+        for n, i in (("tilt rate b1'", K.Y_B1D), ("tilt rate b2'", K.Y_B2D)):
+            _within(n + label, Y[i], v / rb, "rad/s", "the scene's speeds")
+
+
+def check_joint_state(states: list, p: dict, theta: float, omega: float, vp: float) -> None:
+    """check_roller_state for each roller of a JointModel state (JointModel.get_state), the
+    reason prefixed with the roller's number."""
+    for i, st in enumerate(states):
+        try:
+            check_roller_state(st, p, theta, omega, vp)
+        except BadState as e:
+            raise BadState(f"roller {i + 1}: {e}") from None
