@@ -73,8 +73,9 @@ cross-tools:
 	  { [ "$$(id -u)" = 0 ] && apt-get update -qq && apt-get install -y -qq gcc-mingw-w64-x86-64 \
 	  wine64 >/dev/null; } || { echo "make: the win64 build and its tests need mingw-w64 and wine64 (as root: apt-get install gcc-mingw-w64-x86-64 wine64)"; exit 1; }
 
+# two workers (the machine's two cores; pytest-xdist), the slowest tests named at the end
 test: $(STAMP) cross-tools
-	$(BIN)/python -m pytest -q
+	$(BIN)/python -m pytest -q -n 2 --durations=15
 
 # regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
 # per-FMU variables, reference CSVs and plots, the validation grid, the demo's output, then the

@@ -8,6 +8,8 @@ no unit attributes).
 """
 from __future__ import annotations
 
+import contextlib
+import fcntl
 import hashlib
 import json
 import os
@@ -84,6 +86,30 @@ def _compile(src: Path, lib: Path, flags) -> Path:
     return lib
 
 
+_HELD = [0]   # this process's depth inside _exclusive
+
+
+@contextlib.contextmanager
+def _exclusive():
+    """One build at a time in build/ across processes (parallel test workers each build what
+    they find stale); re-entrant within a process."""
+    if _HELD[0]:
+        _HELD[0] += 1
+        try:
+            yield
+        finally:
+            _HELD[0] -= 1
+        return
+    BUILD.mkdir(parents=True, exist_ok=True)
+    with open(BUILD / ".lock", "w") as f:
+        fcntl.flock(f, fcntl.LOCK_EX)
+        _HELD[0] = 1
+        try:
+            yield
+        finally:
+            _HELD[0] = 0
+
+
 def _fresh(lib: Path, src: Path) -> bool:
     return lib.exists() and lib.stat().st_mtime >= src.stat().st_mtime
 
@@ -108,6 +134,12 @@ def analytic_step_library(force=False) -> Path:
 
 
 def prebuilt_kernel(force=False, target="linux64") -> tuple[Path, Path]:
+    """The prebuilt kernel for target (_prebuilt_kernel), built under the build lock."""
+    with _exclusive():
+        return _prebuilt_kernel(force, target)
+
+
+def _prebuilt_kernel(force, target):
     """build/aot/_step.{so,json} (win64: build/aot-win64/_step.{dll,json}, cross-compiled): the
     contact kernel's step compiled ahead of time (aot.py), rebuilt when missing or stale: built
     from other kernel sources than today's (the content hash the FMU checks when it loads the
@@ -291,6 +323,11 @@ def _initial_unknowns(root):
 
 def build(name="TripodRoller", force=False) -> Path:
     """Build build/<name>.fmu if missing or stale (or forced); returns its path."""
+    with _exclusive():
+        return _build(name, force)
+
+
+def _build(name, force):
     dest = fmu_path(name)
     if not force and not is_stale(name):
         return dest
