@@ -18,9 +18,7 @@ import tempfile
 from concurrent.futures import ThreadPoolExecutor
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from harness.fmus import FMU_NAMES, ensure_fmu  # noqa: E402
+from harness.fmus import FMU_NAMES, ensure_fmu
 
 SCRIPT = """
 import sys

@@ -12,9 +12,7 @@ import sys
 import time
 from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from harness.fmus import ensure_fmu  # noqa: E402
+from harness.fmus import ensure_fmu
 
 CASES = [
     ("ideal bearing, traverse (default)", {}),

@@ -21,9 +21,8 @@ from pathlib import Path
 
 import numpy as np
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from harness import transients as T  # noqa: E402
-from reduced_model.scene import BY_NAME  # noqa: E402
+from harness import transients as T
+from reduced_model.scene import BY_NAME
 
 REFINES = (10, 20, 40, 80, 160)
 MIN_SUBSTEP = BY_NAME["max_substep"].auto_or_min   # max_substep's smallest value

@@ -5,16 +5,12 @@ and the axial stops, finiteness.  Same criteria as tests/test_needles.py; prints
 Usage: python benchmarks/needle_checks.py   (about 35 s)
 """
 import math
-import sys
 import time
-from pathlib import Path
 
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "fmu_src"))
-from tripod_model.model import ContactModel  # noqa: E402
-from tripod_model import contact, layout as LY  # noqa: E402
+from tripod_model.model import ContactModel
+from tripod_model import contact, layout as LY
 
 
 def main():

@@ -13,21 +13,17 @@ Prints Markdown tables:
 Usage: python benchmarks/needle_speed.py [--runs N] [--quick]
 """
 import argparse
-import sys
 import time
-from pathlib import Path
 
 import numba
 import numpy as np
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-sys.path.insert(0, str(ROOT / "fmu_src"))
-from harness.bench import REFERENCES, time_runs  # noqa: E402
-from harness.fmus import ensure_fmu  # noqa: E402
-from reduced_model.orders import last_cycle_orders  # noqa: E402
-from tripod_model import assembly, bdf2, rowsolve, layout as LY  # noqa: E402
-from tripod_model.model import ContactModel, simulate  # noqa: E402
+from harness.bench import REFERENCES, time_runs
+from harness.fmus import ensure_fmu
+from reduced_model.orders import last_cycle_orders
+from tripod_model import assembly, bdf2, rowsolve, layout as LY
+from tripod_model.model import ContactModel
+from tripod_model.simulate import simulate
 
 CYCLES = 2
 STOP = 0.2

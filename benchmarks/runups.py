@@ -9,12 +9,9 @@ markdown table (about 15 s).
 """
 from __future__ import annotations
 
-import sys
 import time
-from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from harness.transients import runup, settle  # noqa: E402
+from harness.transients import runup, settle
 
 RUNS = ((0.5, 1e-4), (0.5, 2e-5), (0.5, 1e-3), (3.0, 1e-4), (3.0, 2e-5), (3.0, 1e-3))
 TARGETS = (5.0, 10.0, 20.0, 35.0)

@@ -15,8 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
-from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,  # noqa: E402
+from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,
                                 MEAN_SAMPLES, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
                                 RESOLVED_ROWS, RESOLVED_ONE_PASS, SIZES, case, checked_case,
                                 cycle_case, deviation, settle, step_runs)

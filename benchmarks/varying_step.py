@@ -14,13 +14,9 @@ Prints a Markdown table.  Usage: python benchmarks/varying_step.py [--runs N]
 """
 import argparse
 import os
-import sys
-from pathlib import Path
 
-ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT))
-from harness.bench import MASTER_INPUTS, time_runs  # noqa: E402
-from harness.fmus import ensure_fmu  # noqa: E402
+from harness.bench import MASTER_INPUTS, time_runs
+from harness.fmus import ensure_fmu
 
 SV = {"n_rollers": 3, "torque": 300.0}
 DT, N = 1e-4, 2000

@@ -479,7 +479,6 @@ BREAKDOWN_PARTS = ("FMI boundary (bare slave)", "slave adapter (inputs, outputs,
 def breakdown(runs=5, dt=1e-4):
     """Where the time of one two-cycle run of the default contact scene goes [s]:
     FMI boundary (bare slave), the slave adapter, the model's Python, the numba kernel."""
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model import kernel
     from tripod_model.model import JointModel
     n = int(round(STOP / dt))

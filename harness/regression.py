@@ -74,7 +74,6 @@ def same_numerics() -> bool:
 def run(name: str, perturb: float = 0.0) -> np.ndarray:
     """The scene's outputs, one row per communication step (time first); ``perturb`` scales
     the joint angle by (1 + perturb)."""
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model.simulate import simulate
     params, cycles = SCENES[name]
     if perturb:

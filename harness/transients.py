@@ -12,8 +12,6 @@ import numpy as np
 from reduced_model.orders import last_cycle_orders, order_spectrum
 from reduced_model.scene import BY_NAME, PARAMS, check_value, defaults, validate
 
-from .fmus import ROOT
-
 DT = 1e-4
 THETA, TORQUE = math.radians(8.0), 300.0
 INPUTS = ("omega", "theta", "torque")
@@ -42,8 +40,6 @@ RESOLVED_ONE_PASS = (("needle-resolved, one pass", ONE_PASS, THETA, TORQUE, {}),
 
 
 def _model(params, n_rollers, **extra):
-    import sys
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model.model import JointModel
     return JointModel(validate(dict(defaults("contact"), n_rollers=n_rollers, **params, **extra),
                                "contact"))

@@ -7,7 +7,6 @@ in closed form.  Order 3 of Fz_mod, one roller.
 from __future__ import annotations
 
 import math
-import sys
 
 import numpy as np
 
@@ -65,7 +64,6 @@ def grid() -> dict:
 def contact_orders(overrides: dict, per_cycle: int = 2000, max_cycles: int = 3 * MAX_CYCLES):
     """Orders 1 and 3 of the contact model's Fz_mod over its last whole cycle once periodic:
     ({k: (amplitude N, phase deg)}, cycles used, settled)."""
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model.model import JointModel
     sc = scene_mod.validate(dict(overrides, bearing=0, traverse=True), "contact")
     th, w, F, vp = sc["theta"], sc["omega"], sc["F_press"], sc["plunge_speed"]

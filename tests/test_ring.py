@@ -2,14 +2,12 @@
 after a step input and wherever it lives, the free substep where it has rung down
 (docs/integrators.md, "The roller's ring")."""
 import math
-import sys
 
 import numpy as np
 import pytest
 
 from harness import transients as T
 
-sys.path.insert(0, str(T.ROOT / "fmu_src"))
 from tripod_model import layout as LY, oppoint  # noqa: E402
 
 LAUNCH = {"theta": T.LAUNCH_THETA, "torque": T.LAUNCH_TORQUE}

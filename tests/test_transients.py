@@ -201,9 +201,7 @@ def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
     # smaller jumps keep the history, a larger one is a step input.  Carrying the history across
     # an omega step of 1 % read 0.89-0.99 % of order 3 against h/20 on sixteen realizations at
     # 300 N m (a first-order error of the substep), restarted 0.64-0.83 % on five
-    import sys
     import numpy as np
-    sys.path.insert(0, str(T.ROOT / "fmu_src"))
     from tripod_model import bdf2, genalpha, layout as LY
     P = np.zeros(LY.P_LEN)
     for jump, want in ((0.5 * genalpha.GA_JUMP_RELAX, 1.0),
@@ -271,8 +269,6 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
     # the mechanism: a step input takes the communication steps of the next 0.8 ms, at least
     # three, in substeps of h/16, the last h/2 (bdf2.BDF_STEP_IN); a ramp's small change
     # leaves the steady substep
-    import sys
-    sys.path.insert(0, str(T.ROOT / "fmu_src"))
     from tripod_model import layout as LY
     m = T._model({"bearing": 2}, 1)
     w = 2 * math.pi * 10
@@ -293,8 +289,6 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
 
 def test_the_integrator_restarts_where_the_inputs_jumped():
     # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
-    import sys
-    sys.path.insert(0, str(T.ROOT / "fmu_src"))
     from tripod_model import genalpha, kernel, layout as LY
     m = T._model({}, 1)
     w = 2 * math.pi * 10
@@ -330,8 +324,6 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
     # makes over the step (measured 1e-4 and 1e-7 of it; the accelerations before the step
     # would be 10 and 1 tolerances off).  With one substep a communication step (2e-5 s at
     # 10 Hz, 300 N m) the restart is the step's last
-    import sys
-    sys.path.insert(0, str(T.ROOT / "fmu_src"))
     import numpy as np
     from tripod_model import genalpha, layout as LY
     m = T._model(params, 1)
@@ -356,8 +348,6 @@ def test_what_a_joint_copies_from_one_derive_is_all_derive_writes(params):
     # kernel.step derives the first roller's operating point and copies it to the others
     # (oppoint.copy_derived, by its lists OP_DERIVED and P_DERIVED): every slot derive changes
     # must be on those lists, and the copy must be what derive would have written
-    import sys
-    sys.path.insert(0, str(T.ROOT / "fmu_src"))
     import numpy as np
     from tripod_model import kernel, oppoint
     m = T._model(params, 3)

@@ -158,6 +158,5 @@ def _stopped(hs, why, done, h):
     """The adaptive substeps stopped short (adaptive_steps): why (FAIL_*), the share done, the
     substep [s]."""
     hs[H_FAIL], hs[H_FAIL_DONE], hs[H_FAIL_H] = why, done, h
-    hs[H_USE_TRIES] = 1.0
     return False
 
