@@ -6,7 +6,8 @@ motion about the static equilibrium, small: u = (u_x, u_y, u_z) [m] of the centr
 and the roll rho [rad] about the crankshaft axis (+y) through it; each on a linear mount
 (rate k, damping c, expressed at the centre of gravity, uncoupled).  The launch is the
 vehicle's: a half-shaft torque rising from creep to a launch level, the wheels accelerating
-the vehicle's mass.  Equations in docs/driveline-example.md.  SI units throughout.
+the vehicle's mass.  Equations in docs/driveline-example.md, written once in mounts.py (the
+Python model here and the FMU's compiled binary run them).  SI units throughout.
 """
 from __future__ import annotations
 
@@ -16,6 +17,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from reduced_model.scene import DEG, Param
+
+from . import mounts as M
 
 
 
@@ -91,37 +94,22 @@ def defaults() -> dict:
     return {p.name: p.default for p in TABLE}
 
 
+def params_array(values: dict) -> np.ndarray:
+    """The parameters (PARAMS' names) as mounts.py's P."""
+    return np.array([float(values[p.name]) for p in PARAMS])
+
+
 def launch_torque(t, p) -> float:
-    """Half-shaft torque [N m] at time t [s]: creep, rising linearly to the launch level."""
-    T0, T1, tr = p["torque_creep"], p["torque_launch"], p["torque_rise_time"]
-    return T1 if t >= tr else T0 + (T1 - T0) * t / tr
+    """Half-shaft torque [N m] at time t [s] (mounts.launch_torque); p: the parameters."""
+    return M.launch_torque(params_array(p), t)
 
 
 def wheel_speed(t, p) -> float:
-    """Wheel speed [rad/s] at time t [s] from standstill: n_shafts T(t) accelerates the vehicle
-    through its wheels, (m r^2) dw/dt = n T (no slip, no resistance), integrated exactly."""
-    T0, T1, tr = p["torque_creep"], p["torque_launch"], p["torque_rise_time"]
-    if t < tr:
-        impulse = T0 * t + (T1 - T0) * t * t / (2 * tr)
-    else:
-        impulse = T0 * tr + (T1 - T0) * tr / 2 + T1 * (t - tr)
-    return p["n_shafts"] * impulse / (p["vehicle_mass"] * p["wheel_radius"] ** 2)
+    """Wheel speed [rad/s] at time t [s] from standstill (mounts.wheel_speed)."""
+    return M.wheel_speed(params_array(p), t)
 
 
-def housing_force(Fz, Fhx, Fhy, psi):
-    """The joint's force on its housing in the vehicle frame [N] (x, y, z).  Housing Z = +y;
-    its X, fixed to the housing, turns about +y with the whirl angle psi [rad] from +z:
-    X = (sin psi, 0, cos psi), Y = Z x X = (cos psi, 0, -sin psi)."""
-    s, c = math.sin(psi), math.cos(psi)
-    return (Fhx * s + Fhy * c, Fz, Fhx * c - Fhy * s)
-
-
-def generalised_force(F, p, torque):
-    """Forces on (u_x, u_y, u_z) [N] and the moment on the roll [N m] of the joint's force F at
-    the joint centre r = (joint_x, joint_y, joint_z) and of the launch torque's reaction
-    -n_shafts torque about +y (the case takes the reaction of what it drives)."""
-    rx, rz = p["joint_x"], p["joint_z"]
-    return np.array([F[0], F[1], F[2], rz * F[0] - rx * F[2] - p["n_shafts"] * torque])
+housing_force = M.housing_force
 
 
 @dataclass(frozen=True)
@@ -133,88 +121,69 @@ class JointKinematics:
 
 
 def joint_kinematics(q, v, p) -> JointKinematics:
-    """The half-shaft is a rigid link of length L from the spider to the wheel-side joint W,
-    fixed to the body at L (0, cos theta0, -sin theta0) from the joint centre at rest.  The
-    joint centre moves with the powertrain, d_J = u + rho e_y x r; the spider stays on the
-    housing axis at plunge p from it: |W - J - p e_y| = L gives p = d_y - sqrt(L^2 - d_x^2 -
-    d_z^2) and theta = asin(sqrt(d_x^2 + d_z^2) / L), d = W - J.  q = (u, rho), v = dq/dt."""
-    L, th0 = p["shaft_length"], p["theta0"]
-    rx, rz = p["joint_x"], p["joint_z"]
-    dj = (q[0] + q[3] * rz, q[1], q[2] - q[3] * rx)
-    vj = (v[0] + v[3] * rz, v[1], v[2] - v[3] * rx)
-    dx, dy, dz = -dj[0], L * math.cos(th0) - dj[1], -L * math.sin(th0) - dj[2]
-    S = math.sqrt(L * L - dx * dx - dz * dz)
-    plunge_speed = -vj[1] + (dx * -vj[0] + dz * -vj[2]) / S
-    return JointKinematics(math.asin(math.hypot(dx, dz) / L), dy - S, plunge_speed)
+    """mounts.joint_kinematics at q = (u, rho) [m, rad] and v = dq/dt."""
+    return JointKinematics(*M.joint_kinematics(params_array(p), np.concatenate([q, v])))
 
 
 class Mounts:
     """The powertrain on its mounts, M q'' + C q' + K q = Q, stepped exactly for a force Q held
-    over the step (zero-order hold: state transition from the matrix exponential, computed
-    once per step size)."""
+    over the step (mounts.mounts_step: the transition computed once per step size)."""
 
     def __init__(self, p):
-        m, J = p["mass"], p["J_roll"]
-        self.minv = np.array([1 / m, 1 / m, 1 / m, 1 / J])
-        self.k = np.array([p["k_x"], p["k_y"], p["k_z"], p["k_roll"]])
-        self.c = np.array([p["c_x"], p["c_y"], p["c_z"], p["c_roll"]])
-        self._steps = {}
-
-    def _matrices(self, h):
-        if h not in self._steps:
-            from scipy.linalg import expm
-            A = np.zeros((12, 12))      # [[A, B], [0, 0]] for the state (q, v) and Q
-            A[0:4, 4:8] = np.eye(4)
-            A[4:8, 0:4] = -np.diag(self.minv * self.k)
-            A[4:8, 4:8] = -np.diag(self.minv * self.c)
-            A[4:8, 8:12] = np.diag(self.minv)
-            E = expm(A * h)
-            self._steps = {h: (E[0:8, 0:8].copy(), E[0:8, 8:12].copy())}   # one step size kept
-        return self._steps[h]
+        self.P = params_array(p)
+        self.W = np.zeros(M.W_LEN)
 
     def step(self, x, Q, h):
         """The state x = (q, v) [m, rad, m/s, rad/s] after h [s] under Q held."""
-        Phi, Gamma = self._matrices(h)
-        return Phi @ x + Gamma @ Q
+        x = np.array(x, dtype=float)
+        M.mounts_step(self.P, x, [float(f) for f in Q], self.W, h)
+        return x
 
     def acceleration(self, x, Q):
         """q'' [m/s2, rad/s2] at the state x under Q."""
-        return self.minv * (Q - self.c * x[4:8] - self.k * x[0:4])
+        return np.array([M.acceleration(self.P, x, Q, i) for i in range(4)])
 
 
 class PowertrainModel:
-    """The powertrain FMU's model: the mounts' state x = (q, v), 8 floats, and the outputs at
-    time t [s] from the joint's forces held over each step."""
+    """The powertrain FMU's model (mounts.init, mounts.step): the mounts' state x = (q, v), 8
+    floats, and the outputs at time t [s] from the joint's forces held over each step."""
 
     def __init__(self, values: dict):
+        """values: every parameter and the inputs at the start (TABLE's names)."""
         self.p = dict(values)
-        for name in ("mass", "J_roll", "vehicle_mass", "wheel_radius"):   # divided by
-            if not self.p[name] ** 2 > 1e-300:
-                raise ValueError(f"{name} = {self.p[name]!r} is too small to compute with; "
-                                 f"allowed range {BY_NAME[name].range_text()}")
-        self.mounts = Mounts(self.p)
-        self.x = np.zeros(8)
+        self.P = params_array(values)
+        self.IN = np.array([float(values[p.name]) for p in INPUTS])
+        self.x = np.zeros(M.X_LEN)
+        self.OUT = np.zeros(M.OUT_LEN)
+        self.W = np.zeros(M.W_LEN)
+        rc = M.init(self.P, self.IN, self.x, self.OUT, self.W)
+        if rc < 0:
+            name = PARAMS[-rc - 1].name
+            raise ValueError(f"{name} = {self.p[name]!r} is too small to compute with; "
+                             f"allowed range {BY_NAME[name].range_text()}")
+        if rc != 1:
+            raise ValueError("the start's outputs are not finite")
 
-    def outputs(self, t, Q) -> dict:
-        """Every output at time t with the mounts at x under the generalised force Q."""
-        q, v = self.x[0:4], self.x[4:8]
-        kin = joint_kinematics(q, v, self.p)
-        a = self.mounts.acceleration(self.x, Q)
-        return {"theta": kin.theta, "plunge_speed": kin.plunge_speed,
-                "omega": wheel_speed(t, self.p), "torque": launch_torque(t, self.p),
-                "plunge": kin.plunge, "acc_x": float(a[0]), "acc_y": float(a[1]),
-                "acc_z": float(a[2]), "disp_y": float(q[1]), "roll": float(q[3])}
-
-    def load(self, t, joint: dict):
-        """The generalised force at time t of the joint's forces (INPUTS' names) and the launch
-        torque's reaction."""
-        F = housing_force(joint["Fz_joint"], joint["F_housing_x"], joint["F_housing_y"],
-                          joint["whirl_angle"])
-        return generalised_force(F, self.p, launch_torque(t, self.p))
+    def outputs(self) -> dict:
+        return {name: float(v) for (name, _, _), v in zip(OUTPUTS, self.OUT)}
 
     def step(self, t, h, joint: dict) -> dict:
-        """Advance from t to t + h [s] with the joint's forces held; the outputs at t + h."""
-        with np.errstate(all="ignore"):     # a non-finite result is refused by the slave
-            Q = self.load(t, joint)
-            self.x = self.mounts.step(self.x, Q, h)
-            return self.outputs(t + h, Q)
+        """Advance from t to t + h [s] with the joint's forces held; the outputs at t + h (NaN
+        where the step's are not finite: the slave refuses it)."""
+        for i, p in enumerate(INPUTS):
+            self.IN[i] = joint[p.name]
+        if M.step(self.P, self.IN, self.x, self.OUT, self.W, t, h) != 1:
+            return {name: math.nan for name, _, _ in OUTPUTS}
+        return self.outputs()
+
+
+def native_layout() -> dict:
+    """Where each variable lives in mounts.py's arrays, the arrays' sizes and the order the
+    variables are checked in at initialisation (TABLE's, as the slave checks them): for the FMU
+    whose binary runs mounts.py compiled (fmu_src/native_fmu.py)."""
+    arrays = {p.name: ("IN_IN", i) for i, p in enumerate(INPUTS)}
+    arrays.update({p.name: ("IN_P", i) for i, p in enumerate(PARAMS)})
+    arrays.update({name: ("IN_OUT", i) for i, (name, _, _) in enumerate(OUTPUTS)})
+    return {"by_name": BY_NAME, "arrays": arrays, "check_order": [p.name for p in TABLE],
+            "sizes": {"P": M.P_LEN, "IN": M.IN_LEN, "X": M.X_LEN, "OUT": M.OUT_LEN,
+                      "W": M.W_LEN, "TH": 2}}

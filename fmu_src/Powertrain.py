@@ -33,8 +33,7 @@ class Powertrain(Guarded, DataState, Fmi2Slave):
 
     def _initialise(self):
         self.model = PowertrainModel(self._values(TABLE))
-        Q = self.model.load(0.0, self._values(INPUTS))
-        self._write(self.model.outputs(0.0, Q))
+        self._write(self.model.outputs())
 
     def _write(self, out):
         for k, v in out.items():

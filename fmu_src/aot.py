@@ -57,6 +57,53 @@ json.dump({"symbol": kernel.c_step().native_name, "hash": native.source_hash(),
 """
 
 
+# a module's C functions (its factory returns {name: numba cfunc}), each emitted as an object
+_EMIT_FUNCTIONS = r"""
+import importlib, json, sys
+import llvmlite.binding as llvm
+out, spec, triple = sys.argv[1], sys.argv[2], sys.argv[3] or None
+module, factory = spec.split(":")
+functions = getattr(importlib.import_module(module), factory)()
+if triple:
+    llvm.initialize_all_targets()
+    llvm.initialize_all_asmprinters()
+    target = llvm.Target.from_triple(triple)
+else:
+    llvm.initialize_native_target()
+    llvm.initialize_native_asmprinter()
+    target = llvm.Target.from_default_triple()
+tm = target.create_target_machine(cpu="generic", features="", opt=3, reloc="pic")
+symbols = {}
+for name, fn in functions.items():
+    mod = llvm.parse_assembly(fn._library.get_llvm_str())
+    if triple:
+        mod.triple = triple
+        mod.data_layout = str(tm.target_data)
+    mod.verify()
+    open(f"{out}/{name}.o", "wb").write(tm.emit_object(mod))
+    symbols[name] = fn.native_name
+json.dump(symbols, open(f"{out}/symbols.json", "w"))
+"""
+
+
+def compile_functions(spec: str, dest: Path, target: str = "linux64") -> dict:
+    """Objects dest/NAME.o of the C functions module:factory returns (numba cfuncs, compiled
+    in a fresh process for a generic x86-64 CPU, retargeted to ``target``); returns
+    {NAME: (object path, its symbol)}."""
+    dest.mkdir(parents=True, exist_ok=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        env = dict(os.environ, NUMBA_CACHE_DIR=tmp, NUMBA_CPU_NAME="generic",
+                   NUMBA_CPU_FEATURES="", NUMBA_DISABLE_INTEL_SVML="1",
+                   PYTHONPATH=os.pathsep.join((str(FMU_SRC.parent), str(FMU_SRC))))
+        p = subprocess.run([sys.executable, "-c", _EMIT_FUNCTIONS, str(dest), spec,
+                            TARGETS[target]["triple"] or ""], env=env, capture_output=True,
+                           text=True, timeout=900)
+    if p.returncode != 0:
+        raise RuntimeError(f"compiling {spec} failed:\n{p.stderr[-3000:]}")
+    symbols = json.loads((dest / "symbols.json").read_text())
+    return {name: (dest / f"{name}.o", sym) for name, sym in symbols.items()}
+
+
 def cross_compiler(target: str) -> str | None:
     """The C compiler that links ``target``'s library (None: not installed here)."""
     import shutil

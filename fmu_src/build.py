@@ -40,6 +40,11 @@ BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
 RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",),
                 "Powertrain": ("numpy", "scipy")}
 
+# FMUs whose binary runs the model compiled, without Python (native_fmu.py): the C functions
+# (module:factory) and where the variables live (a function of the model's package)
+COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout")}
+NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "fmi2_native.c",
+              FMU_SRC / "native" / "native_model.h", FMU_SRC / "native" / "exports.map")
 NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
 AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt kernel
 AOT_DIR = BUILD / "aot"
@@ -55,6 +60,8 @@ def _sources(name):
     files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
     if name == "TripodRoller":
         files += list(AOT)
+    elif name in COMPILED:
+        files += list(AOT) + list(NATIVE_FMU)
     elif name == "TripodRollerAnalytic":
         files.append(ANALYTIC_SRC)
     for pkg in BUNDLE[name]:
@@ -133,6 +140,14 @@ def analytic_step_library(force=False) -> Path:
     return _compile(ANALYTIC_SRC, ANALYTIC_LIB, ["-fvisibility=default", "-ffp-contract=off"])
 
 
+def _importable():
+    """fmu_src's build modules (aot, native_fmu) importable: this file is loaded by path
+    (harness.fmus), fmu_src is no package."""
+    for path in (str(FMU_SRC), str(ROOT)):
+        if path not in sys.path:
+            sys.path.insert(0, path)
+
+
 def prebuilt_kernel(force=False, target="linux64") -> tuple[Path, Path]:
     """The prebuilt kernel for target (_prebuilt_kernel), built under the build lock."""
     with _exclusive():
@@ -145,9 +160,7 @@ def _prebuilt_kernel(force, target):
     from other kernel sources than today's (the content hash the FMU checks when it loads the
     library, native.source_hash, which covers the reduced model's modules the kernel compiles
     too), or older than aot.py and its stubs."""
-    for path in (str(FMU_SRC), str(ROOT)):
-        if path not in sys.path:
-            sys.path.insert(0, path)
+    _importable()
     import aot
     dest = AOT_DIR if target == "linux64" else BUILD / f"aot-{target}"
     lib, meta = dest / aot.TARGETS[target]["lib"], dest / "_step.json"
@@ -340,10 +353,25 @@ def _build(name, force):
     elif name == "TripodRollerAnalytic":
         extra = [(analytic_step_library(force), "resources/_analytic_step.so")]
     table = _table(name)
-    out = package(SLAVES[name], dest, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
+    ref = reference_path(name) if name in COMPILED else dest
+    out = package(SLAVES[name], ref, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
                   lambda xml: _units_and_ranges(xml, *table), extra)
+    if name in COMPILED:    # the same model description over the compiled model
+        import importlib
+        _importable()
+        import native_fmu
+        spec, layout = COMPILED[name]
+        module, fn = layout.split(":")
+        out = native_fmu.package(ref, dest, spec, getattr(importlib.import_module(module), fn)(),
+                                 _fmi_headers())
     _stamp(name).write_text(built_from + "\n")
     return out
+
+
+def reference_path(name) -> Path:
+    """build/reference/<name>.fmu: the pythonfmu slave's FMU of a model that ships compiled
+    (COMPILED), which the tests hold the compiled FMU to."""
+    return BUILD / "reference" / f"{name}.fmu"
 
 
 if __name__ == "__main__":

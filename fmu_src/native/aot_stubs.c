@@ -7,7 +7,11 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#ifdef _WIN32
+#define HIDDEN          /* a DLL exports only what is marked for it */
+#else
 #define HIDDEN __attribute__((visibility("hidden")))
+#endif
 
 HIDDEN void *PyExc_RuntimeError = NULL;
 HIDDEN void *PyExc_StopIteration = NULL;

@@ -1,0 +1,744 @@
+/* The FMI 2.0 co-simulation layer for a model compiled ahead of time (native_model.h): the whole
+   lifecycle without Python, in plain C99 over libc and libm, the same source for Linux and
+   Windows.  Variables from data generated at build time from the parameter table; values
+   checked as reduced_model/scene.py's check_param does, with its messages; the call sequence
+   enforced (the Reference-FMUs' masks); the FMU state a copy of the model's arrays, serialised
+   as checked data (magic, sizes, GUID, CRC-32), nothing in it sizing an allocation unchecked.
+   Each instance owns its memory; no global state, no thread, nothing at exit. */
+#include <float.h>
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2Functions.h"
+#include "native_model.h"
+
+typedef enum { INSTANTIATED, INIT_MODE, STEP_COMPLETE, STEP_FAILED, TERMINATED, ERRORED } Phase;
+static const char *const PHASE_NAMES[] = {"instantiated", "initialization mode",
+                                          "step complete", "step failed", "terminated",
+                                          "error"};
+enum {
+    P_INST = 1 << INSTANTIATED, P_INIT = 1 << INIT_MODE, P_OK = 1 << STEP_COMPLETE,
+    P_FAILED = 1 << STEP_FAILED, P_TERM = 1 << TERMINATED, P_ERR = 1 << ERRORED,
+    P_ANY = P_INST | P_INIT | P_OK | P_FAILED | P_TERM | P_ERR
+};
+
+typedef struct {
+    char *name;
+    fmi2CallbackFunctions cb;
+    int logging_on;
+    Phase phase;
+    double last_ok_time;
+    int wants_to_terminate;
+    double *data;                  /* every array, one block */
+    double *arr[A_COUNT];
+    size_t n_data;
+} Inst;
+
+typedef struct {
+    Phase phase;
+    double last_ok_time;
+    int wants_to_terminate;
+    double *data;
+    size_t n_data;
+} State;
+
+/* ---- messages ----------------------------------------------------------------------------- */
+
+static void logf_(Inst *c, fmi2Status status, const char *fmt, ...)
+{
+    if (!c || !c->cb.logger || (status < fmi2Warning && !c->logging_on)) return;
+    char msg[1024];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(msg, sizeof msg, fmt, ap);
+    va_end(ap);
+    const char *cat = status >= fmi2Error ? "logStatusError" :
+                      status == fmi2Warning ? "logStatusWarning" : "logAll";
+    /* the logger's message is a printf format (FMI 2.0): ours goes in as an argument */
+    c->cb.logger(c->cb.componentEnvironment, c->name, status, cat, "%s", msg);
+}
+
+/* x as Python's repr() writes a float (the shortest digits that read back as x; fixed notation
+   for exponents -4 to 15, with ".0" when integral; else d.ddde+XX), so the messages are the
+   Python model's to the character. */
+static void py_repr(double x, char *out, size_t n)
+{
+    if (isnan(x)) { snprintf(out, n, "nan"); return; }
+    if (isinf(x)) { snprintf(out, n, x < 0 ? "-inf" : "inf"); return; }
+    char buf[40];
+    int p;
+    for (p = 1; p < 17; ++p) {
+        snprintf(buf, sizeof buf, "%.*e", p - 1, x);
+        if (strtod(buf, NULL) == x) break;
+    }
+    snprintf(buf, sizeof buf, "%.*e", p - 1, x);
+    char digits[24];
+    int nd = 0, neg = buf[0] == '-';
+    const char *q = buf + neg;
+    for (; *q && *q != 'e'; ++q)
+        if (*q >= '0' && *q <= '9' && nd < 23) digits[nd++] = *q;
+    digits[nd] = 0;
+    int e = atoi(q + 1);
+    while (nd > 1 && digits[nd - 1] == '0') digits[--nd] = 0;   /* (%.0e of 10: "1e+01") */
+    char *o = out;
+    size_t left = n;
+#define PUT(...) do { int w_ = snprintf(o, left, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= left) return; o += w_; left -= (size_t)w_; } while (0)
+    if (neg) PUT("-");
+    if (e >= -4 && e < 16) {
+        if (e < 0) {
+            PUT("0.");
+            for (int i = 0; i < -e - 1; ++i) PUT("0");
+            PUT("%s", digits);
+        } else {
+            for (int i = 0; i <= e; ++i) PUT("%c", i < nd ? digits[i] : '0');
+            PUT(".");
+            if (nd > e + 1) PUT("%s", digits + e + 1);
+            else PUT("0");
+        }
+    } else {
+        PUT("%c", digits[0]);
+        if (nd > 1) PUT(".%s", digits + 1);
+        PUT("e%c%02d", e < 0 ? '-' : '+', e < 0 ? -e : e);
+    }
+#undef PUT
+}
+
+/* The value of variable k as check_param words it: a float's repr, an integer's digits. */
+static void value_text(const ModelVar *v, double x, char *out, size_t n)
+{
+    if (v->type == 'I') snprintf(out, n, "%.0f", x);
+    else py_repr(x, out, n);
+}
+
+/* Whether x is a value variable v may take (reduced_model/scene.py: check_param); if not, the
+   reason, "NAME = VALUE is ...", in why. */
+static int value_ok(const ModelVar *v, double x, char *why, size_t n)
+{
+    char text[48];
+    value_text(v, x, text, sizeof text);
+    int bad = !isfinite(x);
+    if (!bad && v->has_lo) bad = v->lo_open ? x <= v->lo : x < v->lo;
+    if (!bad && v->has_hi) bad = v->hi_open ? x >= v->hi : x > v->hi;
+    if (!bad && v->auto_or_min > 0.0) bad = 0.0 < x && x < v->auto_or_min;
+    if (!bad && x != 0.0 && fabs(x) < DBL_MIN) {
+        snprintf(why, n, "%s = %s is subnormal (below %.4g in magnitude): give 0 or a value in %s",
+                 v->name, text, DBL_MIN, v->range_text);
+        return 0;
+    }
+    if (bad) snprintf(why, n, "%s = %s is outside the allowed range %s", v->name, text,
+                      v->range_text);
+    return !bad;
+}
+
+/* ---- the call sequence -------------------------------------------------------------------- */
+
+static int allowed(Inst *c, const char *fn, unsigned phases)
+{
+    if (phases & (1u << c->phase)) return 1;
+    logf_(c, fmi2Error, "%s is not allowed in phase '%s'", fn, PHASE_NAMES[c->phase]);
+    return 0;
+}
+
+static double *slot_of(Inst *c, const ModelVar *v)
+{
+    return &c->arr[v->array == IN_P ? A_P : v->array == IN_IN ? A_IN : A_OUT][v->slot];
+}
+
+/* Every variable at its start value, the model at rest. */
+static void set_starts(Inst *c)
+{
+    memset(c->data, 0, c->n_data * sizeof *c->data);
+    for (int k = 0; k < MODEL_N_VARS; ++k) *slot_of(c, &MODEL_VARS[k]) = MODEL_VARS[k].start;
+}
+
+/* ---- FMI 2.0: common functions ------------------------------------------------------------ */
+
+const char *fmi2GetTypesPlatform(void) { return fmi2TypesPlatform; }
+const char *fmi2GetVersion(void) { return fmi2Version; }
+
+static void destroy(Inst *c)
+{
+    if (!c) return;
+    free(c->data);
+    free(c->name);
+    free(c);
+}
+
+fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
+                              fmi2String fmuResourceLocation,
+                              const fmi2CallbackFunctions *functions, fmi2Boolean visible,
+                              fmi2Boolean loggingOn)
+{
+    (void)fmuResourceLocation;
+    (void)visible;
+    Inst *c = calloc(1, sizeof *c);
+    if (!c) return NULL;
+    const char *name = instanceName ? instanceName : "";
+    c->name = malloc(strlen(name) + 1);
+    if (c->name) strcpy(c->name, name);
+    if (functions) c->cb = *functions;
+    c->logging_on = loggingOn != fmi2False;
+    size_t n = 0;
+    for (int a = 0; a < A_COUNT; ++a) n += (size_t)MODEL_SIZES[a];
+    c->n_data = n;
+    c->data = calloc(n, sizeof *c->data);
+    if (!c->name || !c->data) {
+        destroy(c);
+        return NULL;
+    }
+    for (int a = 0, at = 0; a < A_COUNT; at += MODEL_SIZES[a++]) c->arr[a] = c->data + at;
+    if (fmuType != fmi2CoSimulation) {
+        logf_(c, fmi2Error, "fmi2Instantiate: this FMU supports co-simulation only");
+        destroy(c);
+        return NULL;
+    }
+    if (!fmuGUID || strcmp(fmuGUID, MODEL_GUID) != 0) {
+        logf_(c, fmi2Error, "fmi2Instantiate: GUID %s is not this FMU's %s",
+              fmuGUID ? fmuGUID : "(null)", MODEL_GUID);
+        destroy(c);
+        return NULL;
+    }
+    set_starts(c);
+    c->phase = INSTANTIATED;
+    logf_(c, fmi2OK, "%s: compiled model, no Python", MODEL_ID);
+    return c;
+}
+
+void fmi2FreeInstance(fmi2Component component) { destroy((Inst *)component); }
+
+fmi2Status fmi2SetDebugLogging(fmi2Component component, fmi2Boolean loggingOn,
+                               size_t nCategories, const fmi2String categories[])
+{
+    (void)nCategories;
+    (void)categories;
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    c->logging_on = loggingOn != fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2SetupExperiment(fmi2Component component, fmi2Boolean toleranceDefined,
+                               fmi2Real tolerance, fmi2Real startTime,
+                               fmi2Boolean stopTimeDefined, fmi2Real stopTime)
+{
+    (void)toleranceDefined;
+    (void)tolerance;
+    (void)stopTimeDefined;
+    (void)stopTime;
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, "fmi2SetupExperiment", P_INST)) return fmi2Error;
+    if (!isfinite(startTime)) {
+        logf_(c, fmi2Error, "fmi2SetupExperiment: startTime must be finite");
+        return fmi2Error;
+    }
+    c->last_ok_time = startTime;
+    return fmi2OK;
+}
+
+fmi2Status fmi2EnterInitializationMode(fmi2Component component)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, "fmi2EnterInitializationMode", P_INST)) return fmi2Error;
+    c->phase = INIT_MODE;
+    return fmi2OK;
+}
+
+/* Every parameter and start input checked, in the table's order; then the model's start. */
+fmi2Status fmi2ExitInitializationMode(fmi2Component component)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, "fmi2ExitInitializationMode", P_INIT)) return fmi2Error;
+    char why[512];
+    for (int i = 0; i < MODEL_N_CHECK; ++i) {
+        const ModelVar *v = &MODEL_VARS[MODEL_CHECK_ORDER[i]];
+        if (!value_ok(v, *slot_of(c, v), why, sizeof why)) {
+            logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s", why);
+            c->phase = ERRORED;
+            return fmi2Error;
+        }
+    }
+    int32_t rc = model_init(c->arr);
+    if (rc < 0) {      /* a divisor too small: P[-rc - 1] */
+        for (int k = 0; k < MODEL_N_VARS; ++k) {
+            const ModelVar *v = &MODEL_VARS[k];
+            if (v->array != IN_P || v->slot != -rc - 1) continue;
+            char text[48];
+            value_text(v, c->arr[A_P][v->slot], text, sizeof text);
+            logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s = %s is too "
+                  "small to compute with; allowed range %s", v->name, text, v->range_text);
+        }
+    } else if (rc != 1) {
+        logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: the start's "
+              "outputs are not finite");
+    }
+    if (rc != 1) {
+        c->phase = ERRORED;
+        return fmi2Error;
+    }
+    c->phase = STEP_COMPLETE;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Terminate(fmi2Component component)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, "fmi2Terminate", P_OK | P_FAILED)) return fmi2Error;
+    c->phase = TERMINATED;
+    return fmi2OK;
+}
+
+fmi2Status fmi2Reset(fmi2Component component)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    set_starts(c);
+    c->phase = INSTANTIATED;
+    c->last_ok_time = 0.0;
+    c->wants_to_terminate = 0;
+    return fmi2OK;
+}
+
+/* ---- variables ---------------------------------------------------------------------------- */
+
+static const ModelVar *find(Inst *c, const char *fn, fmi2ValueReference vr, char type)
+{
+    for (int k = 0; k < MODEL_N_VARS; ++k)
+        if (MODEL_VARS[k].vr == vr && MODEL_VARS[k].type == type) return &MODEL_VARS[k];
+    logf_(c, fmi2Error, "%s: no %s variable has value reference %u", fn,
+          type == 'R' ? "Real" : type == 'I' ? "Integer" : "Boolean", (unsigned)vr);
+    return NULL;
+}
+
+static fmi2Status get_values(fmi2Component component, const char *fn, char type,
+                             const fmi2ValueReference vr[], size_t nvr, double *real, int *integer)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, fn, P_ANY & ~P_INST)) return fmi2Error;
+    if (nvr > 0 && (!vr || (!real && !integer))) {
+        logf_(c, fmi2Error, "%s: NULL array", fn);
+        return fmi2Error;
+    }
+    for (size_t i = 0; i < nvr; ++i) {
+        const ModelVar *v = find(c, fn, vr[i], type);
+        if (!v) return fmi2Error;
+        double x = *slot_of(c, v);
+        if (real) real[i] = x;
+        else integer[i] = (int)x;
+    }
+    return fmi2OK;
+}
+
+static fmi2Status set_values(fmi2Component component, const char *fn, char type,
+                             const fmi2ValueReference vr[], size_t nvr, const double *real,
+                             const int *integer)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, fn, P_INST | P_INIT | P_OK)) return fmi2Error;
+    if (nvr > 0 && (!vr || (!real && !integer))) {
+        logf_(c, fmi2Error, "%s: NULL array", fn);
+        return fmi2Error;
+    }
+    for (size_t i = 0; i < nvr; ++i) {   /* every one checked before any is written */
+        const ModelVar *v = find(c, fn, vr[i], type);
+        if (!v) return fmi2Error;
+        if (v->array == IN_OUT) {
+            logf_(c, fmi2Error, "%s: %s is an output", fn, v->name);
+            return fmi2Error;
+        }
+        if (v->array == IN_P && c->phase == STEP_COMPLETE) {
+            logf_(c, fmi2Error, "%s: %s is a fixed parameter: set it before initialisation",
+                  fn, v->name);
+            return fmi2Error;
+        }
+    }
+    for (size_t i = 0; i < nvr; ++i)
+        *slot_of(c, find(c, fn, vr[i], type)) = real ? real[i] : (double)integer[i];
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Real value[])
+{
+    return get_values(c, "fmi2GetReal", 'R', vr, nvr, value, NULL);
+}
+
+fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Integer value[])
+{
+    return get_values(c, "fmi2GetInteger", 'I', vr, nvr, NULL, value);
+}
+
+fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[])
+{
+    return get_values(c, "fmi2GetBoolean", 'B', vr, nvr, NULL, value);
+}
+
+fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
+{
+    (void)value;
+    return get_values(c, "fmi2GetString", 'S', vr, nvr, NULL, NULL);
+}
+
+fmi2Status fmi2SetReal(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Real value[])
+{
+    return set_values(c, "fmi2SetReal", 'R', vr, nvr, value, NULL);
+}
+
+fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Integer value[])
+{
+    return set_values(c, "fmi2SetInteger", 'I', vr, nvr, NULL, value);
+}
+
+fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[])
+{
+    return set_values(c, "fmi2SetBoolean", 'B', vr, nvr, NULL, value);
+}
+
+fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
+{
+    (void)value;
+    return set_values(c, "fmi2SetString", 'S', vr, nvr, NULL, NULL);
+}
+
+/* ---- the step ----------------------------------------------------------------------------- */
+
+static fmi2Status discard(Inst *c, double t)
+{
+    c->phase = STEP_FAILED;
+    c->last_ok_time = t;
+    c->wants_to_terminate = 1;
+    return fmi2Discard;
+}
+
+fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
+                      fmi2Boolean noSetFMUStatePriorToCurrentPoint)
+{
+    (void)noSetFMUStatePriorToCurrentPoint;
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!allowed(c, "fmi2DoStep", P_OK)) return fmi2Error;
+    if (!(h > 0.0) || !isfinite(h) || !isfinite(t)) {
+        logf_(c, fmi2Error, "fmi2DoStep: communicationStepSize = %g at t = %g: must be finite "
+              "and > 0", h, t);
+        return fmi2Error;
+    }
+    char why[512];
+    for (int k = 0; k < MODEL_N_VARS; ++k) {      /* the inputs a master set */
+        const ModelVar *v = &MODEL_VARS[k];
+        if (v->array == IN_IN && !value_ok(v, *slot_of(c, v), why, sizeof why)) {
+            logf_(c, fmi2Error, "invalid input at t = %g s: %s", t, why);
+            return discard(c, t);
+        }
+    }
+    c->arr[A_TH][0] = t;
+    c->arr[A_TH][1] = h;
+    int32_t rc = model_step(c->arr);
+    if (rc != 1) {
+        logf_(c, fmi2Error, rc == 2 ? "non-finite output at t = %g s; step rejected" :
+              "the compiled step stopped on an arithmetic error at t = %g s", t);
+        return discard(c, t);
+    }
+    c->last_ok_time = t + h;
+    return fmi2OK;
+}
+
+fmi2Status fmi2CancelStep(fmi2Component c)
+{
+    logf_((Inst *)c, fmi2Error, "fmi2CancelStep: the steps are not asynchronous");
+    return fmi2Error;
+}
+
+/* ---- FMU state ---------------------------------------------------------------------------- */
+
+static const char MAGIC[8] = {'T', 'T', 'N', 'A', 'T', 'V', '0', '1'};
+enum { HEADER = 8 + 4 * 4 + A_COUNT * 4 + 8 };   /* magic, version, phase, flag, GUID's CRC, sizes, time */
+
+static uint32_t crc32(const unsigned char *p, size_t n)
+{
+    uint32_t crc = 0xFFFFFFFFu;
+    for (size_t i = 0; i < n; ++i) {
+        crc ^= p[i];
+        for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+    }
+    return ~crc;
+}
+
+static State *new_state(Inst *c)
+{
+    State *s = calloc(1, sizeof *s);
+    if (s) s->data = malloc(c->n_data * sizeof *s->data);
+    if (s && !s->data) {
+        free(s);
+        s = NULL;
+    }
+    if (s) s->n_data = c->n_data;
+    return s;
+}
+
+static void take(Inst *c, State *s)
+{
+    memcpy(s->data, c->data, c->n_data * sizeof *c->data);
+    s->phase = c->phase;
+    s->last_ok_time = c->last_ok_time;
+    s->wants_to_terminate = c->wants_to_terminate;
+}
+
+fmi2Status fmi2GetFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!FMUstate) {
+        logf_(c, fmi2Error, "fmi2GetFMUstate: NULL pointer");
+        return fmi2Error;
+    }
+    State *s = *FMUstate ? (State *)*FMUstate : new_state(c);   /* given back: overwritten */
+    if (!s || s->n_data != c->n_data) {
+        logf_(c, fmi2Error, "fmi2GetFMUstate: out of memory or a state of another FMU");
+        return fmi2Error;
+    }
+    take(c, s);
+    *FMUstate = s;
+    return fmi2OK;
+}
+
+/* Whether the state's values can be set into this instance: finite; its inputs in range; its
+   parameters this instance's (they are fixed; before initialisation, the ones set so far). */
+static int state_fits(Inst *c, const State *s, char *why, size_t n)
+{
+    if (s->n_data != c->n_data) {
+        snprintf(why, n, "a state of another model");
+        return 0;
+    }
+    for (size_t i = 0; i < s->n_data; ++i)
+        if (!isfinite(s->data[i])) {
+            snprintf(why, n, "the state cannot be stepped: it holds a non-finite value");
+            return 0;
+        }
+    for (int k = 0; k < MODEL_N_VARS; ++k) {
+        const ModelVar *v = &MODEL_VARS[k];
+        size_t at = (size_t)(slot_of(c, v) - c->data);
+        if (v->array == IN_IN && !value_ok(v, s->data[at], why, n)) return 0;
+        if (v->array == IN_P && s->data[at] != c->data[at]) {
+            char a[48], b[48];
+            value_text(v, s->data[at], a, sizeof a);
+            value_text(v, c->data[at], b, sizeof b);
+            snprintf(why, n, "state taken with other parameters: %s = %s (this instance: %s)",
+                     v->name, a, b);
+            return 0;
+        }
+    }
+    if (!(s->phase >= INSTANTIATED && s->phase <= ERRORED) || !isfinite(s->last_ok_time)) {
+        snprintf(why, n, "corrupt state: its phase or time");
+        return 0;
+    }
+    return 1;
+}
+
+fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    State *s = (State *)FMUstate;
+    char why[512];
+    if (!s) {
+        logf_(c, fmi2Error, "fmi2SetFMUstate: NULL state");
+        return fmi2Error;
+    }
+    if (!state_fits(c, s, why, sizeof why)) {
+        logf_(c, fmi2Error, "fmi2SetFMUstate: %s", why);
+        return fmi2Error;    /* the instance as it was, its phase included */
+    }
+    memcpy(c->data, s->data, c->n_data * sizeof *c->data);
+    c->phase = s->phase;
+    c->last_ok_time = s->last_ok_time;
+    c->wants_to_terminate = s->wants_to_terminate;
+    return fmi2OK;
+}
+
+fmi2Status fmi2FreeFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
+{
+    (void)component;
+    if (FMUstate && *FMUstate) {
+        State *s = (State *)*FMUstate;
+        free(s->data);
+        free(s);
+        *FMUstate = NULL;
+    }
+    return fmi2OK;
+}
+
+static size_t serial_size(const State *s) { return HEADER + 8 * s->n_data + 4; }
+
+fmi2Status fmi2SerializedFMUstateSize(fmi2Component component, fmi2FMUstate FMUstate, size_t *size)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    if (!FMUstate || !size) {
+        logf_(c, fmi2Error, "fmi2SerializedFMUstateSize: NULL pointer");
+        return fmi2Error;
+    }
+    *size = serial_size((State *)FMUstate);
+    return fmi2OK;
+}
+
+static void put_u32(unsigned char *p, uint32_t x)
+{
+    for (int i = 0; i < 4; ++i) p[i] = (unsigned char)(x >> (8 * i));
+}
+
+static uint32_t get_u32(const unsigned char *p)
+{
+    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
+}
+
+static void put_f64(unsigned char *p, double x)
+{
+    uint64_t u;
+    memcpy(&u, &x, 8);
+    for (int i = 0; i < 8; ++i) p[i] = (unsigned char)(u >> (8 * i));
+}
+
+static double get_f64(const unsigned char *p)
+{
+    uint64_t u = 0;
+    for (int i = 0; i < 8; ++i) u |= (uint64_t)p[i] << (8 * i);
+    double x;
+    memcpy(&x, &u, 8);
+    return x;
+}
+
+fmi2Status fmi2SerializeFMUstate(fmi2Component component, fmi2FMUstate FMUstate,
+                                 fmi2Byte serializedState[], size_t size)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    State *s = (State *)FMUstate;
+    if (!s || !serializedState || size < serial_size(s)) {
+        logf_(c, fmi2Error, "fmi2SerializeFMUstate: NULL pointer or a buffer of %zu bytes "
+              "(needs %zu)", size, s ? serial_size(s) : 0);
+        return fmi2Error;
+    }
+    unsigned char *p = (unsigned char *)serializedState;
+    memcpy(p, MAGIC, 8);
+    put_u32(p + 8, 1);
+    put_u32(p + 12, (uint32_t)s->phase);
+    put_u32(p + 16, (uint32_t)s->wants_to_terminate);
+    put_u32(p + 20, crc32((const unsigned char *)MODEL_GUID, strlen(MODEL_GUID)));
+    for (int a = 0; a < A_COUNT; ++a) put_u32(p + 24 + 4 * a, (uint32_t)MODEL_SIZES[a]);
+    put_f64(p + 24 + 4 * A_COUNT, s->last_ok_time);
+    for (size_t i = 0; i < s->n_data; ++i) put_f64(p + HEADER + 8 * i, s->data[i]);
+    put_u32(p + HEADER + 8 * s->n_data, crc32(p, HEADER + 8 * s->n_data));
+    return fmi2OK;
+}
+
+/* Every byte checked before it is used: the length this model's state has, the magic, the
+   checksum, the version, this FMU's GUID, the model's sizes. */
+fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte serializedState[],
+                                   size_t size, fmi2FMUstate *FMUstate)
+{
+    Inst *c = (Inst *)component;
+    if (!c) return fmi2Error;
+    const unsigned char *p = (const unsigned char *)serializedState;
+    const char *why = NULL;
+    size_t want = HEADER + 8 * c->n_data + 4;
+    if (!p || !FMUstate) why = "NULL pointer";
+    else if (size != want || memcmp(p, MAGIC, 8) != 0)
+        why = "not a serialised state of this FMU (bad magic or size)";
+    else if (crc32(p, size - 4) != get_u32(p + size - 4))
+        why = "the state is damaged (checksum mismatch)";
+    else if (get_u32(p + 8) != 1) why = "corrupt state: another format version";
+    else if (get_u32(p + 20) != crc32((const unsigned char *)MODEL_GUID, strlen(MODEL_GUID)))
+        why = "state of another FMU or build (GUID)";
+    else if (get_u32(p + 12) > ERRORED || get_u32(p + 16) > 1) why = "corrupt state: its phase";
+    for (int a = 0; !why && a < A_COUNT; ++a)
+        if (get_u32(p + 24 + 4 * a) != (uint32_t)MODEL_SIZES[a]) why = "corrupt state: its sizes";
+    if (why) {
+        logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: %s", why);
+        return fmi2Error;
+    }
+    State *s = *FMUstate ? (State *)*FMUstate : new_state(c);
+    if (!s || s->n_data != c->n_data) {
+        logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: out of memory or a state of another FMU");
+        return fmi2Error;
+    }
+    s->phase = (Phase)get_u32(p + 12);
+    s->wants_to_terminate = (int)get_u32(p + 16);
+    s->last_ok_time = get_f64(p + 24 + 4 * A_COUNT);
+    for (size_t i = 0; i < s->n_data; ++i) s->data[i] = get_f64(p + HEADER + 8 * i);
+    *FMUstate = s;
+    return fmi2OK;
+}
+
+/* ---- not provided, and the status inquiries ------------------------------------------------ */
+
+static fmi2Status unsupported(fmi2Component c, const char *what)
+{
+    logf_((Inst *)c, fmi2Error, "%s is not provided (see the model description)", what);
+    return fmi2Error;
+}
+
+fmi2Status fmi2GetDirectionalDerivative(fmi2Component c, const fmi2ValueReference vUnknown_ref[],
+                                        size_t nUnknown, const fmi2ValueReference vKnown_ref[],
+                                        size_t nKnown, const fmi2Real dvKnown[],
+                                        fmi2Real dvUnknown[])
+{
+    (void)vUnknown_ref, (void)nUnknown, (void)vKnown_ref, (void)nKnown, (void)dvKnown,
+        (void)dvUnknown;
+    return unsupported(c, "fmi2GetDirectionalDerivative");
+}
+
+fmi2Status fmi2SetRealInputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                       const fmi2Integer order[], const fmi2Real value[])
+{
+    (void)vr, (void)nvr, (void)order, (void)value;
+    return unsupported(c, "fmi2SetRealInputDerivatives");
+}
+
+fmi2Status fmi2GetRealOutputDerivatives(fmi2Component c, const fmi2ValueReference vr[], size_t nvr,
+                                        const fmi2Integer order[], fmi2Real value[])
+{
+    (void)vr, (void)nvr, (void)order, (void)value;
+    return unsupported(c, "fmi2GetRealOutputDerivatives");
+}
+
+fmi2Status fmi2GetStatus(fmi2Component c, const fmi2StatusKind s, fmi2Status *value)
+{
+    (void)c, (void)s, (void)value;
+    return fmi2Discard;     /* nothing pending: the steps are synchronous */
+}
+
+fmi2Status fmi2GetRealStatus(fmi2Component component, const fmi2StatusKind s, fmi2Real *value)
+{
+    Inst *c = (Inst *)component;
+    if (!c || !value || s != fmi2LastSuccessfulTime) return fmi2Discard;
+    *value = c->last_ok_time;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetIntegerStatus(fmi2Component c, const fmi2StatusKind s, fmi2Integer *value)
+{
+    (void)c, (void)s, (void)value;
+    return fmi2Discard;
+}
+
+fmi2Status fmi2GetBooleanStatus(fmi2Component component, const fmi2StatusKind s,
+                                fmi2Boolean *value)
+{
+    Inst *c = (Inst *)component;
+    if (!c || !value || s != fmi2Terminated) return fmi2Discard;
+    *value = c->wants_to_terminate ? fmi2True : fmi2False;
+    return fmi2OK;
+}
+
+fmi2Status fmi2GetStringStatus(fmi2Component c, const fmi2StatusKind s, fmi2String *value)
+{
+    (void)c, (void)s, (void)value;
+    return fmi2Discard;
+}

@@ -1,0 +1,177 @@
+/* A plain FMI 2.0 co-simulation host, one source for Linux (dlopen) and Windows (LoadLibraryW;
+   cross-compiled with mingw-w64 and run under wine64 by tests/test_native_fmu.py), as a
+   driveline tool loads an FMU that needs nothing else.  Runs STEPS steps of DT, a master moving
+   every input every step (input k at (k + 1) 100 sin((k + 1) 7 t)), and writes every output
+   after every step to OUT (doubles); takes the FMU state halfway, serialises and deserialises
+   it, runs the second half again from it, and checks the outputs bit for bit.  Then prints
+   whether a Python library is in the process.
+
+   usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS   (VRS: comma-separated) */
+#include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "fmi2FunctionTypes.h"   /* the types only: the functions are looked up */
+
+#ifdef _WIN32
+#include <windows.h>
+#include <psapi.h>
+#include <shellapi.h>
+static void *open_library(void)
+{
+    int n = 0;    /* the path as Windows hands it, UTF-16: the command line's first argument */
+    wchar_t **wargv = CommandLineToArgvW(GetCommandLineW(), &n);
+    void *lib = (wargv && n > 1) ? (void *)LoadLibraryW(wargv[1]) : NULL;
+    LocalFree(wargv);
+    return lib;
+}
+static void *sym(void *lib, const char *name) { return (void *)GetProcAddress((HMODULE)lib, name); }
+static int python_loaded(void)
+{
+    HMODULE mods[1024];
+    DWORD need = 0;
+    if (!EnumProcessModules(GetCurrentProcess(), mods, sizeof mods, &need)) return -1;
+    for (DWORD i = 0; i < need / sizeof(HMODULE) && i < 1024; ++i) {
+        char name[MAX_PATH];
+        if (GetModuleFileNameA(mods[i], name, MAX_PATH) && strstr(_strlwr(name), "python"))
+            return 1;
+    }
+    return 0;
+}
+#else
+#include <dlfcn.h>
+static char *g_path;
+static void *open_library(void) { return dlopen(g_path, RTLD_NOW | RTLD_LOCAL); }
+static void *sym(void *lib, const char *name) { return dlsym(lib, name); }
+static int python_loaded(void)
+{
+    FILE *f = fopen("/proc/self/maps", "r");
+    if (!f) return -1;
+    char line[4096];
+    int found = 0;
+    while (fgets(line, sizeof line, f)) found |= strstr(line, "libpython") != NULL;
+    fclose(f);
+    return found;
+}
+#endif
+
+static int g_failures;
+
+static void logger(fmi2ComponentEnvironment env, fmi2String name, fmi2Status status,
+                   fmi2String category, fmi2String message, ...)
+{
+    (void)env;
+    va_list ap;
+    va_start(ap, message);
+    fprintf(stderr, "[%s|%d|%s] ", name, (int)status, category ? category : "");
+    vfprintf(stderr, message, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+static void check(const char *name, int ok)
+{
+    printf("check %s %s\n", name, ok ? "ok" : "FAILED");
+    if (!ok) g_failures++;
+}
+
+static int parse_vrs(const char *s, fmi2ValueReference *vr, int max)
+{
+    int n = 0;
+    while (*s && n < max) {
+        vr[n++] = (fmi2ValueReference)strtoul(s, (char **)&s, 10);
+        if (*s == ',') s++;
+    }
+    return n;
+}
+
+#define F(name) static name##TYPE *name;
+F(fmi2Instantiate) F(fmi2FreeInstance) F(fmi2SetupExperiment) F(fmi2EnterInitializationMode)
+F(fmi2ExitInitializationMode) F(fmi2Terminate) F(fmi2DoStep) F(fmi2GetReal) F(fmi2SetReal)
+F(fmi2GetFMUstate) F(fmi2SetFMUstate) F(fmi2FreeFMUstate) F(fmi2SerializedFMUstateSize)
+F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate)
+#undef F
+
+static fmi2ValueReference g_in[32], g_out[64];
+static int g_nin, g_nout;
+
+/* steps k0 .. k1 - 1 of dt, the outputs after each into rows */
+static int run(fmi2Component c, int k0, int k1, double dt, double *rows)
+{
+    for (int k = k0; k < k1; ++k) {
+        double t = k * dt, u[32];
+        for (int i = 0; i < g_nin; ++i) u[i] = (i + 1) * 100.0 * sin((i + 1) * 7.0 * t);
+        if (fmi2SetReal(c, g_in, (size_t)g_nin, u) != fmi2OK) return 0;
+        if (fmi2DoStep(c, t, dt, fmi2True) != fmi2OK) return 0;
+        if (fmi2GetReal(c, g_out, (size_t)g_nout, rows + (size_t)k * g_nout) != fmi2OK) return 0;
+    }
+    return 1;
+}
+
+int main(int argc, char **argv)
+{
+    if (argc != 8) {
+        fprintf(stderr, "usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS\n");
+        return 2;
+    }
+#ifndef _WIN32
+    g_path = argv[1];
+#endif
+    void *lib = open_library();
+    if (!lib) {
+        fprintf(stderr, "fmu_run: cannot load the binary\n");
+        return 2;
+    }
+#define F(name) name = (name##TYPE *)sym(lib, #name); if (!name) { fprintf(stderr, "no %s\n", #name); return 2; }
+    F(fmi2Instantiate) F(fmi2FreeInstance) F(fmi2SetupExperiment) F(fmi2EnterInitializationMode)
+    F(fmi2ExitInitializationMode) F(fmi2Terminate) F(fmi2DoStep) F(fmi2GetReal) F(fmi2SetReal)
+    F(fmi2GetFMUstate) F(fmi2SetFMUstate) F(fmi2FreeFMUstate) F(fmi2SerializedFMUstateSize)
+    F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate)
+#undef F
+    int steps = atoi(argv[3]);
+    double dt = atof(argv[4]);
+    g_nin = parse_vrs(argv[6], g_in, 32);
+    g_nout = parse_vrs(argv[7], g_out, 64);
+    if (steps < 2 || !(dt > 0)) return 2;
+    double *rows = calloc((size_t)steps * g_nout, sizeof *rows);
+    double *again = calloc((size_t)steps * g_nout, sizeof *again);
+    fmi2CallbackFunctions cb = {logger, calloc, free, NULL, NULL};
+    fmi2Component c = fmi2Instantiate("a", fmi2CoSimulation, argv[2], "file:///nowhere", &cb,
+                                      fmi2False, fmi2False);
+    check("instantiate", c != NULL);
+    if (!c || !rows || !again) return 1;
+    check("initialise", fmi2SetupExperiment(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK &&
+                        fmi2EnterInitializationMode(c) == fmi2OK &&
+                        fmi2ExitInitializationMode(c) == fmi2OK);
+    int half = steps / 2;
+    check("first half", run(c, 0, half, dt, rows));
+    fmi2FMUstate st = NULL, st2 = NULL;
+    size_t size = 0;
+    check("get state", fmi2GetFMUstate(c, &st) == fmi2OK);
+    check("state size", fmi2SerializedFMUstateSize(c, st, &size) == fmi2OK && size > 0);
+    fmi2Byte *bytes = malloc(size);
+    check("serialise", bytes && fmi2SerializeFMUstate(c, st, bytes, size) == fmi2OK);
+    check("deserialise", fmi2DeSerializeFMUstate(c, bytes, size, &st2) == fmi2OK);
+    check("second half", run(c, half, steps, dt, rows));
+    check("set state", fmi2SetFMUstate(c, st2) == fmi2OK);
+    check("second half again", run(c, half, steps, dt, again));
+    check("rollback bit for bit",
+          memcmp(rows + (size_t)half * g_nout, again + (size_t)half * g_nout,
+                 sizeof *rows * (size_t)(steps - half) * g_nout) == 0);
+    fmi2FreeFMUstate(c, &st);
+    fmi2FreeFMUstate(c, &st2);
+    free(bytes);
+    check("terminate", fmi2Terminate(c) == fmi2OK);
+    fmi2FreeInstance(c);
+    FILE *f = fopen(argv[5], "wb");
+    check("write", f && fwrite(rows, sizeof *rows, (size_t)steps * g_nout, f) ==
+                             (size_t)steps * g_nout);
+    if (f) fclose(f);
+    int py = python_loaded();
+    printf("python-in-process %s\n", py == 0 ? "no" : py > 0 ? "yes" : "unknown");
+    free(rows);
+    free(again);
+    return g_failures ? 1 : 0;
+}

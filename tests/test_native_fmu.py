@@ -1,0 +1,142 @@
+"""The FMU that needs nothing on its host (fmu_src/native_fmu.py): the powertrain's model
+(driveline/mounts.py) compiled ahead of time under the native FMI layer (fmu_src/native/
+fmi2_native.c), binaries for linux64 and win64 and nothing else in it.  Held to the pythonfmu
+slave's FMU of the same model (build/reference/), bit for bit; run by a plain C host with no
+Python reachable on Linux, and cross-compiled under wine64 from a folder named 'jürgen x'."""
+import os
+import shutil
+import subprocess
+import sys
+import zipfile
+from pathlib import Path
+
+import numpy as np
+import pytest
+from fmpy import extract, read_model_description, simulate_fmu
+from fmpy.validation import validate_fmu
+
+from harness.fmus import builder, ensure_fmu
+
+ROOT = Path(__file__).resolve().parents[1]
+HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
+WINE = "/usr/lib/wine/wine64"
+STEPS, DT = 4000, 1e-4
+
+
+@pytest.fixture(scope="module")
+def fmus():
+    native = ensure_fmu("Powertrain")
+    return native, builder().reference_path("Powertrain")
+
+
+def _inputs(md):
+    return [v for v in md.modelVariables if v.causality == "input"]
+
+
+def _outputs(md):
+    return [v for v in md.modelVariables if v.causality == "output"]
+
+
+def test_the_fmu_holds_two_binaries_and_nothing_to_run_python(fmus):
+    names = set(zipfile.ZipFile(fmus[0]).namelist())
+    assert names == {"modelDescription.xml", "binaries/linux64/Powertrain.so",
+                     "binaries/win64/Powertrain.dll"}
+    assert validate_fmu(str(fmus[0])) == []
+
+
+def test_fmpy_runs_it_as_the_python_slave_bit_for_bit(fmus):
+    """A master moving every input every step (FMPy's input table, interpolated), 0.5 s of the
+    launch: every output equal to the last bit to the pythonfmu slave's (one source, mounts.py;
+    the same libm)."""
+    md = read_model_description(str(fmus[0]))
+    t = np.linspace(0.0, 0.5, 51)
+    cols = [("time", t)] + [(v.name, (i + 1) * 100.0 * np.sin((i + 1) * 7.0 * t))
+                            for i, v in enumerate(_inputs(md))]
+    inp = np.array(list(zip(*[c for _, c in cols])), dtype=[(n, float) for n, _ in cols])
+    kw = dict(stop_time=0.5, output_interval=DT, input=inp)
+    a, b = simulate_fmu(str(fmus[0]), **kw), simulate_fmu(str(fmus[1]), **kw)
+    assert len(a) == len(b) == 5001
+    for name in a.dtype.names:
+        assert np.array_equal(a[name], b[name]), name
+    assert np.abs(a["acc_y"]).max() > 1e-3      # (the run moved: 0.05 m/s2 here)
+
+
+def _host(tmp_path, compiler, out, extra=()):
+    subprocess.run([compiler, "-std=c99", "-O2", f"-I{builder()._fmi_headers()}", str(HOST),
+                    "-o", str(out), "-lm", *extra], check=True, capture_output=True)
+    return out
+
+
+def _windows(path):
+    """A Linux path as wine's Windows programs see it (drive Z: is the root)."""
+    return "Z:" + str(path).replace("/", "\\")
+
+
+def _run(cmd, fmu, outfile, env, wine=False):
+    md = read_model_description(str(fmu))
+    ins = ",".join(str(v.valueReference) for v in _inputs(md))
+    outs = ",".join(str(v.valueReference) for v in _outputs(md))
+    p = subprocess.run(cmd + [md.guid, str(STEPS), repr(DT),
+                              _windows(outfile) if wine else str(outfile), ins, outs],
+                       capture_output=True, text=True, timeout=300, env=env)
+    rows = np.fromfile(outfile, dtype="<f8") if Path(outfile).exists() else np.zeros(0)
+    return p, rows.reshape(STEPS, -1) if rows.size else rows
+
+
+def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
+    """`env -i PATH=/usr/bin:/bin`: the host steps it, rolls a state back bit for bit through
+    serialise and deserialise, and no libpython is in its process; its outputs are FMPy's."""
+    d = tmp_path / "fmu"
+    d.mkdir()
+    zipfile.ZipFile(fmus[0]).extractall(d)
+    host = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    p, rows = _run([str(host), str(d / "binaries/linux64/Powertrain.so")], fmus[0],
+                   tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})
+    assert p.returncode == 0, p.stdout + p.stderr
+    assert "FAILED" not in p.stdout and "check rollback bit for bit ok" in p.stdout
+    assert "python-in-process no" in p.stdout
+    assert np.isfinite(rows).all() and np.abs(rows).max() > 0
+
+
+@pytest.mark.skipif(shutil.which("x86_64-w64-mingw32-gcc") is None or not os.path.exists(WINE),
+                    reason="make cross-tools installs mingw-w64 and wine64")
+def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
+    """The DLL imports only KERNEL32 and msvcrt; the same host, cross-compiled, loads it from a
+    folder named 'jürgen x' under wine64 (the path as a UTF-16 Windows path): checks pass, no
+    Python in the process, the outputs within 1e-9 of each output's scale of the Linux run
+    (the two C runtimes' sin, cos and asin may differ in the last bit; the mounts are damped,
+    so a last bit stays a last bit)."""
+    builder()._importable()
+    import aot
+    d = tmp_path / "jürgen x"
+    d.mkdir()
+    zipfile.ZipFile(fmus[0]).extractall(d)
+    dll = d / "binaries/win64/Powertrain.dll"
+    assert sorted(aot.dll_imports(dll)) == ["KERNEL32.dll", "msvcrt.dll"]
+    lin = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    win = _host(tmp_path, "x86_64-w64-mingw32-gcc", tmp_path / "fmu_run.exe",
+                ["-static-libgcc", "-lpsapi", "-lshell32"])
+    pl, rl = _run([str(lin), str(d / "binaries/linux64/Powertrain.so")], fmus[0],
+                  tmp_path / "lin.bin", {"PATH": "/usr/bin:/bin"})
+    env = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG="-all")
+    pw, rw = _run([WINE, str(win), _windows(dll)], fmus[0], tmp_path / "win.bin", env, wine=True)
+    assert pl.returncode == 0 and pw.returncode == 0, pw.stdout + pw.stderr
+    assert "FAILED" not in pw.stdout and "check rollback bit for bit ok" in pw.stdout
+    assert "python-in-process no" in pw.stdout
+    scale = np.abs(rl).max(axis=0)
+    assert (np.abs(rw - rl).max(axis=0) <= 1e-9 * scale).all()
+
+
+@pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind not installed "
+                    "(make native-check installs it)")
+def test_the_linux_binary_is_valgrind_clean(fmus, tmp_path):
+    """The host's whole run (instantiate, steps, state get, serialise, deserialise, set, free)
+    under memcheck: no invalid access, nothing lost."""
+    d = tmp_path / "fmu"
+    d.mkdir()
+    zipfile.ZipFile(fmus[0]).extractall(d)
+    host = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    p, _ = _run(["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite",
+                 "--error-exitcode=9", "-q", str(host), str(d / "binaries/linux64/Powertrain.so")],
+                fmus[0], tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})
+    assert p.returncode == 0, p.stderr[-3000:]
