@@ -30,33 +30,6 @@ TARGETS = {
               "lib": "_step.dll", "imports": ("KERNEL32.dll", "msvcrt.dll")},
 }
 
-_EMIT = r"""
-import json, sys
-import llvmlite.binding as llvm
-import numba
-from tripod_model import kernel, native
-triple = sys.argv[3] or None
-mod = llvm.parse_assembly(kernel.c_step()._library.get_llvm_str())
-if triple:   # numba stamps the host's triple and data layout on its IR: the target's instead
-    llvm.initialize_all_targets()
-    llvm.initialize_all_asmprinters()
-    target = llvm.Target.from_triple(triple)
-else:
-    llvm.initialize_native_target()
-    llvm.initialize_native_asmprinter()
-    target = llvm.Target.from_default_triple()
-tm = target.create_target_machine(cpu="generic", features="", opt=3, reloc="pic")
-if triple:
-    mod.triple = triple
-    mod.data_layout = str(tm.target_data)
-mod.verify()
-open(sys.argv[1], "wb").write(tm.emit_object(mod))
-json.dump({"symbol": kernel.c_step().native_name, "hash": native.source_hash(),
-           "numba": numba.__version__, "cpu": "generic", "triple": triple or llvm.get_default_triple()},
-          open(sys.argv[2], "w"))
-"""
-
-
 # a module's C functions (its factory returns {name: numba cfunc}), each emitted as an object
 _EMIT_FUNCTIONS = r"""
 import importlib, json, sys
@@ -76,7 +49,7 @@ tm = target.create_target_machine(cpu="generic", features="", opt=3, reloc="pic"
 symbols = {}
 for name, fn in functions.items():
     mod = llvm.parse_assembly(fn._library.get_llvm_str())
-    if triple:
+    if triple:   # numba stamps the host's triple and data layout on its IR: the target's
         mod.triple = triple
         mod.data_layout = str(tm.target_data)
     mod.verify()
@@ -92,8 +65,10 @@ def compile_functions(spec: str, dest: Path, target: str = "linux64") -> dict:
     {NAME: (object path, its symbol)}."""
     dest.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
-        env = dict(os.environ, NUMBA_CACHE_DIR=tmp, NUMBA_CPU_NAME="generic",
-                   NUMBA_CPU_FEATURES="", NUMBA_DISABLE_INTEL_SVML="1",
+        # empty caches (the LLVM module is then at hand), a generic x86-64 CPU, SVML off (its
+        # __svml_* functions exist in no Windows C runtime)
+        env = dict(os.environ, NUMBA_CACHE_DIR=tmp, TRIPOD_NUMBA_CACHE=tmp, TRIPOD_NUMBA="1",
+                   NUMBA_CPU_NAME="generic", NUMBA_CPU_FEATURES="", NUMBA_DISABLE_INTEL_SVML="1",
                    PYTHONPATH=os.pathsep.join((str(FMU_SRC.parent), str(FMU_SRC))))
         p = subprocess.run([sys.executable, "-c", _EMIT_FUNCTIONS, str(dest), spec,
                             TARGETS[target]["triple"] or ""], env=env, capture_output=True,
@@ -127,16 +102,7 @@ def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]
     dest.mkdir(parents=True, exist_ok=True)
     lib, meta = dest / spec["lib"], dest / "_step.json"
     with tempfile.TemporaryDirectory() as tmp:
-        obj = Path(tmp) / "step.o"
-        # SVML off: its __svml_* functions exist in no Windows C runtime
-        env = dict(os.environ, TRIPOD_NUMBA_CACHE=tmp, NUMBA_CPU_NAME="generic",
-                   NUMBA_CPU_FEATURES="", TRIPOD_NUMBA="1", PYTHONPATH=str(FMU_SRC),
-                   NUMBA_DISABLE_INTEL_SVML="1")
-        p = subprocess.run([sys.executable, "-c", _EMIT, str(obj), str(meta),
-                            spec["triple"] or ""], env=env,
-                           capture_output=True, text=True, timeout=900)
-        if p.returncode != 0:
-            raise RuntimeError(f"compiling the prebuilt kernel failed:\n{p.stderr[-3000:]}")
+        obj, symbol = compile_functions("tripod_model.kernel:c_functions", Path(tmp), target)["step"]
         extra = ["-static-libgcc"] if spec["triple"] else ["-fPIC"]
         cmd = cc.split()[:1] + ["-shared", "-O2", str(obj), str(STUBS), "-o", str(lib),
                                 "-lm"] + extra
@@ -147,7 +113,11 @@ def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]
         bad = sorted(set(dll_imports(lib)) - set(spec["imports"]))
         if bad:
             raise RuntimeError(f"{lib.name} imports {bad}, beyond {list(spec['imports'])}")
-    json.loads(meta.read_text())   # written whole
+    from importlib.metadata import version
+    from tripod_model import native
+    meta.write_text(json.dumps({"symbol": symbol, "hash": native.source_hash(),
+                                "numba": version("numba"), "cpu": "generic",
+                                "target": target}))
     return lib, meta
 
 

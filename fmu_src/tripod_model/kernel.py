@@ -251,3 +251,8 @@ def c_step():
     if not _C_STEP:
         _C_STEP.append(c_function(step))
     return _C_STEP[0]
+
+
+def c_functions():
+    """{"step": the step as a C function}, what fmu_src/aot.py compiles ahead of time."""
+    return {"step": c_step()}
