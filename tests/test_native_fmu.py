@@ -140,3 +140,105 @@ def test_the_linux_binary_is_valgrind_clean(fmus, tmp_path):
                  "--error-exitcode=9", "-q", str(host), str(d / "binaries/linux64/Powertrain.so")],
                 fmus[0], tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})
     assert p.returncode == 0, p.stderr[-3000:]
+
+
+_ABUSE = r'''
+import json, math, random, struct, sys, zlib
+from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+fmu = sys.argv[1]
+md = read_model_description(fmu)
+d = extract(fmu)
+OUT = [v.valueReference for v in md.modelVariables if v.causality == "output"]
+HEADER = 8 + 4 * 4 + 6 * 4 + 8      # fmi2_native.c: magic, 4 words, 6 sizes, time
+
+
+def make(name, mass=None):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier="Powertrain", instanceName=name)
+    s.instantiate()
+    s.setupExperiment(startTime=0.0)
+    s.enterInitializationMode()
+    if mass is not None:
+        s.setReal([next(v.valueReference for v in md.modelVariables if v.name == "mass")], [mass])
+    s.exitInitializationMode()
+    for i in range(50):
+        s.doStep(i * 1e-4, 1e-4)
+    return s
+
+
+def seal(body):
+    return body + struct.pack("<I", zlib.crc32(body))
+
+
+def outcome(s, blob):
+    try:
+        s.setFMUstate(s.deSerializeFMUstate(blob))
+    except FMICallException:
+        return "refused"
+    try:
+        for i in range(20):
+            s.doStep(0.1 + i * 1e-4, 1e-4)
+    except FMICallException:
+        return "refused-later"
+    return "finite" if all(map(math.isfinite, s.getReal(OUT))) else "non-finite"
+
+
+src = make("src")
+good = bytes(src.serializeFMUstate(src.getFMUstate()))
+n = (len(good) - HEADER - 4) // 8
+rng = random.Random(3)
+cases = {"good": good, "empty": b"", "other-parameters": bytes(
+    make("m", 200.0).serializeFMUstate(make("m2", 200.0).getFMUstate()))}
+for k in range(0, len(good), 7):
+    cases[f"truncated-{k}"] = good[:k]
+cases["longer"] = good + b"\0" * 8
+for k in range(200):
+    b = bytearray(good)
+    i = rng.randrange(len(b))
+    b[i] ^= 1 << rng.randrange(8)
+    cases[f"flip-{i}-{k}"] = bytes(b)
+for k in range(300):     # values changed, checksum made valid: what reaches the checks
+    b = bytearray(good[:-4])
+    i = rng.randrange(n)
+    x = rng.choice([math.nan, math.inf, -math.inf, 1e308, -1e308, 5e-324, 0.5, 3.0, -3.0, 1e6])
+    struct.pack_into("<d", b, HEADER + 8 * i, x)
+    cases[f"value-{i}-{k}"] = seal(bytes(b))
+for name, at, word in (("phase-99", 12, 99), ("version-2", 8, 2), ("size-huge", 24, 1 << 30),
+                       ("guid", 20, 0)):
+    b = bytearray(good[:-4])
+    struct.pack_into("<I", b, at, word)
+    cases[name] = seal(bytes(b))
+target = make("target")
+res = {}
+for name, blob in cases.items():
+    res[name] = outcome(target, blob)
+    if res[name] != "refused":
+        target.freeInstance()
+        target = make("target")
+res_good_after = outcome(target, good)
+print(json.dumps({"cases": res, "good_after": res_good_after}))
+'''
+
+
+def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
+    """Bytes into C: every truncation (a seventh of them), 200 bit flips, 300 values changed
+    with the checksum made valid (NaN, inf, 1e308, subnormal, plausible-looking), a wrong
+    version, phase, size or GUID, a state of other parameters: each is refused at
+    deserialise or set, or steps 20 times to finite outputs or is refused at a step; none
+    crashes the host; the good state still restores after them all."""
+    p = subprocess.run([sys.executable, "-c", _ABUSE, str(fmus[0])], capture_output=True,
+                       text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    import json
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    cases = r["cases"]
+    assert cases.pop("good") == "finite" and r["good_after"] == "finite"
+    wrong = {k: v for k, v in cases.items() if v not in ("refused", "finite", "refused-later")}
+    assert not wrong, wrong
+    for k in ("empty", "longer", "other-parameters", "phase-99", "version-2", "size-huge",
+              "guid"):
+        assert cases[k] == "refused", k
+    assert all(v == "refused" for k, v in cases.items() if k.startswith(("truncated", "flip")))
+    values = [v for k, v in cases.items() if k.startswith("value-")]
+    assert values.count("refused") > 100 and len(values) == 300

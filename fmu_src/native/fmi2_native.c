@@ -117,20 +117,21 @@ static void value_text(const ModelVar *v, double x, char *out, size_t n)
    reason, "NAME = VALUE is ...", in why. */
 static int value_ok(const ModelVar *v, double x, char *why, size_t n)
 {
-    char text[48];
-    value_text(v, x, text, sizeof text);
     int bad = !isfinite(x);
     if (!bad && v->has_lo) bad = v->lo_open ? x <= v->lo : x < v->lo;
     if (!bad && v->has_hi) bad = v->hi_open ? x >= v->hi : x > v->hi;
     if (!bad && v->auto_or_min > 0.0) bad = 0.0 < x && x < v->auto_or_min;
-    if (!bad && x != 0.0 && fabs(x) < DBL_MIN) {
+    int subnormal = !bad && x != 0.0 && fabs(x) < DBL_MIN;
+    if (!bad && !subnormal) return 1;
+    char text[48];     /* (worded only when refused: a float's repr costs microseconds) */
+    value_text(v, x, text, sizeof text);
+    if (subnormal)
         snprintf(why, n, "%s = %s is subnormal (below %.4g in magnitude): give 0 or a value in %s",
                  v->name, text, DBL_MIN, v->range_text);
-        return 0;
-    }
-    if (bad) snprintf(why, n, "%s = %s is outside the allowed range %s", v->name, text,
-                      v->range_text);
-    return !bad;
+    else
+        snprintf(why, n, "%s = %s is outside the allowed range %s", v->name, text,
+                 v->range_text);
+    return 0;
 }
 
 /* ---- the call sequence -------------------------------------------------------------------- */
