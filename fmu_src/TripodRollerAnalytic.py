@@ -18,7 +18,7 @@ from pythonfmu.enums import Fmi2Status
 
 from reduced_model import switches
 from reduced_model.analytic_model import INPUTS as _INPUTS, STATE_KEYS, AnalyticModel
-from reduced_model.scene import (CONTACT_ONLY_OUTPUTS, OUTPUTS, compiled_bounds,
+from reduced_model.scene import (CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, compiled_bounds,
                                  check_value, params_for, same_value, validate)
 from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
                       register_table, same_layout)
@@ -282,6 +282,12 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
                                        all(map(same_value, values[:len(_INPUTS)], m.key)))
 
     def _fast_failed(self, current_time, code):
-        """A compiled step failed (2: a non-finite output)."""
+        """A compiled step failed (2: a non-finite output; 4: a step longer than MAX_SUBSTEPS
+        substeps, refused before it started)."""
+        if code == 4:
+            self.log(f"step refused at t = {current_time:g} s: the communication step needs "
+                     f"more than the {MAX_SUBSTEPS:.0f} substeps one step may take: take "
+                     "shorter communication steps", Fmi2Status.error)
+            return
         why = "non-finite output" if code == 2 else f"the compiled step returned {code}"
         self.log(f"{why} at t = {current_time:g} s; step rejected", Fmi2Status.error)

@@ -271,6 +271,19 @@ class StepRefused(RuntimeError):
     where): the FMU refuses it (fmi2Discard) with that message."""
 
 
+# The most substeps one communication step may take, in either FMU (about a second of work):
+# a longer step is refused before it starts (too_long).  fmu_src/native/analytic_step.c holds
+# the same number (tests/test_budget.py checks it)
+MAX_SUBSTEPS = float(2 ** 20)
+
+
+def too_long(dt, h) -> str:
+    """The refusal of a communication step of dt [s] in substeps of h [s] above MAX_SUBSTEPS."""
+    return (f"the communication step of {dt:.4g} s in substeps of {h:.3g} s needs more than "
+            f"the {MAX_SUBSTEPS:.0f} substeps one step may take: take shorter communication "
+            "steps")
+
+
 def same_step(dt, dt0, t):
     """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
     a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).

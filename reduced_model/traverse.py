@@ -37,7 +37,8 @@ import numpy as np
 from .friction import spin_moment
 from .hertz import hertz_point
 from .orders import order_spectrum
-from .scene import BY_NAME, check_traverse_mu, pressing_load
+from .scene import (BY_NAME, MAX_SUBSTEPS, StepRefused, check_traverse_mu, pressing_load,
+                    too_long)
 from .thrust import Thrust, fz_mod, spin_inertia, transition_velocity
 
 N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
@@ -453,7 +454,10 @@ class Traverse:
         ``at`` gives them).  Scalar libm math throughout: the analytic FMU's compiled march
         (fmu_src/native/analytic_step.c) is this, bit for bit (tests/test_fast.py)."""
         w = self.scene["omega"]
-        n = max(1, math.ceil(abs(w) * dt * self.n / (2.0 * math.pi) - 1e-9))
+        nd = abs(w) * dt * self.n / (2.0 * math.pi) - 1e-9
+        if nd > MAX_SUBSTEPS:     # refused before it starts (a host's huge step)
+            raise StepRefused(too_long(dt, 2.0 * math.pi / (abs(w) * self.n)))
+        n = max(1, math.ceil(nd))
         h = dt / n
         wh = w * h
         _, _, V0, _, _, _ = self._drive_on(x, SCALAR)

@@ -163,3 +163,26 @@ def test_a_step_longer_than_the_substeps_allow_is_refused_before_it_starts(dt):
     assert (m.rollers[0].Y == y).all()
     assert m.rollers[0]._hs[K.H_FAIL] == K.FAIL_LONG
     assert m.step(DT, THETA, OMEGA, 0.0, 300.0)["Fz"] == twin.step(DT, THETA, OMEGA, 0.0, 300.0)["Fz"]
+
+
+def test_the_analytic_march_refuses_a_step_too_long():
+    """The analytic FMU's march (its inputs moving) takes substeps of at most the table's
+    spacing: at 10 Hz and 360 a cycle, a 1e6 s step would take 3.6e9 of them; refused before
+    it starts, as the contact FMU's."""
+    from reduced_model.scene import defaults, validate
+    from reduced_model.traverse import Traverse
+    tr = Traverse(validate(defaults("analytic"), "analytic"), periodic=False)
+    with pytest.raises(StepRefused, match="take shorter communication steps"):
+        tr.march(None, 0.0, 0.0, 1e6)
+    s, p, x, out = tr.march(None, 0.0, 0.0, 1e-3)     # an ordinary step runs: 1 ms of whirl
+    assert x == pytest.approx(2 * math.pi * 10 * 1e-3, rel=1e-12)
+    assert all(math.isfinite(v) for v in out)
+
+
+def test_the_compiled_march_refuses_at_the_same_count():
+    """fmu_src/native/analytic_step.c holds MAX_SUBSTEPS as a number of its own: the same."""
+    import re
+    from pathlib import Path
+    from reduced_model.scene import MAX_SUBSTEPS
+    src = (Path(__file__).resolve().parents[1] / "fmu_src/native/analytic_step.c").read_text()
+    assert float(re.search(r"#define MAX_SUBSTEPS ([0-9.e+]+)", src).group(1)) == MAX_SUBSTEPS

@@ -21,6 +21,7 @@
 
 #define PI 3.141592653589793   /* math.pi */
 #define V_ST_FLOOR 1e-6        /* reduced_model/friction.py: V_ST_FLOOR [m/s] */
+#define MAX_SUBSTEPS 1048576.0 /* reduced_model/scene.py: MAX_SUBSTEPS, a step's most substeps */
 
 enum { OMEGA, N_ROLLERS, F, TABLE, SCALE, N, A, B, MU_F, K, TH, K_SPIN, S_PITCH, VP, PLUNGE_SPEED, DT,
        OP_LEN };
@@ -401,7 +402,9 @@ int32_t tripod_analytic_march(double **args)
     M[M_LOAD_LO] = fmin(M[M_LOAD_LO], fabs(o.F));
     M[M_LOAD_HI] = fmax(M[M_LOAD_HI], fabs(o.F));
     double dt = M[M_DT], table_n = M[M_N];
-    double nd = ceil(fabs(o.w) * dt * table_n / (2.0 * PI) - 1e-9);
+    double nd = fabs(o.w) * dt * table_n / (2.0 * PI) - 1e-9;
+    if (!(nd <= MAX_SUBSTEPS)) return 4;    /* refused before it starts (Traverse.march) */
+    nd = ceil(nd);
     long n = nd > 1.0 ? (long)nd : 1;
     double h = dt / (double)n, wh = o.w * h;
     double x1[3], st[3][S_LEN], o_[OUT_LEN], fz[3] = {0.0, 0.0, 0.0};

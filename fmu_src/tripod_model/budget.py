@@ -1,6 +1,7 @@
 """The adaptive substeps' budget (euler.adaptive_steps) and the line the FMU logs when a step
 runs out of it.  Plain Python (no numba): the model imports it to word a refusal.
 """
+from reduced_model.scene import MAX_SUBSTEPS, too_long  # noqa: F401  (kernel's, too)
 from .layout import FAIL_ESTIMATE, FAIL_FLOOR, FAIL_LONG, FAIL_TRIES, H_FAIL, H_FAIL_DONE, H_FAIL_H, P_HMAX
 
 # The adaptive substeps' budget, so that a step ends in bounded time whatever the state
@@ -23,23 +24,19 @@ from .layout import FAIL_ESTIMATE, FAIL_FLOOR, FAIL_LONG, FAIL_TRIES, H_FAIL, H_
 ADAPT_FLOOR = 1e-8
 ADAPT_TRIES_MIN = 5e4
 ADAPT_TRIES_PER = 100.0
-MAX_SUBSTEPS = float(2 ** 20)
 
 
 _WHY = {FAIL_ESTIMATE: "the error estimate is not finite",
         FAIL_FLOOR: f"the substep fell below its floor, {ADAPT_FLOOR:g} x the largest",
         FAIL_TRIES: f"the substeps tried reached their budget, {ADAPT_TRIES_MIN:g} + "
                     f"{ADAPT_TRIES_PER:g} per largest substep in the step"}
-_LONG = (f"needs more than the {MAX_SUBSTEPS:.0f} substeps one step may take: take shorter "
-         "communication steps")
 
 
 def refusal(hs, P) -> str:
     """One line on why a step stopped short (hs[H_FAIL] != FAIL_NONE: adaptive_steps, or
     kernel.run_substeps for a step too long) and where, for the FMU's log."""
     if hs[H_FAIL] == FAIL_LONG:
-        return (f"the communication step of {hs[H_FAIL_DONE]:.4g} s in substeps of "
-                f"{hs[H_FAIL_H]:.3g} s {_LONG}")
+        return too_long(hs[H_FAIL_DONE], hs[H_FAIL_H])
     return (f"the adaptive substeps stopped at {100.0 * hs[H_FAIL_DONE]:.3g} % of the step "
             f"({_WHY.get(float(hs[H_FAIL]), 'unknown')}; substep {hs[H_FAIL_H]:.3g} s, largest "
             f"{P[P_HMAX]:.3g} s): the state cannot be stepped")
