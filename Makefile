@@ -50,10 +50,10 @@ demo: $(STAMP)
 
 # the driveline example: a vehicle launch, the joint FMU beside a powertrain FMU in one SSP,
 # run by FMPy and by libcosim (docs/driveline-example.md)
-example: $(STAMP)
+example: $(STAMP) cross-tools
 	$(BIN)/tripod-thrust example --out out/example
 
-fmu: $(STAMP)
+fmu: $(STAMP) cross-tools
 	$(BIN)/tripod-thrust build
 
 bench: $(STAMP)
