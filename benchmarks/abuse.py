@@ -48,7 +48,6 @@ SCENES = [   # (FMU, integer start values, crafted cases beyond the common ones)
 ]
 CASE_SECONDS = 10.0
 DOC = ROOT / "docs" / "native-layer.md"
-BEGIN, END = "<!-- abuse-counts:begin -->", "<!-- abuse-counts:end -->"
 
 
 def crafted(kind):
@@ -140,9 +139,8 @@ def main():
     table = render(rows, args)
     print(table)
     if not args.no_docs:
-        text = DOC.read_text()
-        i, j = text.index(BEGIN) + len(BEGIN), text.index(END)
-        DOC.write_text(text[:i] + "\n" + table + "\n" + text[j:])
+        from harness.docgen import write_marked
+        write_marked(DOC, "abuse-counts", table)
 
 
 def outcome_text(count):

@@ -21,12 +21,12 @@ from pathlib import Path
 
 from fmpy import read_model_description
 
+from harness.docgen import write_marked
 from harness.fmus import builder, ensure_fmu
 
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
 DOC = ROOT / "docs" / "benchmarks.md"
-BEGIN, END = "<!-- native-speed:begin -->", "<!-- native-speed:end -->"
 STEPS = 4000
 
 
@@ -83,9 +83,7 @@ def main(argv=None):
     text = table(a.runs)
     print(text)
     if not a.no_docs:
-        doc = DOC.read_text()
-        i, j = doc.index(BEGIN) + len(BEGIN), doc.index(END)
-        DOC.write_text(doc[:i] + "\n" + text + "\n" + doc[j:])
+        write_marked(DOC, "native-speed", text)
 
 
 if __name__ == "__main__":

@@ -24,10 +24,11 @@ import tempfile
 import time
 from pathlib import Path
 
+from harness.docgen import write_marked
+
 ROOT = Path(__file__).resolve().parents[1]
 WORKER = ROOT / "tests" / "state_abuse.py"
 DOC = ROOT / "docs" / "native-layer.md"
-BEGIN, END = "<!-- state-fuzz:begin -->", "<!-- state-fuzz:end -->"
 SCENES = [   # (FMU, integer start values)
     ("TripodRoller", {"bearing": 0, "n_rollers": 1}),
     ("TripodRoller", {"bearing": 0, "n_rollers": 3}),
@@ -82,9 +83,7 @@ def main(argv=None):
             + table(a.mutations))
     print(text)
     if not a.no_docs:
-        doc = DOC.read_text()
-        i, j = doc.index(BEGIN) + len(BEGIN), doc.index(END)
-        DOC.write_text(doc[:i] + "\n" + text + "\n" + doc[j:])
+        write_marked(DOC, "state-fuzz", text)
 
 
 if __name__ == "__main__":

@@ -139,10 +139,6 @@ class Mounts:
         M.mounts_step(self.P, x, [float(f) for f in Q], self.W, h)
         return x
 
-    def acceleration(self, x, Q):
-        """q'' [m/s2, rad/s2] at the state x under Q."""
-        return np.array([M.acceleration(self.P, x, Q, i) for i in range(4)])
-
 
 class PowertrainModel:
     """The powertrain FMU's model (mounts.init, mounts.step): the mounts' state x = (q, v), 8

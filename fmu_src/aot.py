@@ -79,13 +79,26 @@ def compile_functions(spec: str, dest: Path, target: str = "linux64") -> dict:
     return {name: (dest / f"{name}.o", sym) for name, sym in symbols.items()}
 
 
-def cross_compiler(target: str) -> str | None:
-    """The C compiler that links ``target``'s library (None: not installed here)."""
+def compiler(target: str) -> str:
+    """The C compiler that links for ``target`` (RuntimeError naming the package where the
+    cross compiler is missing)."""
     import shutil
     cc = TARGETS[target]["cc"]
     if cc is None:
         return os.environ.get("CC") or "cc"
-    return shutil.which(cc)
+    if shutil.which(cc) is None:
+        raise RuntimeError(f"{cc} is needed to build for {target} (as root: apt-get install "
+                           "gcc-mingw-w64-x86-64; make cross-tools)")
+    return cc
+
+
+def check_imports(lib: Path, target: str) -> None:
+    """RuntimeError if the Windows library imports more than every Windows has."""
+    allowed = TARGETS[target].get("imports")
+    if allowed:
+        bad = sorted(set(dll_imports(lib)) - set(allowed))
+        if bad:
+            raise RuntimeError(f"{lib.name} imports {bad}, beyond {list(allowed)}")
 
 
 def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]:
@@ -95,10 +108,7 @@ def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]
     if sys.platform != "linux":
         raise RuntimeError(f"the prebuilt kernel builds on Linux only, not {sys.platform}")
     spec = TARGETS[target]
-    cc = cross_compiler(target)
-    if cc is None:
-        raise RuntimeError(f"{spec['cc']} is needed to build the {target} kernel "
-                           "(apt-get install gcc-mingw-w64-x86-64)")
+    cc = compiler(target)
     dest.mkdir(parents=True, exist_ok=True)
     lib, meta = dest / spec["lib"], dest / "_step.json"
     with tempfile.TemporaryDirectory() as tmp:
@@ -109,10 +119,7 @@ def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"linking the prebuilt kernel failed:\n{p.stderr}")
-    if spec.get("imports"):
-        bad = sorted(set(dll_imports(lib)) - set(spec["imports"]))
-        if bad:
-            raise RuntimeError(f"{lib.name} imports {bad}, beyond {list(spec['imports'])}")
+    check_imports(lib, target)
     from importlib.metadata import version
     from tripod_model import native
     meta.write_text(json.dumps({"symbol": symbol, "hash": native.source_hash(),

@@ -38,7 +38,7 @@ BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
 # what each FMU needs in the Python it runs in (versions from pyproject.toml): the FMU's log
 # names them when they are missing
 RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",),
-                "Powertrain": ("numpy", "scipy")}
+                "Powertrain": ("numpy",)}
 
 # FMUs whose binary runs the model compiled, without Python (native_fmu.py): the C functions
 # (module:factory) and where the variables live (a function of the model's package)

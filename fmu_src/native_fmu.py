@@ -84,10 +84,7 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
 def binary(spec: str, xml: bytes, layout: dict, target: str, dest: Path, headers: Path) -> Path:
     """dest: the FMU's binary for ``target``: the model's C functions (spec, module:factory)
     compiled by aot.compile_functions, linked with the native layer and the generated data."""
-    cc = aot.cross_compiler(target)
-    if cc is None:
-        raise RuntimeError(f"{aot.TARGETS[target]['cc']} is needed to build the {target} "
-                           "binary (as root: apt-get install gcc-mingw-w64-x86-64)")
+    cc = aot.compiler(target)
     with tempfile.TemporaryDirectory() as tmp:
         objs = aot.compile_functions(spec, Path(tmp), target)
         data = Path(tmp) / "model_data.c"
@@ -104,11 +101,7 @@ def binary(spec: str, xml: bytes, layout: dict, target: str, dest: Path, headers
         p = subprocess.run(cmd, capture_output=True, text=True)
         if p.returncode != 0:
             raise RuntimeError(f"linking the {target} binary failed:\n{p.stderr[-3000:]}")
-    if aot.TARGETS[target].get("imports"):
-        bad = sorted(set(aot.dll_imports(dest)) - set(aot.TARGETS[target]["imports"]))
-        if bad:
-            raise RuntimeError(f"{dest.name} imports {bad}, beyond "
-                               f"{list(aot.TARGETS[target]['imports'])}")
+    aot.check_imports(dest, target)
     return dest
 
 

@@ -34,6 +34,16 @@ def replace(text: str, name: str, content: str) -> str:
                   lambda m: m.group(1) + content + m.group(2), text, flags=re.S)
 
 
+def write_marked(path: Path, name: str, text: str) -> None:
+    """Put text between <!-- NAME:begin --> and <!-- NAME:end --> in path: the tables the long
+    benchmarks write with their own runs (abuse.py, state_fuzz.py, native_fmu_speed.py), which
+    make docs does not rerun."""
+    begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
+    doc = path.read_text()
+    i, j = doc.index(begin) + len(begin), doc.index(end)
+    path.write_text(doc[:i] + "\n" + text + "\n" + doc[j:])
+
+
 # --- exact blocks --------------------------------------------------------------------------
 
 def _params() -> str:

@@ -61,7 +61,7 @@ def test_fmpy_runs_it_as_the_python_slave_bit_for_bit(fmus):
     assert np.abs(a["acc_y"]).max() > 1e-3      # (the run moved: 0.05 m/s2 here)
 
 
-def _host(tmp_path, compiler, out, extra=()):
+def _host(compiler, out, extra=()):
     subprocess.run([compiler, "-std=c99", "-O2", f"-I{builder()._fmi_headers()}", str(HOST),
                     "-o", str(out), "-lm", *extra], check=True, capture_output=True)
     return out
@@ -89,7 +89,7 @@ def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
     d = tmp_path / "fmu"
     d.mkdir()
     zipfile.ZipFile(fmus[0]).extractall(d)
-    host = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    host = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
     p, rows = _run([str(host), str(d / "binaries/linux64/Powertrain.so")], fmus[0],
                    tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})
     assert p.returncode == 0, p.stdout + p.stderr
@@ -98,14 +98,14 @@ def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
     assert np.isfinite(rows).all() and np.abs(rows).max() > 0
 
 
-@pytest.mark.skipif(shutil.which("x86_64-w64-mingw32-gcc") is None or not os.path.exists(WINE),
-                    reason="make cross-tools installs mingw-w64 and wine64")
 def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     """The DLL imports only KERNEL32 and msvcrt; the same host, cross-compiled, loads it from a
     folder named 'jürgen x' under wine64 (the path as a UTF-16 Windows path): checks pass, no
     Python in the process, the outputs within 1e-9 of each output's scale of the Linux run
     (the two C runtimes' sin, cos and asin may differ in the last bit; the mounts are damped,
     so a last bit stays a last bit)."""
+    assert shutil.which("x86_64-w64-mingw32-gcc") and os.path.exists(WINE), \
+        "mingw-w64 and wine64 missing: make test installs them (make cross-tools)"
     builder()._importable()
     import aot
     d = tmp_path / "jürgen x"
@@ -113,8 +113,8 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     zipfile.ZipFile(fmus[0]).extractall(d)
     dll = d / "binaries/win64/Powertrain.dll"
     assert sorted(aot.dll_imports(dll)) == ["KERNEL32.dll", "msvcrt.dll"]
-    lin = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
-    win = _host(tmp_path, "x86_64-w64-mingw32-gcc", tmp_path / "fmu_run.exe",
+    lin = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    win = _host("x86_64-w64-mingw32-gcc", tmp_path / "fmu_run.exe",
                 ["-static-libgcc", "-lpsapi", "-lshell32"])
     pl, rl = _run([str(lin), str(d / "binaries/linux64/Powertrain.so")], fmus[0],
                   tmp_path / "lin.bin", {"PATH": "/usr/bin:/bin"})
@@ -135,7 +135,7 @@ def test_the_linux_binary_is_valgrind_clean(fmus, tmp_path):
     d = tmp_path / "fmu"
     d.mkdir()
     zipfile.ZipFile(fmus[0]).extractall(d)
-    host = _host(tmp_path, os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    host = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
     p, _ = _run(["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite",
                  "--error-exitcode=9", "-q", str(host), str(d / "binaries/linux64/Powertrain.so")],
                 fmus[0], tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})

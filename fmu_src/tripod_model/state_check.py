@@ -73,6 +73,7 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
         raise BadState(f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s")
     v = speed_bound(p, min(theta, math.pi / 4), omega, vp)
     rb = p["r_bore"]
+    tilt = math.atan(p["d_needle"] / (0.5 * p["l_needle"]))
     for label, Y in (("", st["Y"]), (" (previous step)", st["Y2"])):
         _within("whirl angle" + label, Y[K.Y_X], BY_NAME["shaft_angle"].hi + 2 * math.pi,
                 "rad", "the shaft angle's range")
@@ -82,7 +83,6 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
         _within("spin" + label, Y[K.Y_OM], v / p["r_roller"], "rad/s", "the scene's speeds")
         if p["bearing"] == K.BEAR_IDEAL:
             continue
-        tilt = math.atan(p["d_needle"] / (0.5 * p["l_needle"]))
         for n, i in (("radial offset e", K.Y_E), ("radial offset w", K.Y_W)):
             _within(n + label, Y[i], p["d_needle"], "m", "the needle diameter")
         for n, i in (("tilt b1", K.Y_B1), ("tilt b2", K.Y_B2)):
