@@ -42,7 +42,9 @@ RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("nu
 
 # FMUs whose binary runs the model compiled, without Python (native_fmu.py): the C functions
 # (module:factory) and where the variables live (a function of the model's package)
-COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout")}
+COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout"),
+            "TripodRollerAnalytic": ("reduced_model.kernel:c_functions",
+                                     "reduced_model.kernel:native_layout")}
 NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "fmi2_native.c",
               FMU_SRC / "native" / "native_model.h", FMU_SRC / "native" / "exports.map")
 NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
@@ -50,9 +52,6 @@ AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt 
 AOT_DIR = BUILD / "aot"
 BRIDGE = FMU_SRC / "fmi2bridge.py"     # the native layer's Python side, in every FMU
 NATIVE_LIB = BUILD / "native" / "fmi2_python.so"
-# the analytic FMU's compiled step (its fast path), into its resources/
-ANALYTIC_SRC = FMU_SRC / "native" / "analytic_step.c"
-ANALYTIC_LIB = BUILD / "native" / "_analytic_step.so"
 PLATFORM = "linux64"
 
 
@@ -62,8 +61,6 @@ def _sources(name):
         files += list(AOT)
     elif name in COMPILED:
         files += list(AOT) + list(NATIVE_FMU)
-    elif name == "TripodRollerAnalytic":
-        files.append(ANALYTIC_SRC)
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
     return files
@@ -129,15 +126,6 @@ def native_library(force=False) -> Path:
     if not force and _fresh(NATIVE_LIB, NATIVE_SRC):
         return NATIVE_LIB
     return _compile(NATIVE_SRC, NATIVE_LIB, [f"-I{_fmi_headers()}", "-ldl", "-lpthread"])
-
-
-def analytic_step_library(force=False) -> Path:
-    """build/native/_analytic_step.so (the analytic FMU's compiled step), when missing or stale.
-    No contraction into fused multiply-adds: the same bits as the Python step."""
-    if not force and _fresh(ANALYTIC_LIB, ANALYTIC_SRC):
-        return ANALYTIC_LIB
-    # visibility default: the slave looks its two functions up with ctypes
-    return _compile(ANALYTIC_SRC, ANALYTIC_LIB, ["-fvisibility=default", "-ffp-contract=off"])
 
 
 def _importable():
@@ -350,8 +338,6 @@ def _build(name, force):
     extra = ()
     if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
         extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
-    elif name == "TripodRollerAnalytic":
-        extra = [(analytic_step_library(force), "resources/_analytic_step.so")]
     table = _table(name)
     ref = reference_path(name) if name in COMPILED else dest
     out = package(SLAVES[name], ref, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),

@@ -150,7 +150,7 @@ NOTE_TEXT = (
     (WARNING, "during the run the inputs left the range " + _RANGE_HEAD),
     (INFO, "communication steps: %.0f; traverse tables derived: %.0f"),
     (INFO, "; the slide stepped in time since the inputs moved"),
-    (ERROR, "step refused at t = %g s: the communication step of %.4g s in substeps of %.3g s "
+    (ERROR, "the communication step of %.4g s in substeps of %.3g s "
             f"needs more than the {MAX_SUBSTEPS:.0f} substeps one step may take: take shorter "
             "communication steps"),
     (ERROR, "r_groove = %g m must exceed r_roller = %g m (range (r_roller, 1] m)"),
@@ -901,18 +901,17 @@ def outputs(P, X, OUT):
     n = int(P[N_ROLLERS])
     F = X[X_OP + O_LOAD]
     Fz1, Fzm1, Fx1, Fy1, slip1 = roller_row(P, X, 0, X[X_WHIRL])
-    fz = [Fz1, 0.0, 0.0]
-    fx = [Fx1, 0.0, 0.0]
-    fy = [Fy1, 0.0, 0.0]
     total = 0.0 + Fz1
-    for i in range(1, n):
-        row = roller_row(P, X, i, X[X_WHIRL + i])
-        fz[i], fx[i], fy[i] = row[0], row[2], row[3]
-        total += row[0]
+    fz2 = fx2 = fy2 = fz3 = fx3 = fy3 = 0.0      # (scalars: nothing allocated when compiled)
+    if n > 1:
+        fz2, _, fx2, fy2, _ = roller_row(P, X, 1, X[X_WHIRL + 1])
+        total += fz2
+        fz3, _, fx3, fy3, _ = roller_row(P, X, 2, X[X_WHIRL + 2])
+        total += fz3
     sp = P[S]
-    hx, hy, ht = housing_forces(fx[0], fy[0], sp, fx[1], fy[1], sp, fx[2], fy[2], sp)
-    vals = (Fx1, Fy1, Fz1, Fzm1, Fx1 - F, slip1, total, fz[1], fz[2], X[X_WHIRL], fx[1], fy[1],
-            fx[2], fy[2], hx, hy, ht, F, X[X_PLUNGE], X[X_REGIME])
+    hx, hy, ht = housing_forces(Fx1, Fy1, sp, fx2, fy2, sp, fx3, fy3, sp)
+    vals = (Fx1, Fy1, Fz1, Fzm1, Fx1 - F, slip1, total, fz2, fz3, X[X_WHIRL], fx2, fy2, fx3, fy3,
+            hx, hy, ht, F, X[X_PLUNGE], X[X_REGIME])
     for v in vals:
         if not math.isfinite(v):
             return 2
@@ -975,7 +974,7 @@ def step(P, IN, X, OUT, W, t, h):
     if X[X_MODE] == MODE_MARCH:
         nd = substeps(O, dt)
         if nd > MAX_SUBSTEPS:     # refused before it starts (a host's huge step)
-            note(W, NOTE_TOO_LONG, t, dt, 2.0 * math.pi / (abs(O[O_W]) * N_PER_CYCLE), 0.0)
+            note(W, NOTE_TOO_LONG, dt, 2.0 * math.pi / (abs(O[O_W]) * N_PER_CYCLE), 0.0, 0.0)
             return 3
         for i in range(n):
             x = march(O, X, X_MARCH + R_LEN * i, mirrored(X, X[X_WHIRL + i]), dt)
@@ -1106,3 +1105,18 @@ def c_functions():
     return {name: nb.cfunc(sig, error_model="numpy")(f)
             for name, f in (("init", c_init), ("step", c_step), ("end", c_end),
                             ("check_state", c_check))}
+
+
+def native_layout() -> dict:
+    """Where each of the analytic FMU's variables lives in this module's arrays, the arrays'
+    sizes, the order the variables are checked in at initialisation (the table's, as
+    scene.validate checks them) and the notes' wording: for the FMU whose binary runs this
+    module compiled (fmu_src/native_fmu.py)."""
+    arrays = {n: ("IN_P", i) for i, n in enumerate(PARAM_NAMES)}
+    arrays.update({n: ("IN_IN", i) for i, n in enumerate(INPUT_NAMES)})
+    arrays.update({n: ("IN_OUT", i) for i, n in enumerate(OUTPUT_NAMES)})
+    return {"by_name": BY_NAME, "arrays": arrays,
+            "check_order": [p.name for p in params_for("analytic")],
+            "sizes": {"P": P_LEN, "IN": IN_LEN, "X": X_LEN, "OUT": OUT_LEN, "W": W_LEN, "TH": 2},
+            "notes": {"at": W_NOTES, "args": NOTE_ARGS, "max": MAX_NOTES, "text": NOTE_TEXT,
+                      "state_problems": STATE_PROBLEMS}}

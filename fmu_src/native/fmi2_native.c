@@ -134,6 +134,44 @@ static int value_ok(const ModelVar *v, double x, char *why, size_t n)
     return 0;
 }
 
+/* ---- the model's notes (native_model.h) ----------------------------------------------------- */
+
+static void say(Inst *c, int level, const char *prefix, const char *msg)
+{
+    if (level >= 2) logf_(c, fmi2Error, "%s%s", prefix, msg);
+    else logf_(c, level == 1 ? fmi2Warning : fmi2OK, "%s", msg);
+}
+
+/* The notes the last compiled call left in W, worded and logged (errors after prefix); the
+   count and codes are the model's, checked before use like any value of a state. */
+static void log_notes(Inst *c, const char *prefix)
+{
+    if (MODEL_NOTES_AT < 0) return;
+    const double *W = c->arr[A_W] + MODEL_NOTES_AT;
+    double count = W[0];
+    int n = count >= 0.0 && count <= (double)MODEL_MAX_NOTES ? (int)count : 0;
+    char msg[1024] = "", part[512];
+    int level = 0;
+    for (int k = 0; k < n; ++k) {
+        const double *note = W + 1 + k * (1 + MODEL_NOTE_ARGS);
+        if (!(note[0] >= 0.0 && note[0] < (double)MODEL_N_NOTE_TEXT)) continue;
+        const ModelNote *m = &MODEL_NOTE_TEXT[(int)note[0]];
+        double a[4] = {0.0, 0.0, 0.0, 0.0};
+        for (int i = 0; i < MODEL_NOTE_ARGS && i < 4; ++i) a[i] = note[1 + i];
+        snprintf(part, sizeof part, m->text, a[0], a[1], a[2], a[3]);
+        if (strncmp(part, "; ", 2) == 0 && msg[0]) {      /* continues the message before */
+            size_t len = strlen(msg);
+            const char *add = len >= 2 && strcmp(msg + len - 2, ": ") == 0 ? part + 2 : part;
+            strncat(msg, add, sizeof msg - len - 1);
+            continue;
+        }
+        if (msg[0]) say(c, level, prefix, msg);
+        snprintf(msg, sizeof msg, "%s", part);
+        level = m->level;
+    }
+    if (msg[0]) say(c, level, prefix, msg);
+}
+
 /* ---- the call sequence -------------------------------------------------------------------- */
 
 static int allowed(Inst *c, const char *fn, unsigned phases)
@@ -265,6 +303,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
         }
     }
     int32_t rc = model_init(c->arr);
+    if (rc == 1 || rc == 3) log_notes(c, "fmi2ExitInitializationMode: invalid parameter: ");
     if (rc < 0) {      /* a divisor too small: P[-rc - 1] */
         for (int k = 0; k < MODEL_N_VARS; ++k) {
             const ModelVar *v = &MODEL_VARS[k];
@@ -274,7 +313,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
             logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s = %s is too "
                   "small to compute with; allowed range %s", v->name, text, v->range_text);
         }
-    } else if (rc != 1) {
+    } else if (rc != 1 && rc != 3) {
         logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: the start's "
               "outputs are not finite");
     }
@@ -291,6 +330,8 @@ fmi2Status fmi2Terminate(fmi2Component component)
     Inst *c = (Inst *)component;
     if (!c) return fmi2Error;
     if (!allowed(c, "fmi2Terminate", P_OK | P_FAILED)) return fmi2Error;
+    model_end(c->arr);
+    log_notes(c, "fmi2Terminate: ");
     c->phase = TERMINATED;
     return fmi2OK;
 }
@@ -332,7 +373,7 @@ static fmi2Status get_values(fmi2Component component, const char *fn, char type,
         if (!v) return fmi2Error;
         double x = *slot_of(c, v);
         if (real) real[i] = x;
-        else integer[i] = (int)x;
+        else integer[i] = type == 'B' ? x != 0.0 : (int)x;
     }
     return fmi2OK;
 }
@@ -362,7 +403,8 @@ static fmi2Status set_values(fmi2Component component, const char *fn, char type,
         }
     }
     for (size_t i = 0; i < nvr; ++i)
-        *slot_of(c, find(c, fn, vr[i], type)) = real ? real[i] : (double)integer[i];
+        *slot_of(c, find(c, fn, vr[i], type)) =
+            real ? real[i] : type == 'B' ? (double)(integer[i] != 0) : (double)integer[i];
     return fmi2OK;
 }
 
@@ -378,7 +420,7 @@ fmi2Status fmi2GetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 
 fmi2Status fmi2GetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2Boolean value[])
 {
-    return get_values(c, "fmi2GetBoolean", 'B', vr, nvr, NULL, value);
+    return get_values(c, "fmi2GetBoolean", 'B', vr, nvr, NULL, (int *)value);
 }
 
 fmi2Status fmi2GetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, fmi2String value[])
@@ -399,7 +441,7 @@ fmi2Status fmi2SetInteger(fmi2Component c, const fmi2ValueReference vr[], size_t
 
 fmi2Status fmi2SetBoolean(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2Boolean value[])
 {
-    return set_values(c, "fmi2SetBoolean", 'B', vr, nvr, NULL, value);
+    return set_values(c, "fmi2SetBoolean", 'B', vr, nvr, NULL, (const int *)value);
 }
 
 fmi2Status fmi2SetString(fmi2Component c, const fmi2ValueReference vr[], size_t nvr, const fmi2String value[])
@@ -441,9 +483,23 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     c->arr[A_TH][0] = t;
     c->arr[A_TH][1] = h;
     int32_t rc = model_step(c->arr);
+    char prefix[96];
+    snprintf(prefix, sizeof prefix, "step refused at t = %g s: ", t);
+    log_notes(c, prefix);
+    if (rc == 5) {     /* an input the model derived (driving by angle: omega) */
+        for (int k = 0; k < MODEL_N_VARS; ++k) {
+            const ModelVar *v = &MODEL_VARS[k];
+            if (v->array == IN_IN && !value_ok(v, *slot_of(c, v), why, sizeof why)) {
+                logf_(c, fmi2Error, "invalid input at t = %g s: %s", t, why);
+                break;
+            }
+        }
+        return discard(c, t);
+    }
     if (rc != 1) {
-        logf_(c, fmi2Error, rc == 2 ? "non-finite output at t = %g s; step rejected" :
-              "the compiled step stopped on an arithmetic error at t = %g s", t);
+        if (rc != 3)
+            logf_(c, fmi2Error, rc == 2 ? "non-finite output at t = %g s; step rejected" :
+                  "the compiled step stopped on an arithmetic error at t = %g s", t);
         return discard(c, t);
     }
     c->last_ok_time = t + h;
@@ -538,6 +594,17 @@ static int state_fits(Inst *c, const State *s, char *why, size_t n)
     if (!(s->phase >= INSTANTIATED && s->phase <= ERRORED) || !isfinite(s->last_ok_time)) {
         snprintf(why, n, "corrupt state: its phase or time");
         return 0;
+    }
+    if (s->phase == STEP_COMPLETE || s->phase == STEP_FAILED || s->phase == TERMINATED) {
+        double *arr[A_COUNT];     /* the model's own check of what it would step */
+        for (int a = 0, at = 0; a < A_COUNT; at += MODEL_SIZES[a++]) arr[a] = s->data + at;
+        int32_t code = model_check_state(arr);
+        if (code != 0) {
+            snprintf(why, n, "corrupt state: %s",
+                     code > 0 && code < MODEL_N_STATE_PROBLEMS ? MODEL_STATE_PROBLEMS[code]
+                                                               : "refused by the model");
+            return 0;
+        }
     }
     return 1;
 }

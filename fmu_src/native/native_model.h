@@ -14,7 +14,7 @@ enum { IN_P, IN_IN, IN_OUT };
 typedef struct {
     const char *name;
     uint32_t vr;
-    char type;           /* 'R' Real, 'I' Integer */
+    char type;           /* 'R' Real, 'I' Integer, 'B' Boolean (0 or 1) */
     int array;           /* IN_P, IN_IN, IN_OUT */
     int slot;            /* index in that array */
     double start;
@@ -35,9 +35,26 @@ extern const int MODEL_CHECK_ORDER[];    /* the variables checked at initialisat
 extern const int MODEL_N_CHECK;
 extern const int MODEL_SIZES[A_COUNT];   /* doubles in each array */
 
-/* 1: done; 2: a non-finite output (OUT untouched); -(1 + slot): the parameter P[slot] cannot
-   be divided by (init only); 0: an error inside the compiled code */
+/* The notes a compiled function leaves for the log in W (MODEL_NOTES_AT < 0: none): a count,
+   then per note its code and MODEL_NOTE_ARGS numbers; MODEL_NOTE_TEXT[code] words it (a printf
+   format of the numbers, at a level: 0 info, 1 warning, 2 error).  A text starting with "; "
+   continues the message before it. */
+typedef struct { int level; const char *text; } ModelNote;
+extern const ModelNote MODEL_NOTE_TEXT[];
+extern const int MODEL_N_NOTE_TEXT, MODEL_NOTES_AT, MODEL_NOTE_ARGS, MODEL_MAX_NOTES;
+/* why model_check_state refuses a state: MODEL_STATE_PROBLEMS[code] */
+extern const char *const MODEL_STATE_PROBLEMS[];
+extern const int MODEL_N_STATE_PROBLEMS;
+
+/* 1: done; 2: a non-finite output (OUT untouched); 3: refused, its notes say why; 5 (step): an
+   input the model derived (written into IN) is outside its range, nothing stepped; -(1 +
+   slot): the parameter P[slot] cannot be divided by (init only); 0: an error inside the
+   compiled code */
 int32_t model_init(double **args);
 int32_t model_step(double **args);
+/* the run's end (notes only): 1 */
+int32_t model_end(double **args);
+/* 0: the state's arrays (args) can be stepped; else a code of MODEL_STATE_PROBLEMS */
+int32_t model_check_state(double **args);
 
 #endif
