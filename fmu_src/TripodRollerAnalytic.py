@@ -14,7 +14,7 @@ from pythonfmu.enums import Fmi2Status
 
 from reduced_model import kernel as K
 from reduced_model.analytic_model import AnalyticModel
-from reduced_model.scene import params_for
+from reduced_model.scene import check_value, params_for
 from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
 # outputs the reduced model defines (no contact point, no roller spin state)
@@ -65,6 +65,11 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         vars_now = super()._get_fmu_state()
         same_layout(st["vars"], vars_now, "vars")
         self._check_structural(st["vars"])
+        try:
+            for n in K.INPUT_NAMES:
+                check_value(n, st["vars"][n])
+        except ValueError as e:
+            raise StateError(str(e)) from None
         if st["X"] is None and st["IN"] is None:     # taken before initialisation
             return
         for key, n in (("X", K.X_LEN), ("IN", K.IN_LEN)):
@@ -76,6 +81,11 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
         why = model.state_problem(st)
         if why:
             raise StateError(why)
+        try:
+            for n, v in zip(K.INPUT_NAMES, st["IN"]):
+                check_value(n, float(v))
+        except ValueError as e:
+            raise StateError(str(e)) from None
 
     def _set_fmu_state(self, state):
         if self._needs_check(state):   # before anything changes

@@ -21,3 +21,11 @@ def builder():
 def ensure_fmu(name: str = "TripodRoller", force: bool = False) -> Path:
     """Path of build/<name>.fmu, built first when missing, stale or forced."""
     return builder().build(name, force=force)
+
+
+def reference_fmu(name: str) -> Path:
+    """build/reference/<name>.fmu, built first when missing or stale: the pythonfmu slave's FMU
+    of a model whose FMU ships compiled (the analytic FMU, the powertrain), which the tests
+    hold the compiled FMU to."""
+    ensure_fmu(name)
+    return builder().reference_path(name)

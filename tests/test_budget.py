@@ -179,10 +179,44 @@ def test_the_analytic_march_refuses_a_step_too_long():
     assert all(math.isfinite(v) for v in out)
 
 
-def test_the_compiled_march_refuses_at_the_same_count():
-    """fmu_src/native/analytic_step.c holds MAX_SUBSTEPS as a number of its own: the same."""
-    import re
-    from pathlib import Path
+_HUGE_STEP = r"""
+import json, sys
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
+vr = {v.name: v.valueReference for v in md.modelVariables}
+logs = []
+s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
+              instanceName="t", fmiCallLogger=None)
+s.instantiate(loggingOn=True, callbacks=None)
+s.setupExperiment(startTime=0.0); s.enterInitializationMode(); s.exitInitializationMode()
+for i in range(3):      # the inputs move: the march
+    s.setReal([vr["theta"]], [0.17 + 1e-3 * i]); s.doStep(i * 1e-4, 1e-4)
+before = s.getReal([vr["Fz"], vr["whirl_angle"]])
+try:
+    s.doStep(3e-4, 1e6); status = "OK"
+except Exception as e:
+    status = type(e).__name__
+print(json.dumps({"status": status, "same": s.getReal([vr["Fz"], vr["whirl_angle"]]) == before}))
+"""
+
+
+@pytest.mark.parametrize("which", ["native", "reference"])
+def test_the_analytic_fmu_refuses_a_step_too_long(which):
+    """The analytic FMU's march (compiled, and its reference in Python) refuses a step of more
+    than MAX_SUBSTEPS substeps before it starts, naming the count, the outputs untouched."""
+    import json
+    import subprocess
+    import sys
+    from harness.fmus import ensure_fmu, reference_fmu
     from reduced_model.scene import MAX_SUBSTEPS
-    src = (Path(__file__).resolve().parents[1] / "fmu_src/native/analytic_step.c").read_text()
-    assert float(re.search(r"#define MAX_SUBSTEPS ([0-9.e+]+)", src).group(1)) == MAX_SUBSTEPS
+    fmu = ensure_fmu("TripodRollerAnalytic") if which == "native" else \
+        reference_fmu("TripodRollerAnalytic")
+    p = subprocess.run([sys.executable, "-c", _HUGE_STEP, str(fmu)], capture_output=True,
+                       text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    r = json.loads(p.stdout.strip().splitlines()[-1])
+    assert r["status"] != "OK" and r["same"], r
+    assert f"needs more than the {MAX_SUBSTEPS:.0f} substeps" in p.stdout, p.stdout[-2000:]
+    assert "step refused at t = 0.0003 s: the communication step of 1e+06 s" in p.stdout, \
+        p.stdout[-2000:]

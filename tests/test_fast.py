@@ -1,9 +1,10 @@
-"""The native layer's fast path (fmu_src/tripod_model/kernel.py: step for the contact FMU,
-fmu_src/native/analytic_step.c for the analytic one): steps at unchanged inputs run as one
-compiled call without entering Python.  What it must not change: every output, bit for
-bit, against the same FMU stepping through Python (TRIPOD_FAST=0), also when the inputs change
-during the run (the fast path then hands back to Python and is offered again), and the step
-count the FMU logs at the end."""
+"""Compiled steps against Python's.  The contact FMU: the native layer's fast path
+(fmu_src/tripod_model/kernel.py's step) runs steps as one compiled call without entering
+Python; every output bit for bit the same FMU stepping through Python (TRIPOD_FAST=0), also
+when the inputs change during the run, and the step count the FMU logs at the end.  The
+analytic FMU runs compiled throughout, without Python (reduced_model/kernel.py under
+fmu_src/native/fmi2_native.c): every output bit for bit its reference FMU's (the pythonfmu
+slave running the same kernel as Python, build/reference/), and the same end-of-run log."""
 import json
 import os
 import subprocess
@@ -12,7 +13,7 @@ import sys
 import numpy as np
 import pytest
 
-from harness.fmus import ensure_fmu
+from harness.fmus import ensure_fmu, reference_fmu
 
 _RUN = r'''
 import json, sys, numpy as np
@@ -47,9 +48,17 @@ print(json.dumps([m for m in logs if m.startswith("communication steps:")]))
 '''
 
 
+ANALYTIC = "TripodRollerAnalytic"
+
+
+def _fmu(name, fast):
+    """The FMU a run takes: the analytic FMU's reference (Python) for the slow run."""
+    return reference_fmu(name) if name == ANALYTIC and fast == "0" else ensure_fmu(name)
+
+
 def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
     out = str(tmp_path / f"r{fast}.npy")
-    req = {"fmu": str(ensure_fmu(fmu)), "sv": sv, "out": out,
+    req = {"fmu": str(_fmu(fmu, fast)), "sv": sv, "out": out,
            "ramp": "steps" if ramp is True else ramp}
     p = subprocess.run([sys.executable, "-c", _RUN, json.dumps(req)], capture_output=True,
                        text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
@@ -86,14 +95,13 @@ def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
                          ids=["traverse-table", "eqs18-27-three-rollers", "theta-steps",
                               "master", "master-three-rollers", "master-torque",
                               "master-to-straight-and-rest"])
-def test_analytic_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
-    """The analytic FMU's compiled steps (analytic_step.c) against its Python step: the table's
-    interpolation and Eqs. (18)-(27) alike, across input changes, and the compiled march
-    (Traverse.march) under a master that moves the inputs every step, down to theta = 0,
-    omega = 0 and from no load."""
-    slow, _, slow_said, slow_steps = _run(tmp_path, sv, "0", ramp, "TripodRollerAnalytic")
-    fast, _, fast_said, steps = _run(tmp_path, sv, "1", ramp, "TripodRollerAnalytic")
-    assert (slow_said, fast_said) == (0, 1)
+def test_analytic_native_is_bitwise_its_reference(tmp_path, sv, ramp):
+    """The analytic FMU compiled, without Python, against its reference FMU (the same kernel
+    as Python): the table's interpolation and Eqs. (18)-(27) alike, across input changes, and
+    the march under a master that moves the inputs every step, down to theta = 0, omega = 0
+    and from no load."""
+    slow, _, _, slow_steps = _run(tmp_path, sv, "0", ramp, ANALYTIC)
+    fast, _, _, steps = _run(tmp_path, sv, "1", ramp, ANALYTIC)
     assert slow.shape == fast.shape and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 3]) > 0.1     # Fz (columns time, Fx, Fy, Fz, ...) moves
     # one table at the start; once theta moves the slide is stepped in time (no new tables)
@@ -102,12 +110,7 @@ def test_analytic_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     tail = f"; traverse tables derived: {tables}" + (
         "; the slide stepped in time since the inputs moved"
         if ramp and sv.get("traverse") is not False else "")
-    assert slow_steps == ["communication steps: 0 compiled, 2000 through Python" + tail], \
-        slow_steps
-    if not ramp:
-        assert steps == ["communication steps: 1999 compiled, 1 through Python" + tail], steps
-    else:   # Python takes the first step and the one that starts the march, no other
-        assert steps == ["communication steps: 1998 compiled, 2 through Python" + tail], steps
+    assert slow_steps == steps == ["communication steps: 2000" + tail], (slow_steps, steps)
 
 
 def test_analytic_input_table_at_a_constant_value_is_no_input(tmp_path):
@@ -255,7 +258,7 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     shaft angle set for each step's end), the layer derives omega as the slave's step does."""
     runs = {}
     for fast in ("0", "1"):
-        p = subprocess.run([sys.executable, "-c", _VARYING, str(ensure_fmu(fmu)),
+        p = subprocess.run([sys.executable, "-c", _VARYING, str(_fmu(fmu, fast)),
                             json.dumps({"ints": ints, "move": move, "angle": angle})],
                            capture_output=True,
                            text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
@@ -268,9 +271,11 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     if angle:   # the whirl follows the master's angle (to rounding: 1e-9 rad of up to 15 rad)
         tt = np.cumsum(np.random.default_rng(7).uniform(2e-5, 2e-4, 1500))
         assert np.allclose(fast[:, 3], 62.8 * (tt + tt ** 2), rtol=0, atol=1e-9)
+    if fmu == ANALYTIC:     # compiled throughout: the reference's log
+        assert slow_steps == fast_steps and "communication steps: 1500" in fast_steps[0]
+        return
     assert "communication steps: 0 compiled, 1500 through Python" in slow_steps[0], slow_steps
-    # Python takes the first step only (the inputs move from it on: the analytic FMU's march
-    # starts there)
+    # Python takes the first step only (the inputs move from it on)
     assert "communication steps: 1499 compiled, 1 through Python" in fast_steps[0], fast_steps
 
 
@@ -297,7 +302,8 @@ def test_driving_by_angle_out_of_omega_range_is_refused_on_the_compiled_path(fmu
     assert p.returncode == 0, p.stderr[-3000:]
     r = json.loads(p.stdout.strip().splitlines()[-1])
     assert r["status"] != "OK" and r["after"] == r["before"], r
-    assert "run compiled" in p.stdout, p.stdout[-2000:]
+    assert ("run compiled" if fmu == "TripodRoller" else "compiled model, no Python") \
+        in p.stdout, p.stdout[-2000:]
     assert "omega" in p.stdout and "allowed range" in p.stdout, p.stdout[-2000:]
 
 
@@ -354,7 +360,7 @@ def test_a_rollback_every_step_runs_compiled_bitwise_the_python_step(fmu, ints, 
     a scratch copy)."""
     runs = {}
     for fast, plain in (("0", False), ("1", False), ("1", True)):
-        p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(ensure_fmu(fmu)),
+        p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(_fmu(fmu, fast)),
                             json.dumps({"ints": ints, "move": move, "angle": angle,
                                         "plain": plain, "hold": hold})],
                            capture_output=True, text=True, env=dict(os.environ, TRIPOD_FAST=fast),
@@ -407,15 +413,13 @@ print(json.dumps(out))
 @pytest.mark.parametrize("case", ["coast", "reverse", "coast-by-load", "tip-out"])
 def test_coast_and_reverse_run_compiled_bitwise_the_python_step(case):
     """Coast (torque or F_press below 0) and reverse whirl under a master that moves every
-    input at a varying step: the analytic FMU's compiled march runs them as its Python step
-    does, drive at the opposite whirl turned about the trunnion axis, bit for bit; every step
-    after the first runs compiled, and a torque through zero sends the one step where the
-    load changes sides through Python (before, coast and reverse stepped through Python:
-    68 us a step against 10 us, three rollers)."""
+    input at a varying step, through a tip-out: the analytic FMU's compiled march runs them as
+    its reference's Python does, drive at the opposite whirl turned about the trunnion axis,
+    bit for bit."""
     runs = {}
     for fast in ("0", "1"):
         p = subprocess.run([sys.executable, "-c", _QUADRANTS,
-                            str(ensure_fmu("TripodRollerAnalytic")), json.dumps({"case": case})],
+                            str(_fmu(ANALYTIC, fast)), json.dumps({"case": case})],
                            capture_output=True, text=True,
                            env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
         assert p.returncode == 0, p.stderr[-3000:]
@@ -424,6 +428,4 @@ def test_coast_and_reverse_run_compiled_bitwise_the_python_step(case):
     (slow, _), (fast, fast_steps) = runs["0"], runs["1"]
     assert slow.shape == fast.shape == (1500, 13) and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 3]) > 1.0 and np.isfinite(fast).all()
-    through_python = 2 if case == "tip-out" else 1
-    assert (f"communication steps: {1500 - through_python} compiled, {through_python} through "
-            "Python") in fast_steps[0], fast_steps
+    assert runs["0"][1] == fast_steps and "communication steps: 1500" in fast_steps[0]

@@ -1,13 +1,15 @@
 /* A plain FMI 2.0 co-simulation host, one source for Linux (dlopen) and Windows (LoadLibraryW;
    cross-compiled with mingw-w64 and run under wine64 by tests/test_native_fmu.py), as a
    driveline tool loads an FMU that needs nothing else.  Runs STEPS steps of DT, a master moving
-   every input every step (input k at (k + 1) 100 sin((k + 1) 7 t)), and writes every output
+   every input every step (input k at (k + 1) 100 sin((k + 1) 7 t), or given as
+   VR:OFFSET:AMPLITUDE:RATE, OFFSET + AMPLITUDE sin(RATE t)), and writes every output
    after every step to OUT (doubles); takes the FMU state halfway, serialises and deserialises
    it, runs the second half again from it, and checks the outputs bit for bit.  Then prints
    whether a Python library is in the process, and two times: from the start of the program
    (before the binary is loaded) to the first step done, and the mean of the steps after it.
 
-   usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS   (VRS: comma-separated) */
+   usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS [INTS]   (VRS: comma-separated;
+   INTS: VR=VALUE,... Integer parameters set before initialisation) */
 #ifndef _WIN32
 #define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 */
 #endif
@@ -114,18 +116,40 @@ static int parse_vrs(const char *s, fmi2ValueReference *vr, int max)
 F(fmi2Instantiate) F(fmi2FreeInstance) F(fmi2SetupExperiment) F(fmi2EnterInitializationMode)
 F(fmi2ExitInitializationMode) F(fmi2Terminate) F(fmi2DoStep) F(fmi2GetReal) F(fmi2SetReal)
 F(fmi2GetFMUstate) F(fmi2SetFMUstate) F(fmi2FreeFMUstate) F(fmi2SerializedFMUstateSize)
-F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate)
+F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate) F(fmi2SetInteger)
 #undef F
 
 static fmi2ValueReference g_in[32], g_out[64];
+static double g_offset[32], g_amp[32], g_rate[32];
 static int g_nin, g_nout;
+
+/* the inputs "VR[:OFFSET:AMPLITUDE:RATE],...": each one's signal */
+static int parse_inputs(const char *s)
+{
+    int n = 0;
+    while (s && *s && n < 32) {
+        char *end;
+        g_in[n] = (fmi2ValueReference)strtoul(s, &end, 10);
+        g_offset[n] = 0.0;
+        g_amp[n] = (n + 1) * 100.0;
+        g_rate[n] = (n + 1) * 7.0;
+        if (*end == ':') {
+            g_offset[n] = strtod(end + 1, &end);
+            if (*end == ':') g_amp[n] = strtod(end + 1, &end);
+            if (*end == ':') g_rate[n] = strtod(end + 1, &end);
+        }
+        ++n;
+        s = *end == ',' ? end + 1 : NULL;
+    }
+    return n;
+}
 
 /* steps k0 .. k1 - 1 of dt, the outputs after each into rows */
 static int run(fmi2Component c, int k0, int k1, double dt, double *rows)
 {
     for (int k = k0; k < k1; ++k) {
         double t = k * dt, u[32];
-        for (int i = 0; i < g_nin; ++i) u[i] = (i + 1) * 100.0 * sin((i + 1) * 7.0 * t);
+        for (int i = 0; i < g_nin; ++i) u[i] = g_offset[i] + g_amp[i] * sin(g_rate[i] * t);
         if (fmi2SetReal(c, g_in, (size_t)g_nin, u) != fmi2OK) return 0;
         if (fmi2DoStep(c, t, dt, fmi2True) != fmi2OK) return 0;
         if (fmi2GetReal(c, g_out, (size_t)g_nout, rows + (size_t)k * g_nout) != fmi2OK) return 0;
@@ -137,8 +161,8 @@ static int run(fmi2Component c, int k0, int k1, double dt, double *rows)
 int main(int argc, char **argv)
 {
     double t_start = now();
-    if (argc != 8) {
-        fprintf(stderr, "usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS\n");
+    if (argc != 8 && argc != 9) {
+        fprintf(stderr, "usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS [INTS]\n");
         return 2;
     }
 #ifndef _WIN32
@@ -153,11 +177,11 @@ int main(int argc, char **argv)
     F(fmi2Instantiate) F(fmi2FreeInstance) F(fmi2SetupExperiment) F(fmi2EnterInitializationMode)
     F(fmi2ExitInitializationMode) F(fmi2Terminate) F(fmi2DoStep) F(fmi2GetReal) F(fmi2SetReal)
     F(fmi2GetFMUstate) F(fmi2SetFMUstate) F(fmi2FreeFMUstate) F(fmi2SerializedFMUstateSize)
-    F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate)
+    F(fmi2SerializeFMUstate) F(fmi2DeSerializeFMUstate) F(fmi2SetInteger)
 #undef F
     int steps = atoi(argv[3]);
     double dt = atof(argv[4]);
-    g_nin = parse_vrs(argv[6], g_in, 32);
+    g_nin = parse_inputs(argv[6]);
     g_nout = parse_vrs(argv[7], g_out, 64);
     if (steps < 2 || !(dt > 0)) return 2;
     double *rows = calloc((size_t)steps * g_nout, sizeof *rows);
@@ -173,7 +197,15 @@ int main(int argc, char **argv)
     check("instantiate", c != NULL);
     if (!c || !rows || !again) return 1;
     check("initialise", fmi2SetupExperiment(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK &&
-                        fmi2EnterInitializationMode(c) == fmi2OK &&
+                        fmi2EnterInitializationMode(c) == fmi2OK);
+    for (const char *s = argc == 9 ? argv[8] : NULL; s && *s;) {   /* VR=VALUE,... */
+        char *end;
+        fmi2ValueReference vr = (fmi2ValueReference)strtoul(s, &end, 10);
+        fmi2Integer value = *end == '=' ? (fmi2Integer)strtol(end + 1, &end, 10) : 0;
+        check("set integer", fmi2SetInteger(c, &vr, 1, &value) == fmi2OK);
+        s = *end == ',' ? end + 1 : NULL;
+    }
+    check("initialised", 
                         fmi2ExitInitializationMode(c) == fmi2OK);
     int half = steps / 2;
     check("first half", run(c, 0, half, dt, rows));
