@@ -1,11 +1,12 @@
-"""The FMU that needs no Python beside the same model through Python: the powertrain FMU
-(compiled model under fmu_src/native/fmi2_native.c) and its reference (the pythonfmu slave
-under the Python layer, build/reference/), each run by the plain C host tests/c_host/fmu_run.c
-in fresh processes: the time from the program's start (before the binary is loaded) to the
-first step done, and the cost of a step after it (setReal of four inputs, doStep, getReal of
-ten outputs, under a master moving every input every step).  Medians of interleaved runs;
-prints a markdown table and writes it into docs/benchmarks.md (between the native-speed
-markers).
+"""The FMUs that need no Python beside the same models through Python: the powertrain FMU and
+the analytic joint FMU (compiled models under fmu_src/native/fmi2_native.c) and their
+references (the pythonfmu slaves under the Python layer, build/reference/), each run by the
+plain C host tests/c_host/fmu_run.c in fresh processes: the time from the program's start
+(before the binary is loaded) to the first step done, and the cost of a step after it (setReal
+of the inputs a master moves, doStep, getReal of every Real output).  The analytic FMU with one
+and three rollers, at fixed inputs (its settled table) and with a master moving theta, omega and
+the torque every step (its slide stepped in time).  Medians of interleaved runs; prints a
+markdown table and writes it into docs/benchmarks.md (between the native-speed markers).
 
     python -m benchmarks.native_fmu_speed [--runs N] [--no-docs]
 """
@@ -22,20 +23,35 @@ from pathlib import Path
 from fmpy import read_model_description
 
 from harness.docgen import write_marked
-from harness.fmus import builder, ensure_fmu
+from harness.fmus import builder, ensure_fmu, reference_fmu
 
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
 DOC = ROOT / "docs" / "benchmarks.md"
 STEPS = 4000
+# the analytic FMU's master: theta, omega [rad/s] and torque [N m] moving every step
+MOVING = {"theta": (0.17, 0.05, 3.0), "omega": (62.8, 20.0, 5.0), "torque": (300.0, 100.0, 7.0)}
+# (model, inputs the master moves: None every input (the host's default signals), Integer
+# parameters, what the row says)
+CASES = (("Powertrain", None, {}, "launch, every input moving"),
+         ("TripodRollerAnalytic", {}, {}, "1 roller, fixed inputs"),
+         ("TripodRollerAnalytic", MOVING, {}, "1 roller, inputs moving"),
+         ("TripodRollerAnalytic", {}, {"n_rollers": 3}, "3 rollers, fixed inputs"),
+         ("TripodRollerAnalytic", MOVING, {"n_rollers": 3}, "3 rollers, inputs moving"))
 
 
-def _time(host, binary, md, out):
-    ins = ",".join(str(v.valueReference) for v in md.modelVariables if v.causality == "input")
+def _time(host, binary, md, out, spec, ints):
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    ins = [v for v in md.modelVariables if v.causality == "input"]
+    if spec is None:
+        inputs = ",".join(str(v.valueReference) for v in ins)
+    else:
+        inputs = ",".join(f"{vr[n]}:{o!r}:{a!r}:{w!r}" for n, (o, a, w) in spec.items())
     outs = ",".join(str(v.valueReference) for v in md.modelVariables
-                    if v.causality == "output")
-    p = subprocess.run([str(host), str(binary), md.guid, str(STEPS), "1e-4", str(out), ins,
-                        outs], capture_output=True, text=True, timeout=600)
+                    if v.causality == "output" and v.type == "Real")
+    sets = [",".join(f"{vr[k]}={v}" for k, v in ints.items())] if ints else []
+    p = subprocess.run([str(host), str(binary), md.guid, str(STEPS), "1e-4", str(out), inputs,
+                        outs, *sets], capture_output=True, text=True, timeout=600)
     if p.returncode != 0:
         raise RuntimeError(p.stdout + p.stderr)
     t = {ln.split()[1]: float(ln.split()[2]) for ln in p.stdout.splitlines()
@@ -44,34 +60,35 @@ def _time(host, binary, md, out):
 
 
 def table(runs=5) -> str:
-    fmus = {"compiled, no Python (build/Powertrain.fmu)": ensure_fmu("Powertrain"),
-            "through Python (build/reference/Powertrain.fmu)":
-                builder().reference_path("Powertrain")}
+    rows = []       # (label, fmu, binary, model description, spec, ints)
     with tempfile.TemporaryDirectory() as tmp:
         host = Path(tmp) / "fmu_run"
         subprocess.run([os.environ.get("CC") or "cc", "-std=c99", "-O2",
                         f"-I{builder()._fmi_headers()}", str(HOST), "-o", str(host), "-lm",
                         "-ldl"], check=True)
-        bins, mds = {}, {}
-        for label, fmu in fmus.items():
-            d = Path(tmp) / str(len(bins))
-            zipfile.ZipFile(fmu).extractall(d)
-            bins[label] = d / "binaries" / "linux64" / "Powertrain.so"
-            mds[label] = read_model_description(str(fmu))
-        got = {label: [] for label in fmus}
+        for model, spec, ints, what in CASES:
+            for kind, fmu in (("compiled, no Python", ensure_fmu(model)),
+                              ("through Python (reference)", reference_fmu(model))):
+                d = Path(tmp) / str(len(rows))
+                zipfile.ZipFile(fmu).extractall(d)
+                rows.append((f"{model}: {what}; {kind}", fmu,
+                             d / "binaries" / "linux64" / f"{model}.so",
+                             read_model_description(str(fmu)), spec, ints))
+        got = {r[0]: [] for r in rows}
         for _ in range(runs):
-            for label in fmus:
-                got[label].append(_time(host, bins[label], mds[label], Path(tmp) / "o.bin"))
+            for label, _, binary, md, spec, ints in rows:
+                got[label].append(_time(host, binary, md, Path(tmp) / "o.bin", spec, ints))
     lines = [f"Generated by `python -m benchmarks.native_fmu_speed --runs {runs}` (medians of "
              f"{runs} fresh processes each, interleaved; {STEPS} steps of 1e-4 s).", "",
-             "| powertrain FMU | load to first step [ms] | per step [us] | Python in the "
+             "| FMU, scene, binary | load to first step [ms] | per step [us] | Python in the "
              "host process | size [kB] |", "|---|---|---|---|---|"]
-    for label, rows in got.items():
-        first = statistics.median(r[0] for r in rows) * 1e3
-        step = statistics.median(r[1] for r in rows)
+    for label, fmu, *_ in rows:
+        r = got[label]
+        first = statistics.median(x[0] for x in r) * 1e3
+        step = statistics.median(x[1] for x in r)
         lines.append(f"| {label} | {first:.2f} | {step:.2f} | "
-                     f"{'no' if all(r[2] for r in rows) else 'yes'} | "
-                     f"{fmus[label].stat().st_size / 1024:.0f} |")
+                     f"{'no' if all(x[2] for x in r) else 'yes'} | "
+                     f"{fmu.stat().st_size / 1024:.0f} |")
     return "\n".join(lines)
 
 

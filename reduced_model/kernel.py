@@ -965,17 +965,17 @@ def step(P, IN, X, OUT, W, t, h):
         if not (IN_LO[OMEGA] <= w <= IN_HI[OMEGA]):
             return 5
     prepare(P, IN, X, W)
-    if X[X_HAS_DT] == 0.0 or not same_step(h, X[X_DT], t):
-        X[X_DT] = h
-        X[X_HAS_DT] = 1.0
-    dt = X[X_DT]
+    # a step that differs from the last one by the rounding of the master's times is that step
+    dt = h if (X[X_HAS_DT] == 0.0 or not same_step(h, X[X_DT], t)) else X[X_DT]
     O = X[X_OP:X_OP + O_LEN]
     n = int(P[N_ROLLERS])
+    if X[X_MODE] == MODE_MARCH and substeps(O, dt) > MAX_SUBSTEPS:
+        # refused before it starts (a host's huge step): the slide and the step as they were
+        note(W, NOTE_TOO_LONG, dt, 2.0 * math.pi / (abs(O[O_W]) * N_PER_CYCLE), 0.0, 0.0)
+        return 3
+    X[X_DT] = dt
+    X[X_HAS_DT] = 1.0
     if X[X_MODE] == MODE_MARCH:
-        nd = substeps(O, dt)
-        if nd > MAX_SUBSTEPS:     # refused before it starts (a host's huge step)
-            note(W, NOTE_TOO_LONG, dt, 2.0 * math.pi / (abs(O[O_W]) * N_PER_CYCLE), 0.0, 0.0)
-            return 3
         for i in range(n):
             x = march(O, X, X_MARCH + R_LEN * i, mirrored(X, X[X_WHIRL + i]), dt)
             X[X_WHIRL + i] = mirrored(X, x)

@@ -144,9 +144,12 @@ def test_c_host_bounds_the_wait_for_its_python(c_host, tmp_path):
     hang.chmod(0o755)
     env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(hang), TRIPOD_THRUST_PYTHON_TIMEOUT="2")
     t0 = time.monotonic()
-    p = _host(c_host, "TripodRollerAnalytic", tmp_path / "fz.txt", env=env)
+    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env)
     assert time.monotonic() - t0 < 30
     assert "did not answer within 2 s" in p.stdout + p.stderr, p.stdout + p.stderr[-2000:]
+    # the analytic FMU starts no Python: the same environment does not touch it
+    p = _host(c_host, "TripodRollerAnalytic", tmp_path / "fz2.txt", env=env)
+    assert p.returncode == 0 and "0 failed" in p.stdout, p.stdout + p.stderr[-2000:]
 
 
 _GET_EARLY = r'''

@@ -1,0 +1,115 @@
+"""reduced_model/kernel.py, the analytic FMU's one source: run as Python (the reference FMU, the
+reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
+the Python reports and the table's checks word; its state check refuses what it cannot step."""
+import math
+
+import numpy as np
+import pytest
+
+from reduced_model import kernel as K
+from reduced_model import scene as sc
+from reduced_model.traverse import outside_checked
+
+
+@pytest.fixture(scope="module")
+def compiled():
+    pytest.importorskip("numba")
+    return K.compiled_namespace()
+
+
+def _arrays(over):
+    vals = sc.defaults("analytic")
+    vals.update(over)
+    P = np.array([float(vals[n]) for n in K.PARAM_NAMES])
+    IN = np.array([float(vals[n]) for n in K.INPUT_NAMES])
+    return P, IN, np.zeros(K.X_LEN), np.zeros(K.OUT_LEN), np.zeros(K.W_LEN)
+
+
+def _ramp(i, v):
+    return {"theta": v["theta"] + 1e-4 * i, "omega": v["omega"] * (1 + 1e-3 * i)}
+
+
+SCENES = {   # name: (parameters and start inputs, the inputs at step i)
+    "table": ({}, lambda i, v: {}),
+    "march": ({}, _ramp),
+    "three-rollers": ({"n_rollers": 3}, _ramp),
+    "reverse": ({"omega": -60.0}, lambda i, v: {}),
+    "coast-through-zero": ({"torque": -300.0}, lambda i, v: {"torque": -300.0 + 3 * i}),
+    "eqs-18-27": ({"traverse": False, "n_rollers": 3}, _ramp),
+    "plunge": ({"plunge_speed": 0.05}, _ramp),
+    "launch": ({"torque": 3000.0, "theta": 0.4, "omega": 3.0}, _ramp),
+    "by-angle": ({"drive_by_angle": True}, lambda i, v: {"shaft_angle": 62.8e-4 * (i + 1)}),
+}
+
+
+@pytest.mark.parametrize("name", sorted(SCENES))
+def test_compiled_and_python_give_the_same_bits(name, compiled):
+    """init and 200 steps (a varying step size) with the inputs moving: every output and every
+    state value equal to the last bit, compiled against Python."""
+    over, inputs = SCENES[name]
+    vals = dict(sc.defaults("analytic"), **over)
+    a, b = _arrays(over), _arrays(over)
+    assert K.init(*a) == compiled["init"](*b) == 1
+    for k in (2, 3):
+        assert np.array_equal(a[k], b[k])
+    t = 0.0
+    rng = np.random.default_rng(1)
+    for i in range(200):
+        h = float(rng.uniform(5e-5, 2e-4))
+        for n, v in inputs(i, vals).items():
+            a[1][K.INPUT_NAMES.index(n)] = b[1][K.INPUT_NAMES.index(n)] = v
+        assert K.step(*a, t, h) == compiled["step"](*b, t, h) == 1
+        t += h
+        assert np.array_equal(a[2], b[2]) and np.array_equal(a[3], b[3]), i
+    assert np.ptp(a[3][:K.FZ + 1]) > 0 and np.isfinite(a[3]).all()
+
+
+def test_the_notes_word_what_the_reports_word():
+    """The FMU's warning at the start names what the CLI's report names outside the checked
+    range; a parameter relation is refused in the table's words (scene.validate)."""
+    over = {"omega": 500.0, "torque": 13.2, "r_roller": 0.0185, "r_groove": 0.0188}
+    P, IN, X, OUT, W = _arrays(over)
+    assert K.init(P, IN, X, OUT, W) == 1
+    [(level, text)] = K.notes_text(W)
+    assert level == K.WARNING
+    assert text.split(": ", 1)[1].split("; ") == \
+        outside_checked(sc.validate(over, "analytic"))
+    for bad in ({"r_groove": 0.018}, {"r_bore": 0.02}, {"n_rollers": 2}, {"mu_groove": 1.0}):
+        P, IN, X, OUT, W = _arrays(bad)
+        assert K.init(P, IN, X, OUT, W) == 3
+        with pytest.raises(ValueError) as e:
+            sc.validate(bad, "analytic")
+        assert K.notes_text(W) == [(K.ERROR, str(e.value))]
+
+
+def test_a_state_it_cannot_step_is_refused():
+    """kernel.state_problem: a mode, flag or count the model never writes; an operating
+    point's input out of range; a march row's p beyond mu_groove (|p| <= mu: T3); a step not
+    above 0.  A state the model wrote passes."""
+    P, IN, X, OUT, W = _arrays({})
+    K.init(P, IN, X, OUT, W)
+    IN[K.THETA] += 0.01
+    K.step(P, IN, X, OUT, W, 0.0, 1e-4)          # the march
+    assert K.state_problem(P, X) == 0
+    for slot, value, code in ((K.X_MODE, 7.0, 1), (K.X_HAS_DT, 0.5, 1),
+                              (K.X_KEY + K.OMEGA, 2e4, 2),
+                              (K.X_MARCH + K.R_P, 2 * P[K.MU_GROOVE], 3), (K.X_DT, -1e-4, 4)):
+        bad = X.copy()
+        bad[slot] = value
+        assert K.state_problem(P, bad) == code, K.STATE_PROBLEMS[code]
+
+
+def test_a_step_too_long_is_refused_before_it_starts():
+    """More than MAX_SUBSTEPS substeps of the table's spacing (the march): refused, the state
+    untouched, the note naming the step and the substep."""
+    P, IN, X, OUT, W = _arrays({})
+    K.init(P, IN, X, OUT, W)
+    IN[K.THETA] += 0.01
+    K.step(P, IN, X, OUT, W, 0.0, 1e-4)
+    before = X.copy()
+    assert K.step(P, IN, X, OUT, W, 1e-4, 1e6) == 3
+    [(level, text)] = K.notes_text(W)
+    h = 2 * math.pi / (20 * math.pi * K.N_PER_CYCLE)
+    assert level == K.ERROR and text.startswith(f"the communication step of 1e+06 s in "
+                                                f"substeps of {h:.3g} s needs more than")
+    assert np.array_equal(X, before)
