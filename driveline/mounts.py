@@ -199,31 +199,17 @@ COMPILED = ("launch_torque", "wheel_speed", "housing_force", "generalised_force"
 
 
 def c_functions():
-    """init and step as C functions int32_t f(double **args), args = (P, IN, X, OUT, W, TH)
-    (numba cfuncs, IEEE arithmetic: error_model numpy), for fmu_src/aot.py."""
+    """init and step as the native layer's C functions (reduced_model/cfuncs.py; numba, IEEE
+    arithmetic: error_model numpy), for fmu_src/aot.py."""
     import types
 
     import numba as nb
-    from numba import carray
+
+    from reduced_model.cfuncs import c_functions as wrap
 
     g = dict(globals())     # compiled copies: this module's functions stay plain Python
     for name in COMPILED:
         f = g[name]
         g[name] = nb.njit(error_model="numpy")(
             types.FunctionType(f.__code__, g, f.__name__, f.__defaults__, f.__closure__))
-    init_c, step_c = g["init"], g["step"]
-    sig = nb.types.int32(nb.types.CPointer(nb.types.CPointer(nb.types.float64)))
-
-    def c_init(args):
-        return init_c(carray(args[0], (P_LEN,)), carray(args[1], (IN_LEN,)),
-                      carray(args[2], (X_LEN,)), carray(args[3], (OUT_LEN,)),
-                      carray(args[4], (W_LEN,)))
-
-    def c_step(args):
-        th = carray(args[5], (2,))
-        return step_c(carray(args[0], (P_LEN,)), carray(args[1], (IN_LEN,)),
-                      carray(args[2], (X_LEN,)), carray(args[3], (OUT_LEN,)),
-                      carray(args[4], (W_LEN,)), th[0], th[1])
-
-    return {"init": nb.cfunc(sig, error_model="numpy")(c_init),
-            "step": nb.cfunc(sig, error_model="numpy")(c_step)}
+    return wrap(g, (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))

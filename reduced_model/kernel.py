@@ -1074,37 +1074,10 @@ def compiled_namespace():
 
 
 def c_functions():
-    """init, step, end and check_state as C functions int32_t f(double **args), args = (P, IN,
-    X, OUT, W, TH) (numba cfuncs), for fmu_src/aot.py."""
-    import numba as nb
-    from numba import carray
-
-    g = compiled_namespace()
-    init_c, step_c, end_c, problem_c = g["init"], g["step"], g["end"], g["state_problem"]
-    sig = nb.types.int32(nb.types.CPointer(nb.types.CPointer(nb.types.float64)))
-
-    def c_init(args):
-        return init_c(carray(args[0], (P_LEN,)), carray(args[1], (IN_LEN,)),
-                      carray(args[2], (X_LEN,)), carray(args[3], (OUT_LEN,)),
-                      carray(args[4], (W_LEN,)))
-
-    def c_step(args):
-        th = carray(args[5], (2,))
-        return step_c(carray(args[0], (P_LEN,)), carray(args[1], (IN_LEN,)),
-                      carray(args[2], (X_LEN,)), carray(args[3], (OUT_LEN,)),
-                      carray(args[4], (W_LEN,)), th[0], th[1])
-
-    def c_end(args):
-        return end_c(carray(args[0], (P_LEN,)), carray(args[1], (IN_LEN,)),
-                     carray(args[2], (X_LEN,)), carray(args[3], (OUT_LEN,)),
-                     carray(args[4], (W_LEN,)))
-
-    def c_check(args):
-        return problem_c(carray(args[0], (P_LEN,)), carray(args[2], (X_LEN,)))
-
-    return {name: nb.cfunc(sig, error_model="numpy")(f)
-            for name, f in (("init", c_init), ("step", c_step), ("end", c_end),
-                            ("check_state", c_check))}
+    """init, step, end and check_state as the native layer's C functions (cfuncs.py), for
+    fmu_src/aot.py."""
+    from .cfuncs import c_functions as wrap
+    return wrap(compiled_namespace(), (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))
 
 
 def native_layout() -> dict:
