@@ -50,8 +50,14 @@ def _param_epilog(model: str, params=None) -> str:
     return "\n".join(rows)
 
 
+JOINT_HELP = ("a joint file (TOML or JSON; joints/ holds the paper's, a small car's and a light "
+              "truck's): the joint's geometry, masses, materials, friction and needle row; "
+              "--scene and --set override it (docs/getting-started.md)")
+
+
 def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.epilog = _param_epilog(model)
+    p.add_argument("--joint", metavar="FILE", help=JOINT_HELP)
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                    help="set a parameter in SI units (repeatable; names, units, defaults and "
                         "ranges below)")
@@ -59,9 +65,15 @@ def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.add_argument("--whirl-hz", type=float, metavar="HZ", help="whirl frequency in Hz (omega = 2 pi f)")
 
 
-def overrides_from(args) -> dict:
-    """Scene overrides from --set and the unit-named convenience options (SI values)."""
+def overrides_from(args, model: str = "contact") -> dict:
+    """Scene overrides (SI values) for ``model``: the joint file's (--joint), then the scene
+    file's (--scene), then --set and the unit-named convenience options."""
     out: dict = {}
+    if getattr(args, "joint", None):
+        from reduced_model.joint import for_model, load_joint
+        out.update(for_model(load_joint(args.joint), model))
+    if getattr(args, "scene", None):
+        out.update(_load_scene_file(args.scene))
     for item in args.set:
         if "=" not in item:
             raise ValueError(f"--set expects NAME=VALUE, got '{item}'")
@@ -141,7 +153,7 @@ def format_analytic(r: dict) -> str:
 
 def cmd_analytic(args) -> int:
     from reduced_model.analysis import analytic_report
-    r = analytic_report(overrides_from(args))
+    r = analytic_report(overrides_from(args, "analytic"))
     print(json.dumps(r, indent=2) if args.json else format_analytic(r))
     return 0
 
@@ -168,9 +180,7 @@ def _load_scene_file(path) -> dict:
 
 def cmd_compare(args) -> int:
     from harness.compare import compare, format_table
-    over = _load_scene_file(args.scene) if args.scene else {}
-    over.update(overrides_from(args))
-    r = compare(over, max_cycles=args.max_cycles, dt=_dt(args))
+    r = compare(overrides_from(args), max_cycles=args.max_cycles, dt=_dt(args))
     if args.out:
         from harness.plots import compare_plots
         compare_plots(r, args.out)
@@ -198,7 +208,7 @@ def cmd_sweep(args) -> int:
     if not args.grid:
         raise ValueError("--grid NAME=START:STOP:N is required (repeat it for more parameters)")
     grid = dict(sw.parse_grid(g) for g in args.grid)
-    base = overrides_from(args)
+    base = overrides_from(args, args.model)
     rows = sw.sweep(grid, base, model=args.model, max_cycles=args.max_cycles, dt=_dt(args),
                     scheduler=args.scheduler, workers=args.workers, progress=True)
     out = Path(args.out)
@@ -321,12 +331,40 @@ def cmd_example(args) -> int:
         raise ValueError(f"--stop = {args.stop} s, --step = {args.step} s: allowed (0, 60] s "
                          "and [1e-6, 1e-2] s, the step below the stop time")
     powertrain = E.powertrain_overrides(args.set)
-    joints = tuple(E.JOINTS) if args.joint == "both" else (args.joint,)
+    joints = tuple(E.JOINTS) if args.model == "both" else (args.model,)
     tools = E.TOOLS if args.tool == "both" else (args.tool,)
+    joint = None
+    if args.joint:
+        from reduced_model.joint import load_joint
+        joint = load_joint(args.joint)
     r = E.launch(args.out, args.stop, args.step, joints, tools, powertrain=powertrain,
-                 check_step=not args.no_step_check)
+                 check_step=not args.no_step_check, joint=joint)
     print(E.format_table(r))
     print(f"written into {args.out}: {', '.join(r['files'])}")
+    return 0
+
+
+def cmd_joint(args) -> int:
+    from reduced_model import scene as sc
+    from reduced_model.joint import for_model, load_joint
+    from reduced_model.traverse import outside_checked
+    j = load_joint(args.file)
+    start = {"TripodRoller": for_model(j, "contact"),
+             "TripodRollerAnalytic": for_model(j, "analytic")}
+    outside = outside_checked(sc.validate(for_model(j, "analytic"), "analytic"))
+    if args.json:
+        print(json.dumps({"joint": j, "start_values": start, "outside_checked": outside},
+                         indent=2))
+        return 0
+    print(f"{args.file}: a joint of pitch circle diameter {2e3 * j['s']:.1f} mm")
+    for k, v in j.items():
+        unit = sc.BY_NAME[k].unit
+        print(f"  {k} = {v:g}{'' if unit == '1' else ' ' + unit}")
+    print("start values: all of them for TripodRoller.fmu; "
+          f"{', '.join(start['TripodRollerAnalytic'])} for TripodRollerAnalytic.fmu")
+    print("at the default scene (10 deg, 10 Hz, 1000 N): " +
+          ("inside the range the traverse model was checked in" if not outside else
+           "outside the range the traverse model was checked in: " + "; ".join(outside)))
     return 0
 
 
@@ -424,8 +462,9 @@ def build_parser() -> argparse.ArgumentParser:
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                    help="set a powertrain parameter in SI units (repeatable; names, units, "
                         "defaults and ranges below)")
-    p.add_argument("--joint", choices=("contact", "analytic", "both"), default="both",
-                   help="which joint FMU is in the system")
+    p.add_argument("--model", choices=("contact", "analytic", "both"), default="both",
+                   help="which joint FMU is in the system (both: one run each)")
+    p.add_argument("--joint", metavar="FILE", help=JOINT_HELP)
     p.add_argument("--tool", choices=("fmpy", "libcosim", "both"), default="both",
                    help="which co-simulation tool runs it")
     p.add_argument("--stop", type=float, default=2.5, help="end of the launch [s]")
@@ -438,6 +477,11 @@ def build_parser() -> argparse.ArgumentParser:
                      "build/Powertrain.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
     p.set_defaults(func=cmd_build)
+    p = add("joint", "check a joint file and print the FMUs' start values from it (and whether "
+                     "the analytic model was checked for such a joint)")
+    p.add_argument("file", metavar="FILE", help="a joint file (TOML or JSON; joints/ has examples)")
+    p.add_argument("--json", action="store_true", help="print one JSON object")
+    p.set_defaults(func=cmd_joint)
     p = add("params", "print the parameter table (Markdown)")
     p.set_defaults(func=cmd_params)
     p = add("analytic", "reduced (analytic) model: orders 1 and 3, closed form vs FFT")

@@ -210,7 +210,9 @@ def format_table(r: dict) -> str:
                        "max_cycles": r["_runs"]["settle"]["max_cycles"]}),
         *([f"the traverse model is OUTSIDE the range it was checked against the contact model "
            f"in (docs/validation.md): {'; '.join(r['outside_checked'])}"]
-          if r.get("outside_checked") else []),
+          if r.get("outside_checked") else
+          ["the scene is inside the range the traverse model was checked against the contact "
+           "model in (docs/validation.md)"] if r.get("against") == "traverse" else []),
         "",
         f"Fz_mod, last whole whirl cycle; order k = a sin(k w t + p); judged against the {ref_name}",
         f"{'':8s}{'analytic FMU':>22s}{'Eqs. 18-27':>22s}{'traverse model':>22s}{'contact FMU':>22s}"

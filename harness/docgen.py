@@ -12,6 +12,7 @@ one benchmark run, and the test checks that their rows are the cases today's cod
 """
 from __future__ import annotations
 
+import math
 import re
 import sys
 from pathlib import Path
@@ -56,6 +57,19 @@ def _analytic() -> str:
     from harness.cli import format_analytic
     from reduced_model.analysis import analytic_report
     return "```\n$ tripod-thrust analytic\n" + format_analytic(analytic_report({})) + "\n```"
+
+
+def _light_truck() -> str:
+    """docs/getting-started.md's worked example: the light truck's joint, its launch-like
+    scene, as `tripod-thrust analytic` and `tripod-thrust joint` print them."""
+    from harness.cli import format_analytic
+    from reduced_model.analysis import analytic_report
+    from reduced_model.joint import EXAMPLES, for_model, load_joint
+    j = for_model(load_joint(EXAMPLES / "light-truck.toml"), "analytic")
+    scene = dict(j, theta=math.radians(8), omega=2.0 * math.pi * 15, torque=600.0)
+    return ("```\n$ tripod-thrust analytic --joint joints/light-truck.toml --theta-deg 8 "
+            "--whirl-hz 15 --set torque=600\n" + format_analytic(analytic_report(scene))
+            + "\n```")
 
 
 def _traverse_grid() -> str:
@@ -138,6 +152,7 @@ def _powertrain_variables() -> str:
 
 
 EXACT = {"tripod-thrust params": _params, "tripod-thrust analytic": _analytic,
+         "getting started: light truck": _light_truck,
          "readme: speed": _readme_speed, "powertrain: variables": _powertrain_variables}
 # reproducible except for their timings (compared with the wall-time line masked)
 RUN = {"make demo": _demo}
@@ -153,8 +168,13 @@ def _contact_damping() -> str:
 
 # slow: checked by the tests that rerun them (tests/test_traverse.py, tests/test_coast.py,
 # tests/test_contact_model.py)
-SLOW_EXACT = {"traverse grid": _traverse_grid, "quadrant grid": _quadrant_grid,
-              "contact damping": _contact_damping}
+def _size_grid() -> str:
+    from harness.validation import size_markdown, size_rows
+    return size_markdown(size_rows())
+
+
+SLOW_EXACT = {"traverse grid": _traverse_grid, "size grid": _size_grid,
+              "quadrant grid": _quadrant_grid, "contact damping": _contact_damping}
 
 
 # --- measured blocks: the rows today's code would measure ----------------------------------

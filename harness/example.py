@@ -244,17 +244,24 @@ def powertrain_overrides(items) -> dict:
 
 
 def launch(out, stop=STOP, step=STEP, joints=tuple(JOINTS), tools=TOOLS, powertrain=None,
-           check_step=True, plots=True) -> dict:
+           check_step=True, plots=True, joint=None) -> dict:
     """The example: the launch with each joint model through each tool (and the contact joint
     at half the step, the convergence check), its table and, with ``plots``, its figures in
-    ``out``.  Returns {"rows": [...], "checks": {...}, "runs": {(joint, tool): result}}."""
+    ``out``; ``joint``: a joint's values (reduced_model.joint.load_joint), else the paper's.
+    Returns {"rows": [...], "checks": {...}, "runs": {(joint, tool): result}}."""
+    from reduced_model.joint import for_model
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     runs = {}
-    for joint in joints:
-        ssp = write_ssp(out / f"launch_{joint}.ssp", joint, powertrain, stop=stop)
+    for name in joints:
+        values = None
+        if joint is not None:   # the joint's values, and the creep load at its pitch circle
+            p = pt.defaults() | (powertrain or {})
+            values = for_model(joint, name) | {
+                "F_press": p["torque_creep"] / (3.0 * joint["s"])}
+        ssp = write_ssp(out / f"launch_{name}.ssp", name, powertrain, values, stop=stop)
         for tool in tools:
-            runs[joint, tool] = run_system(ssp, tool, stop, step)
+            runs[name, tool] = run_system(ssp, tool, stop, step)
     rows = [{"joint": j, "tool": t, **peak(r)} for (j, t), r in runs.items()]
     checks = {}
     first = tools[0]

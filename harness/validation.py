@@ -14,14 +14,13 @@ from reduced_model import scene as scene_mod
 from reduced_model.orders import last_cycle_orders
 from reduced_model.steady import MAX_CYCLES, MIN_CYCLES, REL_TOL, cycle_change, settled
 from reduced_model.thrust import closed_form
-from reduced_model.traverse import (GRID_RANGES, INERTIA_LIMIT, PLUNGE_RANGE, Traverse,
-                                    inertia_ratio)
+from reduced_model.traverse import INERTIA_LIMIT, Traverse, inertia_ratio
 
 from .fmus import ROOT
 
 DEG = math.pi / 180
 # the issue's micro-slip scene and the paper's scene, then a low-discrepancy grid over the
-# ranges of traverse.GRID_RANGES: theta 2-25 deg, whirl 0.5-50 Hz, F_press 300-50000 N,
+# ranges of GRID_RANGES: theta 2-25 deg, whirl 0.5-50 Hz, F_press 300-50000 N,
 # mu_groove 0.03-0.12, clearance 0.05-0.8 mm
 NAMED = {
     "paper (section 3.1)": {},
@@ -32,13 +31,18 @@ NAMED = {
 }
 GRID_N = 40
 PLUNGE_N = 12     # more scenes over the same ranges with a plunge speed in PLUNGE_RANGE
+# the paper's joint: the ranges the grid is drawn over, (quantity, unit, lowest, highest)
+GRID_RANGES = (("theta", "deg", 2.0, 25.0), ("whirl", "Hz", 0.5, 50.0),
+               ("pressing load", "N", 300.0, 50000.0), ("mu_groove", "", 0.03, 0.12),
+               ("groove clearance", "mm", 0.05, 0.8))
+PLUNGE_RANGE = (-0.1, 0.1)   # [m/s] the plunge speeds of the grid's plunging scenes
 
 
 def grid() -> dict:
     """{label: overrides} of the validation grid (Halton sequence, not scrambled: the same
     scenes on every machine)."""
     from scipy.stats import qmc
-    (th0, th1), (f0, f1), (p0, p1), (mu0, mu1), (c0, c1) = ((lo, hi) for _, _, lo, hi, _ in
+    (th0, th1), (f0, f1), (p0, p1), (mu0, mu1), (c0, c1) = ((lo, hi) for _, _, lo, hi in
                                                             GRID_RANGES)
     r = scene_mod.BY_NAME["r_roller"].default
     out = dict(NAMED)
@@ -160,6 +164,113 @@ def markdown(rows) -> str:
             f"{s['plunging_worst_dphase']:.1f} deg. The {s['n_beyond']} scenes beyond that "
             f"ratio: worst {100 * s['beyond_worst_rel']:.1f} %, phase within "
             f"{s['beyond_worst_dphase']:.1f} deg."]
+    return "\n".join(out)
+
+
+# joints of every size: a low-discrepancy grid over the pitch circle, the proportions about it,
+# and today's scene ranges (the load per roller with the square of the size: a joint's torque
+# capacity grows with its cube).  Published proportions (EP1707834): the outer roller's
+# diameter 0.80-0.90 of the pitch circle's; the roller's wall about 0.11 of it (the paper's
+# joint as the project assumes it: 0.15); the groove clearance 0.05-0.8 mm at the paper's roller.
+SIZE_N = 48
+SIZE_RANGES = (("pitch circle diameter", "mm", 30.0, 75.0),
+               ("r_roller / s", "", 0.80, 0.90),
+               ("r_bore / r_roller", "", 0.60, 0.78),
+               ("clearance / r_roller", "", 0.05 / 19.0, 0.8 / 19.0),
+               ("theta", "deg", 2.0, 25.0),
+               ("whirl", "Hz", 0.5, 50.0),
+               ("load / size^2", "N", 300.0, 50000.0),
+               ("mu_groove", "", 0.03, 0.12))
+
+
+def size_scene(u) -> dict:
+    """The scene (overrides) at the unit point u of SIZE_RANGES: linear in the proportions,
+    the angle and friction, logarithmic in size, clearance, whirl and load."""
+    lin = lambda k: SIZE_RANGES[k][2] + (SIZE_RANGES[k][3] - SIZE_RANGES[k][2]) * u[k]
+    log = lambda k: SIZE_RANGES[k][2] * (SIZE_RANGES[k][3] / SIZE_RANGES[k][2]) ** u[k]
+    d = scene_mod.defaults("contact")
+    f = log(0) / (2e3 * d["s"])                   # the size against the paper's joint
+    s = d["s"] * f
+    r = lin(1) * s
+    rb = lin(2) * r
+    return {"s": s, "r_roller": r, "r_bore": rb, "r_groove": r * (1.0 + log(3)),
+            "m_roller": d["m_roller"] * f ** 3, "roller_width": d["roller_width"] * f,
+            "d_needle": d["d_needle"] * f, "l_needle": d["l_needle"] * f,
+            "r_trunnion": rb - d["d_needle"] * f, "theta": lin(4) * DEG,
+            "omega": 2 * math.pi * log(5), "F_press": log(6) * f * f, "mu_groove": lin(7)}
+
+
+def size_grid() -> dict:
+    """{label: overrides}: the scaled joints of the example files and SIZE_N scenes of a Halton
+    sequence over SIZE_RANGES (not scrambled: the same scenes on every machine)."""
+    from scipy.stats import qmc
+    from reduced_model.joint import for_model, load_joint, EXAMPLES
+    out = {f"{n} joint, paper's scene": for_model(load_joint(EXAMPLES / f"{n}.toml"), "contact")
+           for n in ("small-car", "light-truck")}
+    for i, u in enumerate(qmc.Halton(len(SIZE_RANGES), scramble=False).random(SIZE_N + 1)[1:]):
+        out[f"size {i + 1}"] = size_scene(u)
+    return out
+
+
+def size_rows(scenes: dict | None = None) -> list[dict]:
+    """One row a scene of the size grid: its groups (kernel.CHECKED_RANGES), the contact model
+    and the traverse model, order 3 of Fz_mod."""
+    from reduced_model import kernel
+    from reduced_model.traverse import operating_point, params_array
+    rows = []
+    for label, ov in (scenes or size_grid()).items():
+        sc = scene_mod.validate({k: v for k, v in ov.items()
+                                 if "analytic" in scene_mod.BY_NAME[k].models}, "analytic")
+        oc, cycles, ok = contact_orders(ov)
+        tr = Traverse(sc)
+        o3 = tr.orders()[3]
+        P, O = params_array(sc), operating_point(sc)
+        groups = {name: kernel.checked_value(P, O, k)
+                  for k, (name, *_) in enumerate(kernel.CHECKED_RANGES)}
+        rows.append({"scene": label, "pitch_mm": 2e3 * sc["s"],
+                     "theta_deg": sc["theta"] / DEG, "whirl_hz": sc["omega"] / (2 * math.pi),
+                     "F_press": sc["F_press"], "groups": groups, "regime": tr.regime(),
+                     "cycles": cycles, "settled": ok, "contact": oc[3], "traverse": o3,
+                     "traverse_rel": o3[0] / oc[3][0] - 1,
+                     "traverse_dphase": _dphase(o3[1], oc[3][1]),
+                     "outside": kernel_outside(P, O)})
+    return rows
+
+
+def kernel_outside(P, O) -> list:
+    """The checked groups (kernel.CHECKED_RANGES) the scene at (P, O) leaves."""
+    from reduced_model import kernel
+    return [name for k, (name, *_) in enumerate(kernel.CHECKED_RANGES)
+            if not kernel.inside(k, kernel.checked_value(P, O, k),
+                                 kernel.checked_value(P, O, k))]
+
+
+def size_markdown(rows) -> str:
+    from reduced_model import kernel
+    names = [c[0] for c in kernel.CHECKED_RANGES if c[0] not in ("theta", "mu_groove",
+                                                                  "plunge speed")]
+    out = ["| scene | pitch circle [mm] | theta [deg] | whirl [Hz] | F_press [N] | "
+           + " | ".join(names) + " | contact order 3 [N, deg] | traverse model |",
+           "|---" * (6 + len(names)) + "|"]
+    for r in rows:
+        g = " | ".join(f"{r['groups'][n]:.3g}" for n in names)
+        out.append(f"| {r['scene']}{' (outside)' if r['outside'] else ''} | {r['pitch_mm']:.1f} "
+                   f"| {r['theta_deg']:.1f} | {r['whirl_hz']:.1f} | {r['F_press']:.0f} | {g} "
+                   f"| {r['contact'][0]:.3f} at {r['contact'][1]:.1f} "
+                   f"| {100 * r['traverse_rel']:+.1f} %, {r['traverse_dphase']:+.1f} deg |")
+    inside = [r for r in rows if not r["outside"]]
+    a = np.abs([r["traverse_rel"] for r in inside])
+    p = np.abs([r["traverse_dphase"] for r in inside])
+    worst = max(inside, key=lambda r: abs(r["traverse_rel"]))
+    beyond = [r for r in rows if r["outside"]]
+    left = sorted({g for r in beyond for g in r["outside"]})
+    out += ["", f"Traverse model against the contact model, order 3 of Fz_mod, over the "
+            f"{len(inside)} scenes inside the checked range: median "
+            f"{100 * float(np.median(a)):.1f} %, worst {100 * float(a.max()):.1f} % "
+            f"({worst['scene']}), phase within {float(p.max()):.1f} deg."
+            + (f" The {len(beyond)} scenes outside it (leaving: {'; '.join(left)}): worst "
+               f"{100 * max(abs(r['traverse_rel']) for r in beyond):.1f} %."
+               if beyond else "")]
     return "\n".join(out)
 
 

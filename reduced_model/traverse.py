@@ -77,8 +77,6 @@ def _value(k):
 # the CLI and the analytic FMU say so.
 CHECKED = tuple((name, unit, lo, hi, _value(k))
                 for k, (name, unit, lo, hi) in enumerate(CHECKED_RANGES))
-PLUNGE_RANGE = (-0.1, 0.1)   # [m/s] the plunge speeds of the grid's plunging scenes
-GRID_RANGES = CHECKED[:5]    # the ranges the validation grid is drawn over
 
 
 def outside_span(name: str, v0: float, v1: float) -> str | None:

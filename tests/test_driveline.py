@@ -141,7 +141,9 @@ def test_analytic_fmu_warns_outside_the_checked_range():
     fmu = ensure_fmu("TripodRollerAnalytic")
     warn = "outside the range the traverse model was checked"
     r = run_fmu(fmu, {"omega": 500.0}, stop_time=0.001, output_interval=1e-4)
-    assert any(warn in m and "whirl 79.58 Hz (checked 0.5-50 Hz)" in m for m in r["log"]), r["log"]
+    # at 500 rad/s: the roller's inertia 0.06 kg x 0.019 m x (1000 rad/s)^2 / 1000 N = 1.14
+    assert any(warn in m and "roller inertia m r (2 omega)^2 / load 1.14 (checked 0-0.1)" in m
+               for m in r["log"]), r["log"]
     r = run_fmu(fmu, {}, stop_time=0.001, output_interval=1e-4)
     assert not any(warn in m for m in r["log"]), r["log"]
 
@@ -149,9 +151,9 @@ def test_analytic_fmu_warns_outside_the_checked_range():
 @pytest.mark.parametrize("which", ["compiled", "reference"])
 def test_analytic_fmu_warns_when_a_master_drives_it_outside_the_checked_range(which):
     """A master ramps the whirl from 10 to 60 Hz and back to 30 Hz (the compiled FMU, and its
-    reference in Python): at the end the log names the span the inputs covered, 10-60 Hz,
-    against the checked 0.5-50 Hz; a ramp that stays within (10 -> 20 Hz at 1000 N: the
-    roller's inertia ratio at most 0.072 of the checked 0.1) gets no warning."""
+    reference in Python): at the end the log names the roller's inertia at the highest whirl,
+    0.06 kg x 0.019 m x (2 x 2 pi 60 Hz)^2 / 1000 N = 0.648, against the checked 0.1; a ramp that
+    stays within (10 -> 20 Hz at 1000 N: at most 0.072) gets no warning."""
     from harness.fmus import reference_fmu
     fmu = ensure_fmu("TripodRollerAnalytic") if which == "compiled" else \
         reference_fmu("TripodRollerAnalytic")
@@ -160,7 +162,9 @@ def test_analytic_fmu_warns_when_a_master_drives_it_outside_the_checked_range(wh
     r = run_fmu(fmu, {}, stop_time=0.1, output_interval=1e-4,
                 inputs={"time": t, "omega": [20 * math.pi, 120 * math.pi, 60 * math.pi]})
     said = [m for m in r["log"] if warn in m]
-    assert len(said) == 1 and "whirl 10-60 Hz (checked 0.5-50 Hz)" in said[0], r["log"]
+    ratio = 0.06 * 0.019 * (2 * 120 * math.pi) ** 2 / 1000.0
+    assert len(said) == 1 and \
+        f"roller inertia m r (2 omega)^2 / load {ratio:.4g} (checked 0-0.1)" in said[0], r["log"]
     steps = next(m for m in r["log"] if m.startswith("communication steps:"))
     assert steps == "communication steps: 1000; traverse tables derived: 1; the slide stepped " \
         "in time since the inputs moved", steps
