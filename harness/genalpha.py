@@ -16,7 +16,7 @@ import time
 import numpy as np
 
 from reduced_model.thrust import fz_mod
-from tripod_model import euler, genalpha, layout as LY
+from tripod_model import steplib, genalpha, layout as LY
 from tripod_model.model import ContactModel
 
 
@@ -47,7 +47,7 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
             if not step(Y, P, drive, h, W):
                 failed += 1           # integrator 4 would hand this step to integrator 3
                 W.hs[LY.H_GA] = 0.0
-                euler.adaptive_steps(Y, P, drive, h, 0.25 * h, W, None)
+                steplib.adaptive_steps(Y, P, drive, h, 0.25 * h, W, None)
         genalpha.ga_forces(Y, P, drive, W.L, W.res, W.b, W.GW[LY.W_M])
         out[k] = fz_mod(-W.res[LY.R_FX], -W.res[LY.R_FZ], F)
     wall = time.perf_counter() - t0

@@ -7,7 +7,7 @@ import math
 import pytest
 
 from reduced_model.scene import DEG, StepRefused, check_value
-from tripod_model import budget, euler, layout as K
+from tripod_model import budget, steplib, layout as K
 from tripod_model.model import JointModel
 from tripod_model.state_check import BadState, check_joint_state, speed_bound
 
@@ -51,9 +51,9 @@ def _adaptive_call(m, T):
     drive = K.Drive(OP[K.OP_THETA], OP[K.OP_W], OP[K.OP_X0], 0.0)
     hs = r._hs
     taken, rejected = hs[K.H_TAKEN], hs[K.H_REJECTED]
-    ok = euler.adaptive_steps.py_func(r.Y, r.P, drive, T, 0.25 * T, r._W, None) \
-        if hasattr(euler.adaptive_steps, "py_func") else \
-        euler.adaptive_steps(r.Y, r.P, drive, T, 0.25 * T, r._W, None)
+    ok = steplib.adaptive_steps.py_func(r.Y, r.P, drive, T, 0.25 * T, r._W, None) \
+        if hasattr(steplib.adaptive_steps, "py_func") else \
+        steplib.adaptive_steps(r.Y, r.P, drive, T, 0.25 * T, r._W, None)
     return ok, hs[K.H_TAKEN] - taken + hs[K.H_REJECTED] - rejected
 
 
@@ -62,8 +62,8 @@ def test_the_tries_run_out_at_the_budget(monkeypatch):
     after exactly 5, says so, and reports how far it got."""
     m = _settled({}, 10)
     m.rollers[0]._hs[K.H_SUB] = 1e-7     # a short substep carried in: many tries to span 1e-4 s
-    monkeypatch.setattr(euler, "ADAPT_TRIES_MIN", 5.0)
-    monkeypatch.setattr(euler, "ADAPT_TRIES_PER", 0.0)
+    monkeypatch.setattr(steplib, "ADAPT_TRIES_MIN", 5.0)
+    monkeypatch.setattr(steplib, "ADAPT_TRIES_PER", 0.0)
     ok, tries = _adaptive_call(m, 1e-4)
     hs = m.rollers[0]._hs
     assert not ok and tries == 5 and hs[K.H_FAIL] == K.FAIL_TRIES

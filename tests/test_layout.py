@@ -38,6 +38,21 @@ def test_layers_point_down():
     assert not bad, bad
 
 
+def test_no_integrator_imports_another():
+    """The integrators as scipy keeps its ODE methods: genalpha.py and bdf2.py import the shared
+    step library (steplib.py) and what derives a jump (oppoint.py), never each other; the
+    library imports neither."""
+    integrators = {"genalpha", "bdf2"}
+    bad = []
+    for name in integrators | {"steplib"}:
+        p = ROOT / "fmu_src" / "tripod_model" / f"{name}.py"
+        for n in ast.walk(ast.parse(p.read_text())):
+            if isinstance(n, ast.ImportFrom) and n.level == 1:
+                if (n.module or "") in integrators - {name}:
+                    bad.append(f"{name}.py imports {n.module}")
+    assert not bad, bad
+
+
 MAX_MODULE_LINES = 500   # a module a newcomer reads in one sitting (the C binary aside)
 MAX_PARAMS = 12          # more: the arguments belong in a record (layout.Work, Drive, ...)
 

@@ -196,17 +196,17 @@ def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
 
 
 def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
-    # the mechanism: a jump of the slip's amplitude above GA_JUMP_RELAX v_st (about 0.5 % of
-    # omega) and up to GA_JUMP_STEP restarts BDF2 by one backward-Euler substep; a ramp's
+    # the mechanism: a jump of the slip's amplitude above oppoint.JUMP_RELAX v_st (about 0.5 % of
+    # omega) and up to JUMP_STEP restarts BDF2 by one backward-Euler substep; a ramp's
     # smaller jumps keep the history, a larger one is a step input.  Carrying the history across
     # an omega step of 1 % read 0.89-0.99 % of order 3 against h/20 on sixteen realizations at
     # 300 N m (a first-order error of the substep), restarted 0.64-0.83 % on five
     import numpy as np
-    from tripod_model import bdf2, genalpha, layout as LY
+    from tripod_model import bdf2, layout as LY, oppoint
     P = np.zeros(LY.P_LEN)
-    for jump, want in ((0.5 * genalpha.GA_JUMP_RELAX, 1.0),
-                       (0.5 * (genalpha.GA_JUMP_RELAX + genalpha.GA_JUMP_STEP), bdf2.BDF_RESTART),
-                       (2.0 * genalpha.GA_JUMP_STEP, bdf2.BDF_STEP_IN)):
+    for jump, want in ((0.5 * oppoint.JUMP_RELAX, 1.0),
+                       (0.5 * (oppoint.JUMP_RELAX + oppoint.JUMP_STEP), bdf2.BDF_RESTART),
+                       (2.0 * oppoint.JUMP_STEP, bdf2.BDF_STEP_IN)):
         hs = np.zeros(LY.H_LEN)
         hs[LY.H_GA] = 1.0
         bdf2.inputs_jumped(P, hs, jump)
@@ -280,7 +280,7 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
         before = r._hs[LY.H_TAKEN]
         m.step(dt, T.THETA, w * (1.001 if k == 0 else 1.101), 0.0, T.TORQUE)
         taken.append(r._hs[LY.H_TAKEN] - before)
-    steady = taken[0]                 # the ramp's small step (jump 0.004 < GA_JUMP_STEP)
+    steady = taken[0]                 # the ramp's small step (jump 0.004 < oppoint.JUMP_STEP)
     assert steady == pytest.approx(math.ceil(dt / r.substep(
         T.THETA, w * 1.001, m.pressing(0.0, T.TORQUE), r.v_st(T.THETA, w * 1.001))), abs=1)
     assert taken[1:] == pytest.approx([k * steady for k in fine] + [steady], abs=max(fine))
@@ -289,7 +289,7 @@ def test_the_resolved_rows_bdf2_takes_a_step_input_in_finer_substeps(dt, fine):
 
 def test_the_integrator_restarts_where_the_inputs_jumped():
     # the mechanism itself: a jump flags the next step (restart), no jump leaves the history
-    from tripod_model import genalpha, kernel, layout as LY
+    from tripod_model import genalpha, kernel, layout as LY, oppoint
     m = T._model({}, 1)
     w = 2 * math.pi * 10
     for _ in range(5):
@@ -299,9 +299,9 @@ def test_the_integrator_restarts_where_the_inputs_jumped():
     assert kernel.derive_op(r.P, r._OP) == -1.0            # the same inputs: no jump
     r.set_inputs(1e-4, T.THETA, w * 1.001, 0.0, T.TORQUE)
     jump = kernel.derive_op(r.P, r._OP)
-    assert 0.0 < jump < genalpha.GA_JUMP_RELAX                 # a ramp's step: the cheap restart
+    assert 0.0 < jump < oppoint.JUMP_RELAX                 # a ramp's step: the cheap restart
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE)
-    assert kernel.derive_op(r.P, r._OP) > genalpha.GA_JUMP_RELAX    # a step input: the adaptive one
+    assert kernel.derive_op(r.P, r._OP) > oppoint.JUMP_RELAX    # a step input: the adaptive one
     r.set_inputs(1e-4, T.THETA, w * 1.1, 0.0, T.TORQUE * 1.001)
     assert kernel.derive_op(r.P, r._OP) == 0.0               # a load change alone: no slip jump
     assert r.P[LY.P_DF] == pytest.approx(1e-3, rel=1e-3)  # (its own size)

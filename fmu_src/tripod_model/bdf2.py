@@ -7,15 +7,15 @@ import math
 from .jit import njit
 from .assembly import hold_slide, resolved_row_terms, roller_system
 from .contact import groove_stiffness_x, tilt_drag
-from .euler import extrapolated_step
-from .genalpha import GA_JUMP_RELAX, GA_JUMP_STEP, GA_LOAD_RELAX
+from .oppoint import JUMP_RELAX, JUMP_STEP, LOAD_RELAX
+from .steplib import extrapolated_step
 from .rowsolve import coupled_solve
 from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN,
     N_N, N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
-# amplitude moved by more than GA_JUMP_STEP v_st, or the pressing load by more than
-# GA_LOAD_RELAX of itself): the history across the jump and the substep that resolves the
+# amplitude moved by more than JUMP_STEP v_st, or the pressing load by more than
+# LOAD_RELAX of itself): the history across the jump and the substep that resolves the
 # row's steady running (about 3 us) leave the row's response to it 5-12 % of order 3 off a
 # fine reference (one roller, 10 Hz: omega and theta +-10 %).  The row answers a step within
 # about a millisecond, so the communication steps of the next BDF_FINE_TIME (at least
@@ -23,8 +23,8 @@ from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I
 # substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4 (until
 # 2026-11-27): at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
 # the reference by 1.2-1.4 % of order 3 at h/4 (8 deg; at 25 deg theta by 9-12 %), 0.6-0.7 %
-# (2.9 % and 0.8 %) at h/16 (one Newton pass).  A step input from GA_JUMP_STEP on, not from
-# GA_JUMP_RELAX (0.02 v_st, an omega step of about 0.5 %), though with two Newton passes that
+# (2.9 % and 0.8 %) at h/16 (one Newton pass).  A step input from JUMP_STEP on, not from
+# JUMP_RELAX (0.02 v_st, an omega step of about 0.5 %), though with two Newton passes that
 # takes omega +-1 % from 0.97 % to 0.09-0.13 % and theta +-1 % from 3-5 % to 0.6 %
 # (docs/integrators.md): a master's 1 % noise, or a run-up at 1e-3 s at low speed, would make
 # every step a step input (16x the substeps).  Those smaller jumps take BDF_RESTART instead.
@@ -34,7 +34,7 @@ BDF_STEP_IN = -3.0
 BDF_FINE_TIME = 8e-4   # [s]
 BDF_FINE_STEPS = 3
 BDF_FINE_SPLIT = 16
-# A smaller jump of the slip, above GA_JUMP_RELAX v_st (an omega step of about 0.5 %; a master's
+# A smaller jump of the slip, above JUMP_RELAX v_st (an omega step of about 0.5 %; a master's
 # ramp moves it by about 0.004 v_st a step), restarts BDF2 by one backward-Euler substep (the
 # same step with no history, r = 0): the velocities from before the jump, carried across it, are
 # a first-order error in the substep.  Omega +-1 % at 300 N m, single samples against h/20 (the
@@ -50,9 +50,9 @@ def inputs_jumped(P, hs, jump):
     the slip's amplitude over v_st, -1 for none; P[P_DF] the pressing load's relative change):
     a step input takes the communication steps of the next BDF_FINE_TIME in finer substeps
     (BDF_STEP_IN), a smaller jump of the slip one backward-Euler substep first (BDF_RESTART)."""
-    if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > GA_JUMP_STEP or P[P_DF] > GA_LOAD_RELAX):
+    if hs[H_GA] != 0.0 and jump >= 0.0 and (jump > JUMP_STEP or P[P_DF] > LOAD_RELAX):
         hs[H_GA] = BDF_STEP_IN
-    elif hs[H_GA] == 1.0 and jump > GA_JUMP_RELAX:
+    elif hs[H_GA] == 1.0 and jump > JUMP_RELAX:
         hs[H_GA] = BDF_RESTART
 
 

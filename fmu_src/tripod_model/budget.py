@@ -1,4 +1,4 @@
-"""The adaptive substeps' budget (euler.adaptive_steps) and the line the FMU logs when a step
+"""The adaptive substeps' budget (steplib.adaptive_steps) and the line the FMU logs when a step
 runs out of it.  Plain Python (no numba): the model imports it to word a refusal.
 """
 from reduced_model.scene import MAX_SUBSTEPS, too_long  # noqa: F401  (kernel's, too)

@@ -9,7 +9,8 @@ from .jit import inline, njit
 from .linalg import solve_small
 from .contact import (groove_contact, groove_stiffness_x, line_kinematics, roller_motion,
     row_damping, row_load, row_rolling_resistance, row_sliding_friction, row_stiffness, tilt_drag)
-from .euler import adaptive_steps
+from .oppoint import JUMP_RELAX, JUMP_STEP, LOAD_RELAX
+from .steplib import adaptive_steps
 from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX,
     L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE,
     P_IS, P_IT, P_M, P_QSUM, P_R, P_RINGA, P_ROLLR, P_TRAV, P_VST, RING_OPEN, RING_QUIET, R_FX,
@@ -43,12 +44,11 @@ GA_STEP = _ga_coefficients(RHO_GA)
 # to 10 % in order 3.  With rho = 0 (af = 0) the forces are taken at t_{n+1}: the slip lands on
 # the new value, still second order, at the cost of the same one step.
 GA_RESTART = _ga_coefficients(0.0)
-GA_RELAX = -2.0        # hs[H_GA]: the next substep by the adaptive substeps
-GA_JUMP_RELAX = 0.02   # the slip amplitude's change over v_st above which that is taken
-GA_STEP_IN = -3.0      # hs[H_GA]: a step input: the next two communication steps so
+GA_RELAX = -2.0        # hs[H_GA]: the next substep by the adaptive substeps (a jump above
+                       # oppoint.JUMP_RELAX)
+GA_STEP_IN = -3.0      # hs[H_GA]: a step input (above oppoint.JUMP_STEP or LOAD_RELAX): the
+                       # next two communication steps so
 GA_STEP_IN_2 = -4.0    # hs[H_GA]: the second of them
-GA_JUMP_STEP = 0.2     # the slip amplitude's change over v_st above which that is taken
-GA_LOAD_RELAX = 0.02   # the pressing load's relative change above which that is taken
 # hs[H_GA] after a restart step: the next regular step takes its accelerations from the forces
 # at the restart's end (GA_RESTART puts the forces at t_{n+1}: its last Newton evaluation, or
 # what its converged equation implies there, kept in hs[H_FACC:]; GA_AFTER_RESTART_AFRESH where
@@ -57,8 +57,8 @@ GA_AFTER_RESTART = 3.0
 GA_AFTER_RESTART_AFRESH = 2.0
 # hs[H_RING]: the roller's ring (its slide rocking across the groove, oppoint.ring_step), which
 # the paper's contact law leaves undamped while the slip saturates the tanh.  RING_OPEN (at the
-# start and after a step input: the slip's amplitude moved by more than GA_JUMP_RELAX v_st or
-# the load by more than GA_LOAD_RELAX): the substeps resolve it.  Each communication step of
+# start and after a step input: the slip's amplitude moved by more than JUMP_RELAX v_st or
+# the load by more than LOAD_RELAX): the substeps resolve it.  Each communication step of
 # generalized-alpha steps ends with a verdict: RING_QUIET when the slide's acceleration stayed
 # below P_RINGA in every step (the friction has rung it down), else RING_OPEN; quiet, the next
 # one takes the free substep P_HFREE (a launch's 45 kN at 10 Hz: 51 us against the ring's
@@ -70,7 +70,7 @@ GA_AFTER_RESTART_AFRESH = 2.0
 @njit
 def ga_forces(Y, P, drive, L, res, Q, M):
     """Generalized forces Q [N, N m] and masses M [kg, kg m^2] of the roller's unknowns at the
-    state Y (whirl angle Y[Y_X]), the equations of euler.substep: ideal bearing (2 unknowns:
+    state Y (whirl angle Y[Y_X]), the equations of steplib.substep: ideal bearing (2 unknowns:
     m u'' = F.a - m (Q''.a + u a''.a), I_s om' = M.a) or lumped (6: also the slide across the
     load w, the tilts b1, b2 and the radial offset e, with the row's forces).  Returns nv."""
     lumped = P[P_BEAR] == BEAR_LUMPED
@@ -314,13 +314,13 @@ def inputs_jumped(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive: ``jump`` the change of
     the slip's amplitude over v_st, P[P_DF] the pressing load's relative change): the
     generalized-alpha step restarts.
-    - A step input (the slip above GA_JUMP_STEP, with the lumped bearing above GA_JUMP_RELAX;
-      or the load above GA_LOAD_RELAX: the load sets the pressing offset, and the lumped
+    - A step input (the slip above JUMP_STEP, with the lumped bearing above JUMP_RELAX;
+      or the load above LOAD_RELAX: the load sets the pressing offset, and the lumped
       row's, so the contact's spring force jumps): this communication step and the next by
       the adaptive substeps, which land on the new slip and let what the step set ringing
       decay (the lumped row's modes, about 2e4 Hz; the roller's slide); a generalized-alpha
       step restarted on them overshoots (docs/integrators.md).
-    - A large jump of the slip (above GA_JUMP_RELAX, ideal bearing): one substep by the
+    - A large jump of the slip (above JUMP_RELAX, ideal bearing): one substep by the
       adaptive substeps, its boundary layer.  (Taking two communication steps there too,
       the coupled launch of docs/driveline-example.md, whose jumps hover about that bound,
       switched between the paths from step to step and lost 0.65 % of its peak.)
@@ -331,16 +331,16 @@ def inputs_jumped(P, hs, jump):
     (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
     has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
     land on the new inputs' slip without overshoot.)"""
-    if jump >= 0.0 and (P[P_DF] > GA_LOAD_RELAX or jump > GA_JUMP_RELAX):
+    if jump >= 0.0 and (P[P_DF] > LOAD_RELAX or jump > JUMP_RELAX):
         hs[H_RING] = RING_OPEN
     if hs[H_GA] <= 0.0 or jump < 0.0:
         return
     if hs[H_GA] == GA_AFTER_RESTART:   # the forces it kept were the old drive's
         hs[H_GA] = GA_AFTER_RESTART_AFRESH
     lumped = P[P_BEAR] == BEAR_LUMPED
-    if P[P_DF] > GA_LOAD_RELAX or jump > (GA_JUMP_RELAX if lumped else GA_JUMP_STEP):
+    if P[P_DF] > LOAD_RELAX or jump > (JUMP_RELAX if lumped else JUMP_STEP):
         hs[H_GA] = GA_STEP_IN
-    elif jump > GA_JUMP_RELAX:
+    elif jump > JUMP_RELAX:
         hs[H_GA] = GA_RELAX
     elif jump > 0.0 or (lumped and P[P_DF] > 0.0):
         hs[H_GA] = -1.0
@@ -354,7 +354,7 @@ def ga_steps(Y, P, drive, h, n, W, NW):
     GA_RESTART step; a step whose Newton fails by the adaptive substeps.  With the ring
     quiet (hs[H_RING]) the communication step h n in fewer steps of at most P_HFREE; with it
     open, whether the step's slide acceleration lets it close.  Returns False where the
-    adaptive substeps ran out of their budget (euler.adaptive_steps: hs[H_FAIL])."""
+    adaptive substeps ran out of their budget (steplib.adaptive_steps: hs[H_FAIL])."""
     hs = W.hs
     if hs[H_RING] == RING_QUIET and P[P_HFREE] > h:
         T = h * n

@@ -27,7 +27,7 @@ from .budget import MAX_SUBSTEPS
 from . import bdf2, genalpha
 from .bdf2 import bdf2_steps
 from .contact import groove_contact, line_kinematics, roller_motion
-from .euler import adaptive_steps, extrapolated_step, substep
+from .steplib import adaptive_steps, extrapolated_step, substep
 from .genalpha import ga_steps
 from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAULT, INT_EXTRAPOLATED, O_CY, O_CZ,
     O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEAR, P_INTEG, P_VP, R_FN, R_FX, R_FY,
@@ -64,15 +64,15 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     (layout.NeedleWork) with the resolved bearing, else None.
 
     The integrator P[P_INTEG] names (layout.py): INT_EULER, INT_EXPLICIT: n plain
-    substeps (euler.substep); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h
+    substeps (steplib.substep); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h
     and two of h/2 (second order, L-stable: the scheme of LIMEX/SEULEX with two stages);
     INT_ADAPTIVE: the same with its substep chosen by its own error estimate
-    (euler.adaptive_steps); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
+    (steplib.adaptive_steps); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
     (genalpha.ga_steps), BDF2 with the needle-resolved one (bdf2.bdf2_steps).
 
     Returns False, the outputs not written, where the step is longer than MAX_SUBSTEPS substeps
     (refused before it starts) or the adaptive substeps ran out of their budget
-    (euler.adaptive_steps); hs[H_FAIL] says which (budget.py).
+    (steplib.adaptive_steps); hs[H_FAIL] says which (budget.py).
     """
     hs = W.hs
     hs[K.H_FAIL] = K.FAIL_NONE
@@ -181,7 +181,7 @@ def _roller(Y, P, OP, W, out, jump):
 def step(args):
     """One communication step at the inputs in OP (their operating point derived again when
     they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output, 3: a
-    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; euler.adaptive_steps)
+    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; steplib.adaptive_steps)
     (2, 3: nothing written; the state has moved, as in the Python step).  args: the arrays' addresses in
     layout's FA_ places.
 

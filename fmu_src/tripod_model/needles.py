@@ -19,7 +19,7 @@ roller borders the needles' ring (rowsolve.coupled_solve: block Cholesky along t
 ring.chain_forward / chain_backward, and the roller's 6 x 6 Schur complement; a closed ring by
 ring.ring_solve_m for seven right-hand sides).  One contact evaluation a substep,
 linearized at a predicted state, which converges only because the system is the whole one.
-The others (euler.substep, integrators 0, 1, 3): one contact evaluation per substep gives
+The others (steplib.substep, integrators 0, 1, 3): one contact evaluation per substep gives
 every body its forces and its implicit tangent (stiffness, contact damping, friction secant);
 the needles step together in the ring (ring.ring_solve), the roller on its own 6 velocities, split
 from the needles with its and their tangents scaled so the split matrix dominates the coupled
@@ -124,7 +124,7 @@ def _friction_blocks(Y, y0, n, AN, MOM, UN, PM, AR6, MR):
 @inline
 def _roller_unknowns(RS, e1x, ax, FR, AR):
     """The roller's system in its standard velocities (b in RS[:, 0], A in RS[:, 1:7]) mapped
-    to its unknowns of euler.substep: ud = t3, om = r3, wd = t2, b1d = r1, b2d = r2,
+    to its unknowns of steplib.substep: ud = t3, om = r3, wd = t2, b1d = r1, b2d = r2,
     ed = e1x t1 + ax t3 (rows of the map TM in RS[:, 7:13]); FR = TM b, AR = TM A TM^T."""
     bR = RS[:, 0]
     AR6 = RS[:, 1:7]
@@ -264,7 +264,7 @@ def _coupling_friction(Y, n, BN, PB, o):
 def needle_forces(Y, NW, vst, h, hk, cpl, pose, frame, g):
     """Evaluate every needle contact once; fill each needle's system (FN, AN), the needles'
     coupling blocks UN (needle j to j+1) and the roller's system (FR, AR, in the roller's
-    unknowns of euler.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
+    unknowns of steplib.substep) for a linearly implicit step of h [s] (h = 0: forces only), and
     ND diagnostics.  pose = (o, vo, ob, wr, d_tr, dd_tr, om_tr) flat; frame = (e1x, ax);
     g = (g1, g2, g3): see the module's docstring; NW: layout.NeedleWork."""
     n = int(NW.NP[N_N])

@@ -188,6 +188,15 @@ def lumped_offset(P, F):
     return e if F < 0.0 else -e
 
 
+# What derive's jump (the driven slip amplitude's change over v_st) and the load's relative
+# change (P_DF) mean to the integrators: above JUMP_RELAX the next substep by the adaptive
+# substeps, above JUMP_STEP (or a load change above LOAD_RELAX) a step input
+# (genalpha.inputs_jumped, bdf2.inputs_jumped)
+JUMP_RELAX = 0.02
+JUMP_STEP = 0.2
+LOAD_RELAX = 0.02
+
+
 def derive(P, OP):
     """The operating point at OP's inputs and step OP[OP_DT] [s], when they differ from those it
     was last derived at (OP[OP_KEY:]): OP's pressing load, substep, substep count and pressing

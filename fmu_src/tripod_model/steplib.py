@@ -1,6 +1,10 @@
-"""Integrators 0, 1, 3 (linearly implicit Euler, Richardson-extrapolated, adaptive): L-stable
-one-step methods over assembly.roller_system; the other integrators hand their hard steps to
-adaptive_steps.
+"""The shared step library: the linearly implicit Euler substep over assembly.roller_system
+(integrator 0; integrator 2, explicit, is its P switch), its Richardson extrapolation to second
+order (integrator 1) and the adaptive substeps on that extrapolation's error (integrator 3).
+L-stable one-step methods, which the other integrators (genalpha.py, bdf2.py) call for their
+hard steps: the substeps right after a step input, and where their own method does not settle.
+Those import this library and nothing of each other, as scipy's ODE methods import only their
+shared base.
 """
 import math
 
