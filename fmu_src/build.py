@@ -128,12 +128,18 @@ def native_library(force=False) -> Path:
     return _compile(NATIVE_SRC, NATIVE_LIB, [f"-I{_fmi_headers()}", "-ldl", "-lpthread"])
 
 
-def _importable():
-    """fmu_src's build modules (aot, native_fmu) importable: this file is loaded by path
-    (harness.fmus), fmu_src is no package."""
-    for path in (str(FMU_SRC), str(ROOT)):
-        if path not in sys.path:
-            sys.path.insert(0, path)
+def build_module(name: str):
+    """fmu_src/<name>.py, one of the build's own modules (aot, native_fmu), loaded by path as
+    this file is (harness.fmus): fmu_src is what goes into the FMUs, not a package."""
+    import importlib.util
+    if name not in sys.modules:
+        if name == "native_fmu":
+            build_module("aot")          # (it imports aot by name)
+        spec = importlib.util.spec_from_file_location(name, FMU_SRC / f"{name}.py")
+        mod = importlib.util.module_from_spec(spec)
+        sys.modules[name] = mod
+        spec.loader.exec_module(mod)
+    return sys.modules[name]
 
 
 def prebuilt_kernel(force=False, target="linux64") -> tuple[Path, Path]:
@@ -148,8 +154,7 @@ def _prebuilt_kernel(force, target):
     from other kernel sources than today's (the content hash the FMU checks when it loads the
     library, native.source_hash, which covers the reduced model's modules the kernel compiles
     too), or older than aot.py and its stubs."""
-    _importable()
-    import aot
+    aot = build_module("aot")
     dest = AOT_DIR if target == "linux64" else BUILD / f"aot-{target}"
     lib, meta = dest / aot.TARGETS[target]["lib"], dest / "_step.json"
     if not force and lib.exists() and meta.exists():
@@ -344,8 +349,7 @@ def _build(name, force):
                   lambda xml: _units_and_ranges(xml, *table), extra)
     if name in COMPILED:    # the same model description over the compiled model
         import importlib
-        _importable()
-        import native_fmu
+        native_fmu = build_module("native_fmu")
         spec, layout = COMPILED[name]
         module, fn = layout.split(":")
         out = native_fmu.package(ref, dest, spec, getattr(importlib.import_module(module), fn)(),

@@ -586,3 +586,36 @@ def peers_markdown(rows) -> str:
         lines.append(f"| {x['engine']} | {x['setting']} | {x['time_s']:.4f} | "
                      f"{x['err_order3']:.1e} | {ratio} |")
     return "\n".join(lines)
+
+
+def report(out, runs=5, quick=False, step_cost_only=False, log=print):
+    """`tripod-thrust bench`: the step-cost table, then (unless step_cost_only) where one run
+    goes, the work-precision table and plot, and the integrators side by side at equal error,
+    written to out/bench.md.  Returns (the Markdown, the default settings off the Pareto
+    front)."""
+    lines = ["# Benchmark", "", "## Cost per doStep (+ getReal of Fz), 1e-4 s steps", "",
+             "| FMU, scene | us per step | ratio to the bare boundary (under the same master) |",
+             "|---|---|---|"]
+    costs = step_costs(runs=runs)
+    for name, us in costs:
+        lines.append(f"| {name} | {us:.1f} | {step_cost_ratio(name, us, costs):.2f} |")
+    if step_cost_only:
+        (out / "bench.md").write_text("\n".join(lines) + "\n")
+        return "\n".join(lines), []
+    lines += ["", "## Where one run goes (default contact scene, two cycles)", "",
+              "| part | seconds |", "|---|---|"]
+    for k, v in breakdown(runs=runs).items():
+        lines.append(f"| {k} | {v:.4f} |")
+    rows, _ = work_precision(out, runs=runs, fresh=not quick, log=log)
+    lines += ["", "## Work-precision", "", (out / "work_precision.md").read_text()]
+    budgets = (1e-2, 3e-3, 1e-3, 3e-4)
+    lines += ["", "## Side by side at equal order-3 error (ideal bearing)", "",
+              "Cheapest measured setting of each integrator within each order-3 error budget: "
+              "seconds for two whirl cycles, in process.", "",
+              "| integrator | " + " | ".join(f"error <= {100 * b:g} %" for b in budgets) + " |",
+              "|---|" + "---|" * len(budgets)]
+    for label, best in side_by_side(rows, budgets):
+        cells = [f"{v[0]:.4f} s ({v[1]})" if v else "not reached" for v in best.values()]
+        lines.append(f"| {label.split(', ', 1)[1]} | " + " | ".join(cells) + " |")
+    (out / "bench.md").write_text("\n".join(lines) + "\n")
+    return "\n".join(lines), [r for r in rows if r["default"] and not r["pareto"]]

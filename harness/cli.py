@@ -102,57 +102,8 @@ def _dt(args):
     return args.dt
 
 
-def _fmt_o(o):
-    return f"{o['amplitude']:9.4f} N  {o['phase_deg']:8.2f} deg"
-
-
-def format_analytic(r: dict) -> str:
-    sc = r["scene"]
-    lines = [
-        "tripod-thrust analytic: reduced model, Eqs. (18)-(27) and the traverse (one roller "
-        "unless stated)",
-        f"scene: theta = {math.degrees(sc['theta']):.3f} deg, omega = {sc['omega']:.4g} rad/s "
-        f"({sc['omega'] / (2 * math.pi):.4g} Hz), {scene_mod.load_text(sc)}, "
-        f"mu_groove = {sc['mu_groove']:g}",
-        "",
-        f"  A      = {r['A'] * 1e3:9.4f} mm/s   (pitching, Eq. 19)",
-        f"  B      = {r['B'] * 1e3:9.4f} mm/s   (rolling, Eq. 20)",
-        f"  v_st   = {r['v_st'] * 1e3:9.4f} mm/s   ({'automatic, sqrt(A^2+B^2)/4' if sc['v_st'] == 0 else 'set'})",
-        f"  C      = {r['C']:9.4f} N      (2nd order of ft, Eq. 25; FFT {r['C_fft']:.4f} N)",
-        f"  beta   = {r['beta_deg']:9.4f} deg    (Eq. 27)",
-        "",
-        f"  {'':28s}{'FFT':>26s}   {'closed form':>26s}",
-        f"  {'friction ftz order 1':28s}{_fmt_o(r['friction']['order1'])}   {_fmt_o(r['friction']['closed_form']['order1'])}",
-        f"  {'friction ftz order 3':28s}{_fmt_o(r['friction']['order3'])}   {_fmt_o(r['friction']['closed_form']['order3'])}",
-        f"  {'spin inertia order 1':28s}{'':26s}   {_fmt_o(r['spin_inertia']['order1'])}",
-        f"  {'thrust Fz order 1':28s}{_fmt_o(r['order1'])}   {_fmt_o(r['closed_form']['order1'])}",
-        f"  {'thrust Fz order 3':28s}{_fmt_o(r['order3'])}   {_fmt_o(r['closed_form']['order3'])}",
-        f"  {'three rollers order 1':28s}{_fmt_o(r['three_rollers']['order1'])}   {_fmt_o(r['three_rollers']['closed_form']['order1'])}",
-        f"  {'three rollers order 3':28s}{_fmt_o(r['three_rollers']['order3'])}   {_fmt_o(r['three_rollers']['closed_form']['order3'])}",
-        "",
-    ]
-    t = r.get("traverse")
-    if t:
-        use = "in use" if r["model"] == "traverse" else "not in use: traverse = false"
-        lines += [
-            f"reduced traverse model ({use}; docs/model.md): regime {t['regime']}, friction "
-            f"reaches {100 * t['friction_reach']:.1f} % of mu_groove F",
-            *([] if t["settled"] else [
-                f"  NOT periodic: s(2 pi) - s(0) = {t['mismatch']:.2e} m/s after {t['cycles']} "
-                "cycles of the cycle map (the table is the best cycle run)"]),
-            *([f"  OUTSIDE the range it was checked against the contact model in "
-               f"(docs/validation.md): {'; '.join(t['outside_checked'])}"]
-              if t["outside_checked"] else []),
-            f"  {'Fz_mod order 1':28s}{_fmt_o(t['order1'])}",
-            f"  {'Fz_mod order 3':28s}{_fmt_o(t['order3'])}",
-            f"  {'three rollers order 3':28s}{_fmt_o(t['three_rollers']['order3'])}",
-            ""]
-    lines.append("order k is a_k sin(k w t + p_k), t = 0 where pitching is 0 and rising (model.md).")
-    return "\n".join(lines)
-
-
 def cmd_analytic(args) -> int:
-    from reduced_model.analysis import analytic_report
+    from reduced_model.analysis import analytic_report, format_analytic
     r = analytic_report(overrides_from(args, "analytic"))
     print(json.dumps(r, indent=2) if args.json else format_analytic(r))
     return 0
@@ -240,39 +191,11 @@ def cmd_bench(args) -> int:
         print(table)
         print(f"written: {out}/peers.md")
         return 0
-    lines = ["# Benchmark", "", "## Cost per doStep (+ getReal of Fz), 1e-4 s steps", "",
-             "| FMU, scene | us per step | ratio to the bare boundary (under the same master) |",
-             "|---|---|---|"]
-    costs = bench.step_costs(runs=args.runs)
-    for name, us in costs:
-        lines.append(f"| {name} | {us:.1f} | {bench.step_cost_ratio(name, us, costs):.2f} |")
-    if args.step_cost:
-        (out / "bench.md").write_text("\n".join(lines) + "\n")
-        print("\n".join(lines))
-        print(f"written: {out}/bench.md (the step-cost table only)")
-        return 0
-    lines += ["", "## Where one run goes (default contact scene, two cycles)", "",
-              "| part | seconds |", "|---|---|"]
-    for k, v in bench.breakdown(runs=args.runs).items():
-        lines.append(f"| {k} | {v:.4f} |")
-    print("\n".join(lines), flush=True)
-    rows, detail = bench.work_precision(out, runs=args.runs, fresh=not args.quick,
-                                        log=lambda m: print(m, flush=True))
-    lines += ["", "## Work-precision", "", (out / "work_precision.md").read_text()]
-    budgets = (1e-2, 3e-3, 1e-3, 3e-4)
-    sbs = ["## Side by side at equal order-3 error (ideal bearing)", "",
-           "Cheapest measured setting of each integrator within each order-3 error budget: "
-           "seconds for two whirl cycles, in process.", "",
-           "| integrator | " + " | ".join(f"error <= {100 * b:g} %" for b in budgets) + " |",
-           "|---|" + "---|" * len(budgets)]
-    for label, best in bench.side_by_side(rows, budgets):
-        cells = [f"{v[0]:.4f} s ({v[1]})" if v else "not reached" for v in best.values()]
-        sbs.append(f"| {label.split(', ', 1)[1]} | " + " | ".join(cells) + " |")
-    print("\n".join(sbs), flush=True)
-    lines += [""] + sbs
-    (out / "bench.md").write_text("\n".join(lines) + "\n")
-    off = [r for r in rows if r["default"] and not r["pareto"]]
-    print(f"written: {out}/bench.md, work_precision.csv, work_precision.png")
+    text, off = bench.report(out, runs=args.runs, quick=args.quick,
+                             step_cost_only=args.step_cost, log=lambda m: print(m, flush=True))
+    print(text)
+    print(f"written: {out}/bench.md" + (" (the step-cost table only)" if args.step_cost else
+                                         ", work_precision.csv, work_precision.png"))
     for r in off:
         print(f"default setting off the Pareto front: {r['model']} {r['setting']}")
     return 1 if off else 0

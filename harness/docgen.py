@@ -54,7 +54,7 @@ def _params() -> str:
 
 def _analytic() -> str:
     """`tripod-thrust analytic` on the paper's scene, as a console block."""
-    from harness.cli import format_analytic
+    from reduced_model.analysis import format_analytic
     from reduced_model.analysis import analytic_report
     return "```\n$ tripod-thrust analytic\n" + format_analytic(analytic_report({})) + "\n```"
 
@@ -62,7 +62,7 @@ def _analytic() -> str:
 def _light_truck() -> str:
     """docs/getting-started.md's worked example: the light truck's joint, its launch-like
     scene, as `tripod-thrust analytic` and `tripod-thrust joint` print them."""
-    from harness.cli import format_analytic
+    from reduced_model.analysis import format_analytic
     from reduced_model.analysis import analytic_report
     from reduced_model.joint import EXAMPLES, for_model, load_joint
     j = for_model(load_joint(EXAMPLES / "light-truck.toml"), "analytic")
@@ -217,8 +217,7 @@ def _stress_rows():
 
 
 def _fmu_speed_rows():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import fmu_speed
+    from benchmarks import fmu_speed
     return [name for name, _ in fmu_speed.CASES] + list(fmu_speed.PROCESS_ROWS)
 
 
@@ -235,8 +234,7 @@ def _example_rows():
 
 
 def _needle_chaos_rows():
-    sys.path.insert(0, str(ROOT / "benchmarks"))
-    import needle_chaos
+    from benchmarks import needle_chaos
     return needle_chaos.row_labels()
 
 

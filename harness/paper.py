@@ -54,151 +54,173 @@ def _corr(a, b):
     return float(np.corrcoef(a, b)[0, 1])
 
 
-def reproduce(out: str | Path, share_bearing: int = 2) -> dict:
-    """Run everything, write figures and report.md into ``out``; returns the claims."""
-    import matplotlib
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
+class Runs:
+    """What the claims are measured on: the paper's scene (analytic and contact model), the
+    contact FMU's runs until periodic and their last whole cycle of Fz', the output folder."""
 
-    out = Path(out)
-    out.mkdir(parents=True, exist_ok=True)
-    xdeg = np.arange(N_CYC) * 360.0 / N_CYC
-    claims = []
-    sc = scene_mod.validate({}, "analytic")     # the paper's scene
-    csc = scene_mod.validate({}, "contact")
+    def __init__(self, out: Path, share_bearing: int):
+        self.out = out
+        self.share_bearing = share_bearing
+        self.sc = scene_mod.validate({}, "analytic")     # the paper's scene
+        self.csc = scene_mod.validate({}, "contact")
+        self.xdeg = np.arange(N_CYC) * 360.0 / N_CYC
+        self.xs = 2 * math.pi * np.arange(N_CYC) / N_CYC
+        base = {"traverse": True, "bearing": 0}
+        self.runs = {
+            "all": _run(base),
+            "pitch": _run(dict(base, yaw=False, roll=False, axial=False)),
+            "pitch+roll": _run(dict(base, yaw=False, axial=False)),
+            "pitch+yaw": _run(dict(base, roll=False, axial=False)),
+            "pitch+axial": _run(dict(base, yaw=False, roll=False)),
+        }
+        # Section 4.2: every friction source, then each switched off in turn (the resolved
+        # bearing by default: the paper's model; share_bearing = 1 uses the lumped one, 20x
+        # faster)
+        sb = {"traverse": True, "bearing": share_bearing}
+        for k, v in SHARE_CASES.items():
+            self.runs[f"share {k}"] = _run(dict(sb, **v))
+        self.fzm = {k: cycle(r, "Fz_mod") for k, r in self.runs.items()}
 
-    def claim(what, measured, ok, how):
-        claims.append({"claim": what, "measured": measured, "pass": bool(ok), "how": how})
-
-    def fig(name, build):
+    def fig(self, name, build):
+        """A figure drawn by build(ax) into out/name."""
+        import matplotlib
+        matplotlib.use("Agg")
+        import matplotlib.pyplot as plt
         f, ax = plt.subplots(figsize=(8, 4.5))
         build(ax)
         ax.grid(alpha=0.3)
         f.tight_layout()
-        f.savefig(out / name, dpi=110)
+        f.savefig(self.out / name, dpi=110)
         plt.close(f)
 
-    base = {"traverse": True, "bearing": 0}
-    runs = {
-        "all": _run(base),
-        "pitch": _run(dict(base, yaw=False, roll=False, axial=False)),
-        "pitch+roll": _run(dict(base, yaw=False, axial=False)),
-        "pitch+yaw": _run(dict(base, roll=False, axial=False)),
-        "pitch+axial": _run(dict(base, yaw=False, roll=False)),
-    }
-    # Section 4.2: every friction source, then each switched off in turn (the resolved bearing
-    # by default: the paper's model; share_bearing = 1 uses the lumped one, 20x faster)
-    sb = {"traverse": True, "bearing": share_bearing}
-    off = {"all friction": {}, "needle sliding off": {"friction_needle": False},
-           "rolling resistance off": {"rolling_resistance": False},
-           "spin moment off": {"spin_moment": False},
-           "groove sliding only": {"friction_needle": False, "rolling_resistance": False,
-                                   "spin_moment": False}}
-    for k, v in off.items():
-        runs[f"share {k}"] = _run(dict(sb, **v))
-    fzm = {k: cycle(r, "Fz_mod") for k, r in runs.items()}
-    st = {k: r["settle"] for k, r in runs.items()}
-    claim("Every run is periodic: orders 1 and 3 of Fz' settled from one whirl cycle to the next",
-          "; ".join(f"{k}: {v['cycles']} cycles, last change "
-                    f"{100 * v['worst']['complex_rel']:.2g} %" for k, v in st.items()),
-          all(v["settled"] for v in st.values()),
-          "reduced_model.steady: tolerance 0.1 % (1 % with the needle-resolved bearing, its "
-          "chaos floor), estimated drift to come included; cap 40 cycles")
 
-    # Fig. 12: Fz and Fz' nearly the same
-    fz = cycle(runs["all"], "Fz")
-    c12 = _corr(fz, fzm["all"])
-    d12 = _rms_rel(fz, fzm["all"])
-    claim("Fig. 12: Fz and Fz' have nearly the same waveform",
-          f"correlation {c12:.4f}, rms difference {100 * d12:.2f} % of rms Fz'", c12 > 0.99,
-          "contact FMU, all motions, traverse, ideal bearing; last whole cycle")
+SHARE_CASES = {"all friction": {}, "needle sliding off": {"friction_needle": False},
+               "rolling resistance off": {"rolling_resistance": False},
+               "spin moment off": {"spin_moment": False},
+               "groove sliding only": {"friction_needle": False, "rolling_resistance": False,
+                                       "spin_moment": False}}
 
-    def f12(ax):
-        ax.plot(xdeg, fz, label="Fz")
-        ax.plot(xdeg, fzm["all"], "--", label="Fz' = Fz F_press / Fx")
+
+def _claim(what, measured, ok, how) -> dict:
+    return {"claim": what, "measured": measured, "pass": bool(ok), "how": how}
+
+
+def periodic(r: Runs) -> dict:
+    """Every run is periodic before it is measured."""
+    st = {k: v["settle"] for k, v in r.runs.items()}
+    return _claim(
+        "Every run is periodic: orders 1 and 3 of Fz' settled from one whirl cycle to the next",
+        "; ".join(f"{k}: {v['cycles']} cycles, last change "
+                  f"{100 * v['worst']['complex_rel']:.2g} %" for k, v in st.items()),
+        all(v["settled"] for v in st.values()),
+        "reduced_model.steady: tolerance 0.1 % (1 % with the needle-resolved bearing, its "
+        "chaos floor), estimated drift to come included; cap 40 cycles")
+
+
+def fig12(r: Runs) -> dict:
+    """Fig. 12: Fz and Fz' nearly the same."""
+    fz, fzm = cycle(r.runs["all"], "Fz"), r.fzm["all"]
+    c12, d12 = _corr(fz, fzm), _rms_rel(fz, fzm)
+
+    def draw(ax):
+        ax.plot(r.xdeg, fz, label="Fz")
+        ax.plot(r.xdeg, fzm, "--", label="Fz' = Fz F_press / Fx")
         ax.set(xlabel="whirl angle wt [deg]", ylabel="thrust [N]", xlim=(0, 360),
                title="Fig. 12: thrust Fz and modified thrust Fz' (contact FMU)")
         ax.legend()
-    fig("fig12_thrust.png", f12)
+    r.fig("fig12_thrust.png", draw)
+    return _claim("Fig. 12: Fz and Fz' have nearly the same waveform",
+                  f"correlation {c12:.4f}, rms difference {100 * d12:.2f} % of rms Fz'",
+                  c12 > 0.99, "contact FMU, all motions, traverse, ideal bearing; last whole "
+                  "cycle")
 
-    # Fig. 16/17: pitch only vs all motions; orders 1 and 3 stand out
+
+def fig16_17(r: Runs) -> dict:
+    """Fig. 16/17: pitch only vs all motions; orders 1 and 3 stand out."""
     k = np.arange(1, 11)
-    spec = {n: order_spectrum(fzm[n], 1, k)[0] for n in ("all", "pitch")}
+    spec = {n: order_spectrum(r.fzm[n], 1, k)[0] for n in ("all", "pitch")}
     top = {n: sorted(np.argsort(spec[n])[-2:] + 1) for n in spec}
-    ok17 = all(list(t) == [1, 3] for t in top.values())
-    claim("Fig. 16/17: pitch only and all motions: orders 1 and 3 stand out",
-          "; ".join(f"{n}: two largest orders {list(map(int, top[n]))}, order 1 {spec[n][0]:.2f} N, "
-                    f"order 3 {spec[n][2]:.2f} N, largest other {max(np.delete(spec[n], [0, 2])):.2f} N"
-                    for n in spec), ok17, "order spectrum 1-10 of Fz', contact FMU, traverse")
 
-    def f16(ax):
-        ax.plot(xdeg, fzm["all"], label="all motions")
-        ax.plot(xdeg, fzm["pitch"], "--", label="pitching only")
+    def draw16(ax):
+        ax.plot(r.xdeg, r.fzm["all"], label="all motions")
+        ax.plot(r.xdeg, r.fzm["pitch"], "--", label="pitching only")
         ax.set(xlabel="whirl angle wt [deg]", ylabel="modified thrust Fz' [N]", xlim=(0, 360),
                title="Fig. 16: modified thrust, all motions and pitching only")
         ax.legend()
-    fig("fig16_pitch_vs_all.png", f16)
 
-    def f17(ax):
+    def draw17(ax):
         ax.bar(k - 0.2, spec["all"], width=0.4, label="all motions")
         ax.bar(k + 0.2, spec["pitch"], width=0.4, label="pitching only")
         ax.set(xlabel="rotating order [-]", ylabel="amplitude of Fz' [N]", xticks=k,
                title="Fig. 17: order tracking of the modified thrust")
         ax.legend()
-    fig("fig17_orders.png", f17)
+    r.fig("fig16_pitch_vs_all.png", draw16)
+    r.fig("fig17_orders.png", draw17)
+    return _claim(
+        "Fig. 16/17: pitch only and all motions: orders 1 and 3 stand out",
+        "; ".join(f"{n}: two largest orders {list(map(int, top[n]))}, order 1 {spec[n][0]:.2f} N, "
+                  f"order 3 {spec[n][2]:.2f} N, largest other "
+                  f"{max(np.delete(spec[n], [0, 2])):.2f} N" for n in spec),
+        all(list(t) == [1, 3] for t in top.values()),
+        "order spectrum 1-10 of Fz', contact FMU, traverse")
 
-    # Fig. 18: pitch plus each other motion; adding roll reproduces all motions
-    d18 = {n: _rms_rel(fzm[n], fzm["all"]) for n in ("pitch+roll", "pitch+yaw", "pitch+axial")}
-    ok18 = min(d18, key=d18.get) == "pitch+roll" and d18["pitch+roll"] < 0.05
-    claim("Fig. 18: pitching plus rolling reproduces the all-motions waveform",
-          ", ".join(f"{n}: rms difference to all motions {100 * v:.1f} %" for n, v in d18.items()),
-          ok18, "contact FMU, traverse, ideal bearing (only the groove friction acts, as in the "
-          "paper's Fig. 18; yaw and axial act on the roller only through needle friction)")
 
-    def f18(ax):
-        ax.plot(xdeg, fzm["all"], "k", lw=2.5, alpha=0.4, label="all motions")
+def fig18(r: Runs) -> dict:
+    """Fig. 18: pitch plus each other motion; adding roll reproduces all motions."""
+    d18 = {n: _rms_rel(r.fzm[n], r.fzm["all"]) for n in ("pitch+roll", "pitch+yaw", "pitch+axial")}
+
+    def draw(ax):
+        ax.plot(r.xdeg, r.fzm["all"], "k", lw=2.5, alpha=0.4, label="all motions")
         for n in d18:
-            ax.plot(xdeg, fzm[n], label=n)
+            ax.plot(r.xdeg, r.fzm[n], label=n)
         ax.set(xlabel="whirl angle wt [deg]", ylabel="modified thrust Fz' [N]", xlim=(0, 360),
                title="Fig. 18: each motion added to pitching")
         ax.legend()
-    fig("fig18_motions.png", f18)
+    r.fig("fig18_motions.png", draw)
+    return _claim(
+        "Fig. 18: pitching plus rolling reproduces the all-motions waveform",
+        ", ".join(f"{n}: rms difference to all motions {100 * v:.1f} %" for n, v in d18.items()),
+        min(d18, key=d18.get) == "pitch+roll" and d18["pitch+roll"] < 0.05,
+        "contact FMU, traverse, ideal bearing (only the groove friction acts, as in the paper's "
+        "Fig. 18; yaw and axial act on the roller only through needle friction)")
 
-    # Fig. 20: figure-of-eight locus
-    cy, cz = cycle(runs["all"], "contact_y"), cycle(runs["all"], "contact_z")
+
+def fig20(r: Runs) -> dict:
+    """Fig. 20: the contact point's figure-of-eight locus."""
+    cy, cz = cycle(r.runs["all"], "contact_y"), cycle(r.runs["all"], "contact_z")
     oy, oz = orders_of(cy, (1, 2, 3, 4)), orders_of(cz, (1, 2, 3))
-    ok20 = (max(oy[1][0], oy[3][0]) < 0.01 * oy[2][0]) and (max(oz[2][0], oz[3][0]) < 0.01 * oz[1][0])
-    claim("Fig. 20: the contact point traces a figure-of-eight",
-          f"y: order 2 {oy[2][0] * 1e3:.3f} mm, order 4 {oy[4][0] * 1e3:.3f} mm, orders 1 and 3 "
-          f"below {max(oy[1][0], oy[3][0]) * 1e3:.4f} mm; z: order 1 {oz[1][0] * 1e3:.3f} mm; "
-          f"|y| up to {np.abs(cy).max() * 1e3:.2f} mm (mu_groove Rg = "
-          f"{sc['mu_groove'] * csc['r_groove'] * 1e3:.2f} mm)",
-          ok20, "y has orders 2 and 4 only and z order 1: the locus crosses itself (an 8)")
+    ok = (max(oy[1][0], oy[3][0]) < 0.01 * oy[2][0]) and \
+        (max(oz[2][0], oz[3][0]) < 0.01 * oz[1][0])
 
-    def f20(ax):
+    def draw(ax):
         ax.plot(np.append(cz, cz[0]) * 1e3, np.append(cy, cy[0]) * 1e3)
         ax.set(xlabel="contact point along the groove z [mm]",
                ylabel="contact point across the groove y [mm]",
                title="Fig. 20: locus of the contact point on the groove (contact FMU)")
-    fig("fig20_locus.png", f20)
+    r.fig("fig20_locus.png", draw)
+    return _claim(
+        "Fig. 20: the contact point traces a figure-of-eight",
+        f"y: order 2 {oy[2][0] * 1e3:.3f} mm, order 4 {oy[4][0] * 1e3:.3f} mm, orders 1 and 3 "
+        f"below {max(oy[1][0], oy[3][0]) * 1e3:.4f} mm; z: order 1 {oz[1][0] * 1e3:.3f} mm; "
+        f"|y| up to {np.abs(cy).max() * 1e3:.2f} mm (mu_groove Rg = "
+        f"{r.sc['mu_groove'] * r.csc['r_groove'] * 1e3:.2f} mm)",
+        ok, "y has orders 2 and 4 only and z order 1: the locus crosses itself (an 8)")
 
-    # Fig. 22/23: three sliding velocities and the thrust they explain
-    xs = 2 * math.pi * np.arange(N_CYC) / N_CYC
+
+def fig22_23(r: Runs) -> dict:
+    """Fig. 22/23: three sliding velocities and the thrust they explain."""
+    sc, csc, xs, xdeg, fzm = r.sc, r.csc, r.xs, r.xdeg, r.fzm["all"]
+    cy = cycle(r.runs["all"], "contact_y")
     ts = time_series(sc, xs)
-    rho = (csc["r_groove"] - csc["r_roller"]) / csc["r_groove"]   # centre moves (Rg-r)/Rg of the contact
-    v3 = np.gradient(cy, xs, edge_order=2) * W * rho
+    rho = (csc["r_groove"] - csc["r_roller"]) / csc["r_groove"]   # the centre moves (Rg-r)/Rg
+    v3 = np.gradient(cy, xs, edge_order=2) * W * rho             # of the contact point
     vcomb = ts["V"] + v3
     ft = mu_tanh(vcomb, sc["mu_groove"], transition_velocity(sc)) * sc["F_press"]
     ftz = ft * np.sin(ts["phi"]) + ts["F_spin"]
-    c23 = _corr(ftz, fzm["all"])
-    o23, oc = orders_of(ftz)[3], orders_of(fzm["all"])[3]
-    ok23 = c23 > 0.95 and abs(o23[0] / oc[0] - 1) < 0.05
-    claim("Fig. 22/23: v1, v2 and the traverse explain the thrust",
-          f"thrust from mu(v1 + v2 + v3) F_press sin(phi): correlation with the contact Fz' "
-          f"{c23:.3f}, order 3 {o23[0]:.2f} N vs {oc[0]:.2f} N",
-          ok23, "v3 = traverse speed of the roller centre from the contact FMU's locus")
+    c23 = _corr(ftz, fzm)
+    o23, oc = orders_of(ftz)[3], orders_of(fzm)[3]
 
-    def f22(ax):
+    def draw22(ax):
         ax.plot(xdeg, ts["v1"] * 1e3, label="v1, pitching (Eq. 19)")
         ax.plot(xdeg, ts["v2"] * 1e3, label="v2, rolling (Eq. 20)")
         ax.plot(xdeg, v3 * 1e3, label="v3, traverse of the contact point")
@@ -206,70 +228,100 @@ def reproduce(out: str | Path, share_bearing: int = 2) -> dict:
         ax.set(xlabel="whirl angle wt [deg]", ylabel="sliding velocity [mm/s]", xlim=(0, 360),
                title="Fig. 22: three sliding velocities and their sum")
         ax.legend(fontsize=8)
-    fig("fig22_sliding.png", f22)
 
-    def f23(ax):
-        ax.plot(xdeg, fzm["all"], label="Fz', contact FMU")
+    def draw23(ax):
+        ax.plot(xdeg, fzm, label="Fz', contact FMU")
         ax.plot(xdeg, ftz, "--", label="mu(v1+v2+v3) F_press sin(phi) + spin inertia")
         ax.set(xlabel="whirl angle wt [deg]", ylabel="thrust [N]", xlim=(0, 360),
                title="Fig. 23: thrust explained by the three sliding velocities")
         ax.legend()
-    fig("fig23_thrust_from_velocities.png", f23)
+    r.fig("fig22_sliding.png", draw22)
+    r.fig("fig23_thrust_from_velocities.png", draw23)
+    return _claim(
+        "Fig. 22/23: v1, v2 and the traverse explain the thrust",
+        f"thrust from mu(v1 + v2 + v3) F_press sin(phi): correlation with the contact Fz' "
+        f"{c23:.3f}, order 3 {o23[0]:.2f} N vs {oc[0]:.2f} N",
+        c23 > 0.95 and abs(o23[0] / oc[0] - 1) < 0.05,
+        "v3 = traverse speed of the roller centre from the contact FMU's locus")
 
-    # Fig. 24 and Eq. (27)
+
+def fig24(r: Runs) -> dict:
+    """Fig. 24 and Eq. (27): orders 1 and 3 of ftz."""
     rep = analytic_report({"spin_inertia": False})
-    e1 = rep["friction"]["order1"]["amplitude"] / rep["friction"]["closed_form"]["order1"]["amplitude"] - 1
-    e3 = rep["friction"]["order3"]["amplitude"] / rep["friction"]["closed_form"]["order3"]["amplitude"] - 1
-    claim("Fig. 24 / Eq. (27): order 1 and order 3 of ftz both C theta/2 (at beta + 180 and beta)",
-          f"C = {rep['C']:.2f} N, beta = {rep['beta_deg']:.1f} deg; FFT order 1 "
-          f"{rep['friction']['order1']['amplitude']:.3f} N at {rep['friction']['order1']['phase_deg']:.1f} deg, "
-          f"order 3 {rep['friction']['order3']['amplitude']:.3f} N at {rep['friction']['order3']['phase_deg']:.1f} deg; "
-          f"closed form {rep['friction']['closed_form']['order3']['amplitude']:.3f} N",
-          abs(e1) < 0.005 and abs(e3) < 0.005, "reduced model: FFT of ft sin(phi) vs Eq. (27)")
+    fr = rep["friction"]
+    e1 = fr["order1"]["amplitude"] / fr["closed_form"]["order1"]["amplitude"] - 1
+    e3 = fr["order3"]["amplitude"] / fr["closed_form"]["order3"]["amplitude"] - 1
+    xs = r.xs
 
-    def f24(ax):
-        ts0 = time_series(dict(sc, spin_inertia=False), xs)
-        ax.plot(xdeg, ts0["ft"], label="ft = mu(V) F_press")
-        ax.plot(xdeg, rep["C"] * np.sin(2 * xs + math.radians(rep["alpha_deg"])), "--",
+    def draw(ax):
+        ts0 = time_series(dict(r.sc, spin_inertia=False), xs)
+        ax.plot(r.xdeg, ts0["ft"], label="ft = mu(V) F_press")
+        ax.plot(r.xdeg, rep["C"] * np.sin(2 * xs + math.radians(rep["alpha_deg"])), "--",
                 label="2nd order C sin(2wt + alpha), Eq. (25)")
-        ax.plot(xdeg, ts0["ftz"] * 5, label="ftz = ft sin(phi), x5")
+        ax.plot(r.xdeg, ts0["ftz"] * 5, label="ftz = ft sin(phi), x5")
         ax.set(xlabel="whirl angle wt [deg]", ylabel="friction force [N]", xlim=(0, 360),
                title="Fig. 24: sliding friction from v1 and v2 (reduced model)")
         ax.legend(fontsize=8)
-    fig("fig24_friction.png", f24)
+    r.fig("fig24_friction.png", draw)
+    return _claim(
+        "Fig. 24 / Eq. (27): order 1 and order 3 of ftz both C theta/2 (at beta + 180 and beta)",
+        f"C = {rep['C']:.2f} N, beta = {rep['beta_deg']:.1f} deg; FFT order 1 "
+        f"{fr['order1']['amplitude']:.3f} N at {fr['order1']['phase_deg']:.1f} deg, "
+        f"order 3 {fr['order3']['amplitude']:.3f} N at {fr['order3']['phase_deg']:.1f} deg; "
+        f"closed form {fr['closed_form']['order3']['amplitude']:.3f} N",
+        abs(e1) < 0.005 and abs(e3) < 0.005, "reduced model: FFT of ft sin(phi) vs Eq. (27)")
 
-    # Section 4.1: three rollers, from the one-roller contact run shifted by 120 deg
+
+def section41(r: Runs) -> dict:
+    """Section 4.1: three rollers, from the one-roller contact run shifted by 120 deg."""
     shift = N_CYC // 3
-    joint = fzm["all"] + np.roll(fzm["all"], -shift) + np.roll(fzm["all"], -2 * shift)
-    oj, o1 = orders_of(joint), orders_of(fzm["all"])
-    ok41 = oj[1][0] < 0.02 * oj[3][0] and abs(oj[3][0] / (3 * o1[3][0]) - 1) < 0.02
-    claim("Section 4.1: three rollers: order 1 nearly cancels, order 3 is three times one roller's",
-          f"joint order 1 {oj[1][0]:.4f} N, order 3 {oj[3][0]:.3f} N = "
-          f"{oj[3][0] / o1[3][0]:.3f} x one roller's", ok41,
-          "sum of the one-roller contact Fz' at whirl phases 0, 120, 240 deg")
+    one = r.fzm["all"]
+    joint = one + np.roll(one, -shift) + np.roll(one, -2 * shift)
+    oj, o1 = orders_of(joint), orders_of(one)
 
-    def f41(ax):
-        ax.plot(xdeg, fzm["all"], label="one roller")
-        ax.plot(xdeg, joint, label="three rollers (housing)")
+    def draw(ax):
+        ax.plot(r.xdeg, one, label="one roller")
+        ax.plot(r.xdeg, joint, label="three rollers (housing)")
         ax.set(xlabel="whirl angle wt [deg]", ylabel="modified thrust [N]", xlim=(0, 360),
                title="Section 4.1: one roller and the three-roller housing thrust")
         ax.legend()
-    fig("three_rollers.png", f41)
+    r.fig("three_rollers.png", draw)
+    return _claim(
+        "Section 4.1: three rollers: order 1 nearly cancels, order 3 is three times one roller's",
+        f"joint order 1 {oj[1][0]:.4f} N, order 3 {oj[3][0]:.3f} N = "
+        f"{oj[3][0] / o1[3][0]:.3f} x one roller's",
+        oj[1][0] < 0.02 * oj[3][0] and abs(oj[3][0] / (3 * o1[3][0]) - 1) < 0.02,
+        "sum of the one-roller contact Fz' at whirl phases 0, 120, 240 deg")
 
-    # Section 4.2: share of the roller-groove sliding friction in order 3 (effective value)
-    o3 = {k: orders_of(fzm[f"share {k}"])[3][0] for k in off}
+
+def section42(r: Runs) -> dict:
+    """Section 4.2: the share of the roller-groove sliding friction in order 3 (effective
+    values)."""
+    o3 = {k: orders_of(r.fzm[f"share {k}"])[3][0] for k in SHARE_CASES}
     a_all, a_groove = o3["all friction"], o3["groove sliding only"]
     share = a_groove / a_all
     each = ", ".join(f"{k} {v:.3f} N" for k, v in o3.items() if k != "all friction")
-    bname = {1: "lumped", 2: "needle-resolved"}[share_bearing]
-    claim("Section 4.2: the roller-groove sliding friction is the principal factor of order 3 "
-          "(paper: 92 % of the effective value)",
-          f"{100 * share:.0f} % (order 3 with every friction {a_all:.3f} N; {each}; with the "
-          f"groove sliding off there is no thrust at all)", 0.8 < share < 1.25,
-          f"{bname} bearing, traverse: ratio of order-3 effective values (rms = amplitude/sqrt 2) "
-          "with only the groove sliding friction to every friction on; each other source "
-          "switched off in turn")
+    bname = {1: "lumped", 2: "needle-resolved"}[r.share_bearing]
+    return _claim(
+        "Section 4.2: the roller-groove sliding friction is the principal factor of order 3 "
+        "(paper: 92 % of the effective value)",
+        f"{100 * share:.0f} % (order 3 with every friction {a_all:.3f} N; {each}; with the "
+        f"groove sliding off there is no thrust at all)", 0.8 < share < 1.25,
+        f"{bname} bearing, traverse: ratio of order-3 effective values (rms = amplitude/sqrt 2) "
+        "with only the groove sliding friction to every friction on; each other source "
+        "switched off in turn")
 
+
+CLAIMS = (periodic, fig12, fig16_17, fig18, fig20, fig22_23, fig24, section41, section42)
+
+
+def reproduce(out: str | Path, share_bearing: int = 2) -> dict:
+    """Run everything, write the figures and report.md into ``out``; returns the claims, one
+    a function of CLAIMS."""
+    out = Path(out)
+    out.mkdir(parents=True, exist_ok=True)
+    r = Runs(out, share_bearing)
+    claims = [claim(r) for claim in CLAIMS]
     _write_report(out, claims)
     return {"claims": claims, "pass": all(c["pass"] for c in claims)}
 

@@ -156,7 +156,7 @@ def test_table_solves_the_trapezoid_and_is_periodic(ov):
 
 
 def test_a_table_that_is_not_periodic_says_so(monkeypatch):
-    from harness.cli import format_analytic
+    from reduced_model.analysis import format_analytic
     from reduced_model import analysis, traverse
     monkeypatch.setattr(kernel, "MAX_CYCLES", 2)    # this scene needs more
     tr = Traverse(sc.validate(KNEE[1], "analytic"))
@@ -317,7 +317,7 @@ def _params(s):
 
 
 def test_a_scene_outside_the_checked_range_says_so():
-    from harness.cli import format_analytic
+    from reduced_model.analysis import format_analytic
     from reduced_model import analysis
     from reduced_model.traverse import outside_checked
     # 500 rad/s on 200 N (a torque of 13.2 N m on s = 22 mm: 13.2 / 0.066): the roller's

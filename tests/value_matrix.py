@@ -1,5 +1,5 @@
 """Sets every parameter and input of a built FMU to hostile values, before and during a run, in
-its own process (tests/test_value_matrix.py; benchmarks/abuse.py for every bearing).
+its own process (tests/test_value_matrix.py; python -m benchmarks.abuse for every bearing).
 
 Usage: python value_matrix.py FMU SPEC_JSON.  SPEC: {"ints": {name: value} for the base scene,
 "only": [names] (default: every Real and Integer parameter and input), "steps": n}.  Prints
