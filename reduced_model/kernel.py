@@ -1,7 +1,7 @@
-"""The reduced model's equations as scalar functions over flat arrays: one source for the reduced
-traverse model (traverse.Traverse), the analytic FMU's model as Python (analytic_model) and the
-analytic FMU's binary, which compiles ``init``, ``step``, ``end`` and ``check_state`` ahead of
-time (c_functions, fmu_src/aot.py) and runs them without Python.
+"""The analytic FMU's lifecycle as scalar functions over flat arrays: one source for the analytic
+FMU's model as Python (analytic_model, the reference FMU) and its binary, which compiles
+``init``, ``step``, ``end`` and ``check_state`` with the equations they call (equations.py,
+table.py) ahead of time (c_functions, fmu_src/aot.py) and runs them without Python.
 
 Arrays (float64; flags and counts as 0.0 / 1.0, integers as floats; Python lists or numpy
 arrays on the Python path):
@@ -18,25 +18,23 @@ is a constant: nothing read from a state sizes or indexes an array.
 """
 import math
 
-from .friction import V_ST_FLOOR, spin_moment
+from . import equations, table
+from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLLERS, O_CLEAR,
+                        O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
+                        P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
+                        R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
+                        march, operating_point, substeps, thrust_at)
+from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
 from .scene import BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, STEP_ROUNDING, \
     params_for
+from .table import D_COUNT, SETTLED_TOL, regime, table_at, table_state_at, traverse_table
 from .thrust import fz_mod
 
-TWO_PI = 6.283185307179586   # math.tau
-
-# --- the FMU's variables ----------------------------------------------------------------------
-PARAM_NAMES = tuple(p.name for p in params_for("analytic") if p.causality != "input")
+# --- the FMU's inputs and outputs -----------------------------------------------------------
 INPUT_NAMES = tuple(p.name for p in params_for("analytic") if p.causality == "input")
 OUTPUT_NAMES = tuple(n for n, _, _ in OUTPUTS if n not in CONTACT_ONLY_OUTPUTS) + ("regime",)
-(DRIVE_BY_ANGLE, N_ROLLERS, MU_GROOVE, V_ST, PITCH, YAW, ROLL, AXIAL, S, R_ROLLER, R_GROOVE,
- R_BORE, M_ROLLER, SPIN_INERTIA, TRAVERSE, SPIN_MOMENT, E, NU) = map(PARAM_NAMES.index, (
-    "drive_by_angle", "n_rollers", "mu_groove", "v_st", "pitch", "yaw", "roll", "axial", "s",
-    "r_roller", "r_groove", "r_bore", "m_roller", "spin_inertia", "traverse", "spin_moment",
-    "E", "nu"))
-P_LEN = len(PARAM_NAMES)
 THETA, OMEGA, F_PRESS, TORQUE, PLUNGE_SPEED, SHAFT_ANGLE = map(INPUT_NAMES.index, (
     "theta", "omega", "F_press", "torque", "plunge_speed", "shaft_angle"))
 IN_LEN = len(INPUT_NAMES)
@@ -51,27 +49,9 @@ OUT_LEN = len(OUTPUT_NAMES)
 IN_LO = tuple(BY_NAME[n].lo for n in INPUT_NAMES)
 IN_HI = tuple(BY_NAME[n].hi for n in INPUT_NAMES)
 
-# --- the reduced traverse model's table -------------------------------------------------------
-N_PER_CYCLE = 360          # table points a whirl cycle (24 scenes: order 3 within 0.02 % of 1440)
-PERIODIC_TOL = 1e-7        # the secant's target: |s(2 pi) - s(0)| <= PERIODIC_TOL x v_st
-SETTLED_TOL = 1e-5         # periodic enough: the tanh friction moves by <= 3 SETTLED_TOL of
-                           # mu f_n over the mismatch, far below compare's 0.1 % settling
-STALL = 3                  # cycles without a better one: the secant is in the map's noise
-MAX_CYCLES = 60            # cycles of the cycle map the secant may run
-MICRO_SLIP_G = 0.95        # friction never above 95 % of mu_s f_n: the roller never slides across
-FULL_SLIP_REL = 0.05       # order 3 within 5 % (complex) of Eq. (27): Eqs. 18-27 hold
-REGIME_FULL_SLIP, REGIME_TRAVERSE, REGIME_MICRO_SLIP = 0, 1, 2   # scene.REGIME_CODES
-
-# the operating point: the scene's constants at the inputs of its key, for the scene the reduced
-# model runs (coast: drive at the opposite whirl, turned about the trunnion axis)
-(O_W, O_TH, O_T, O_KR, O_S, O_R, O_F, O_MU, O_VST, O_K, O_A1, O_CLEAR, O_RHO, O_VP, O_SM, O_I,
- O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD, O_LEN) = range(27)
 
 # --- the state X ------------------------------------------------------------------------------
 MODE_THRUST, MODE_TABLE, MODE_MARCH = 0, 1, 2
-# a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
-# speed [m/s]), whether s and the outputs exist yet (the march starts at rest)
-R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_LEN = range(10)
 TABLE_ROWS = N_PER_CYCLE + 1
 X_WHIRL = 0                        # 3 whirl angles [rad]
 X_DT, X_HAS_DT = 3, 4              # the communication step taken [s] (same_step)
@@ -88,10 +68,6 @@ X_TABLE_PS = X_TABLE_SS + TABLE_ROWS    # the table's points (where a march star
 X_LEN = X_TABLE_PS + TABLE_ROWS
 
 # --- the work W: the table's derivation, then the notes ---------------------------------------
-# per table point: driven slip V, T2's inertia part bi, dphi, spin, phi, xi; the cycle run and
-# the best one (slip s, p)
-(D_V, D_BI, D_DPHI, D_SPIN, D_PHI, D_XI, D_SS, D_PS, D_BEST_SS, D_BEST_PS,
- D_COUNT) = range(11)
 W_NOTES = D_COUNT * TABLE_ROWS
 NOTE_ARGS = 4
 MAX_NOTES = 16
@@ -205,443 +181,6 @@ def note(W, code, a0, a1, a2, a3):
     W[W_NOTES] = n + 1
 
 
-# --- the scene's constants --------------------------------------------------------------------
-def pressing_load(F_press, torque, s):
-    """Pressing load per roller [N]: torque / (3 s) when a torque [N m] is given (not 0; < 0
-    coast), else F_press (< 0 coast); s [m] the pitch-circle radius (scene.pressing_load)."""
-    return torque / (3.0 * s) if torque != 0 else F_press
-
-
-def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
-    """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2 + B^2 + Vp^2) / 4, at least
-    V_ST_FLOOR (friction.v_st_auto), with A = s w th^2 / 2 (Eq. 19), B = -r w (1 - cos th) /
-    cos th (Eq. 20), Vp = |v_p| sin th (the plunge's sliding); pitch and roll switch A, Vp and
-    B."""
-    if v_st > 0:
-        return v_st
-    A = 0.5 * s * w * (th * th) if pitch else 0.0
-    B = 0.0
-    if roll:
-        c = math.cos(th)
-        B = -r * w * (1.0 - c) / c
-    h = math.sqrt(A * A + B * B)
-    Vp = abs(vp) * math.sin(th) if pitch else 0.0
-    if Vp != 0.0:
-        h = math.sqrt(h * h + Vp * Vp)
-    return max(h / 4.0, V_ST_FLOOR)
-
-
-def operating_point(P, theta, omega, F_press, torque, vp, O):
-    """O: the constants of the scene the reduced model runs at these inputs (theta [rad], omega
-    [rad/s], F_press [N], torque [N m], plunge speed vp [m/s]): Traverse's (T1-T6) and Eqs.
-    (18)-(27)'s.  Coast (a negative pressing load) runs as drive at the opposite whirl and
-    plunge speed, turned 180 deg about the trunnion axis (docs/model.md): O_MIRROR."""
-    s, r = P[S], P[R_ROLLER]
-    load = pressing_load(F_press, torque, s)
-    mirror = load < 0
-    if mirror:    # (-tq) / (3 s) is -(tq / (3 s)) to the bit
-        omega, F_press, torque, vp = -omega, -F_press, -torque, -vp
-    F = pressing_load(F_press, torque, s)
-    pitch, roll = P[PITCH] != 0.0, P[ROLL] != 0.0
-    O[O_W] = omega
-    O[O_TH] = theta
-    O[O_T] = math.tan(theta) if pitch else 0.0
-    O[O_KR] = (1.0 - math.cos(theta)) / (2.0 * math.cos(theta)) if roll else 0.0   # e / s
-    O[O_S] = s
-    O[O_R] = r
-    O[O_F] = F
-    O[O_LOAD] = load
-    O[O_MIRROR] = 1.0 if mirror else 0.0
-    mu = P[MU_GROOVE]
-    O[O_MU] = mu
-    vst = transition_velocity(P[V_ST], s, r, omega, theta, vp, pitch, roll)
-    O[O_VST] = vst
-    K, a1, _ = hertz_point(r, P[R_GROOVE], P[E], P[NU])
-    O[O_K] = K
-    O[O_A1] = a1
-    clear = P[R_GROOVE] - r
-    O[O_CLEAR] = clear
-    O[O_RHO] = clear + (F / K) ** (2.0 / 3.0) if F > 0 else clear
-    O[O_VP] = vp
-    O[O_SM] = 1.0 if P[SPIN_MOMENT] != 0.0 else 0.0
-    # the roller's spin inertia as a thick ring, m (r^2 + r_bore^2) / 2 (0: the spin-inertia
-    # thrust switched off)
-    inertia = 0.5 * P[M_ROLLER] * (r * r + P[R_BORE] * P[R_BORE])
-    O[O_I] = inertia if P[SPIN_INERTIA] != 0.0 else 0.0
-    O[O_HELD] = 1.0 if (F > 0 and mu > 0 and vst > 0) else 0.0   # else nothing holds the roller
-    # Eqs. (18)-(27): V = A sin 2x + B cos 2x (Eq. 24), ft = mu F tanh(3 V / v_st)
-    O[O_A] = 0.5 * s * omega * (theta * theta) if pitch else 0.0
-    if roll:
-        c = math.cos(theta)
-        O[O_B] = -r * omega * (1.0 - c) / c
-    else:
-        O[O_B] = 0.0
-    O[O_KT] = 3.0 / vst if vst > 0 else 1e300         # Coulomb at v_st = 0
-    O[O_MUF] = mu * F                                  # Eq. (11)
-    th = theta if pitch else 0.0
-    O[O_THP] = th                                      # Eq. (2): phi = theta sin x
-    O[O_VPP] = vp if pitch else 0.0                    # the plunge's part of dz/dt in v1
-    # the spin inertia's thrust (I / r^2) d2z/dt2, d2z/dt2 = -w^2 s theta sin x
-    O[O_KSPIN] = -inertia / (r * r) * omega * omega * (s * th) \
-        if (P[SPIN_INERTIA] != 0.0 and pitch) else 0.0
-
-
-# --- Eqs. (18)-(27) ---------------------------------------------------------------------------
-def thrust_at(O, x):
-    """(Fz, ft, V, phi) at whirl angle x [rad]: Eqs. (2), (18)-(26) and the spin inertia's
-    thrust; N, N, m/s, rad."""
-    sx = math.sin(x)
-    V = O[O_A] * math.sin(2.0 * x) + O[O_B] * math.cos(2.0 * x)   # Eq. (24)
-    phi = O[O_THP] * sx                                            # Eq. (2)
-    if O[O_VPP] != 0.0:                                            # plunging: v_p sin(phi)
-        V = V + O[O_VPP] * math.sin(phi)
-    ft = O[O_MUF] * math.tanh(O[O_KT] * V)                         # Eqs. (11), (25), Fig. 8
-    return ft * math.sin(phi) + O[O_KSPIN] * sx, ft, V, phi       # Eq. (26)
-
-
-# --- the traverse model, T1-T6 (traverse.py's header) -----------------------------------------
-def drive_at(O, x):
-    """The driving motion at whirl angle x [rad], exact Eqs. (1), (5) (z = s tan(phi), Eq. 18):
-    phi, xi [rad], V [m/s] (T4's driven slip), dphi [rad/s], spin [rad/s] (rolling along the
-    groove), bi [N] (T2's inertia part of f_b)."""
-    w, T, k, r = O[O_W], O[O_T], O[O_KR], O[O_R]
-    tz = T * math.sin(x)
-    phi = math.atan(tz)
-    dphi = T * w * math.cos(x) / (1.0 + tz * tz)
-    q = k * math.sin(2.0 * x)
-    xi = math.asin(q)
-    dxi = 2.0 * w * k * math.cos(2.0 * x) / math.sqrt(1.0 - q * q)
-    zd = O[O_S] * T * w * math.cos(x)
-    if O[O_VP] != 0.0:                                  # the plunge: travel along z
-        zd = zd + O[O_VP]
-    zdd = -O[O_S] * T * w * w * math.sin(x)
-    v1 = zd * math.sin(phi)                             # Eq. (19), exact
-    v2 = -r * dxi                                       # Eq. (20), exact
-    V = v1 + v2 * (1.0 + O[O_RHO] / r)                  # T4
-    return phi, xi, V, dphi, zd / r, -O[O_I] * zdd / (r * r)
-
-
-def normal_force(O, p):
-    """T5: f_n [N] at p [1]."""
-    d = O[O_RHO] / math.sqrt(1.0 - p * p) - O[O_CLEAR]
-    return O[O_K] * d ** 1.5 if d > 0 else 0.0
-
-
-def beta_at(O, p, fn, bi, dphi, spin):
-    """T2: f_b / f_n where the drive gives bi [N], dphi and spin [rad/s]; with the spin moment,
-    Eqs. (14)-(16), against the spin w_n = dphi + spin p [rad/s]."""
-    b = bi
-    if O[O_SM] != 0.0:
-        b -= spin_moment(O[O_MU], fn, O[O_A1], dphi + spin * p, O[O_VST]) * p / O[O_R]
-    return b / fn
-
-
-def share(O, s, B):
-    """T3 inverted: p >= 0 [1] for the slide slip |s| [m/s] when the spin needs |f_b| / f_n = B:
-    the slip vector (s, t) at angle a from the slide, mu tanh(3 |s| / (v_st cos a)) sin a = B,
-    solved by bisection and Newton on a in [0, pi/2) (its left side rises from 0 to mu); then
-    p = mu tanh(3 |v| / v_st) cos a."""
-    mu, k = O[O_MU], 3.0 / O[O_VST]
-    B = min(B, mu * (1.0 - 1e-9))
-    s = abs(s)
-    if B <= 0.0:
-        return mu * math.tanh(k * s)
-    if s == 0.0:
-        return 0.0
-    lo, hi = 0.0, 0.5 * math.pi
-    a = min(math.asin(min(B / (mu * math.tanh(k * s) + 1e-300), 1.0)), 1.5)
-    for _ in range(60):
-        c, sn = math.cos(a), math.sin(a)
-        th = math.tanh(k * s / c)
-        f = mu * th * sn - B
-        if f > 0:
-            hi = a
-        else:
-            lo = a
-        df = mu * (th * c + sn * (1.0 - th * th) * k * s * sn / (c * c))
-        an = a - f / df if df > 0 else 0.5 * (lo + hi)
-        if not lo < an < hi:
-            an = 0.5 * (lo + hi)
-        if abs(an - a) < 1e-10:
-            a = an
-            break
-        a = an
-    return mu * math.tanh(k * s / math.cos(a)) * math.cos(a)
-
-
-def p_at(O, s, bi, dphi, spin, p0, guess):
-    """T2, T3, T5: p for the slide slip s [m/s] where the drive gives bi, dphi, spin (beta
-    depends weakly on p through f_n and the spin moment: fixed point), from p0 when guess and
-    of p's sign (the march: a nearby point's p), else from beta = 0."""
-    mu = O[O_MU]
-    sign = -1.0 if s > 0 else 1.0
-    p = sign * mu * math.tanh(3.0 * abs(s) / O[O_VST])
-    if guess and p0 * sign > 0.0:
-        p = p0
-    for _ in range(6):
-        q = sign * share(O, s, abs(beta_at(O, p, normal_force(O, p), bi, dphi, spin)))
-        if abs(q - p) < 1e-11 * mu:
-            return q
-        p = q
-    return p
-
-
-def trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p0, guess):
-    """s1 [m/s] of one trapezoidal step of T4 from slip s over h [s]: the root of f(z) = rho_c
-    p(z) - h/2 z - rhs0, p at the step's end point.  Newton: f falls with slope <= -h/2 and
-    |p| <= mu, so its root lies in [lo, hi]; a Newton step that leaves the bracket (it
-    overshoots on the tanh's knee and can cycle there) is a bisection instead.  guess (the
-    march): p's fixed point starts from p0, then from the last p found."""
-    rho, mu, vst = O[O_RHO], O[O_MU], O[O_VST]
-    e = 1e-6 * vst              # finite-difference step of the Newton slope
-    lo, hi = -2.0 * (rho * mu + rhs0) / h, 2.0 * (rho * mu - rhs0) / h
-    z = min(max(s, lo), hi)
-    g = p0
-    for _ in range(200):
-        p1 = p_at(O, z, bi, dphi, spin, g, guess)
-        g = p1
-        res = rho * p1 - 0.5 * h * z - rhs0
-        if res > 0.0:
-            lo = z
-        elif res < 0.0:
-            hi = z
-        else:
-            break
-        d = (rho * (p_at(O, z + e, bi, dphi, spin, p1, guess) - p1)) / e - 0.5 * h
-        dz = -res / d
-        if not lo < z + dz < hi:
-            dz = 0.5 * (lo + hi) - z
-        z += dz
-        if abs(dz) < 1e-9 * vst:
-            break
-    return z
-
-
-def slip_step(O, rhs0, s, h, bi, dphi, spin, p0):
-    """(settled, s1 [m/s], p1 [1]) of one trapezoidal step of T4 from slip s and p0 over h [s],
-    the march's first choice: T3 and T4 together as Newton on the slip vector (s, t), t >= 0
-    across the slide, where trapezoid_step nests T3's inversion (and T2's fixed point) inside
-    its Newton and costs three to four times as much.  The friction mu tanh(k |v|) v / |v| (k =
-    3 / v_st) gives p = -mu g s / |v| and |f_b| / f_n = mu g t / |v|; the residuals are T4,
-    rho_c p - h/2 s - rhs0, and T2's demand, mu g t / |v| - |beta(p)| (capped as share caps
-    it), with the friction's Jacobian exact and beta's weak dependence on p left out of it.
-    Not settled within 30 iterations to 1e-9 v_st (the start from rest, some steps after a
-    jump: about one step in 200 over random scenes): the caller takes trapezoid_step.  Where T3
-    determines the slip the two agree within 2e-6 of v_st, mu and the thrust over 2000 steps
-    (tests/test_traverse.py; measured 1e-11 to 2e-8)."""
-    rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
-    kt = 0.5 * h
-    cap = mu * (1.0 - 1e-9)
-    tol = 1e-9 * O[O_VST]
-    t = 0.0
-    if p0 != 0.0:   # the last step's slip angle
-        t = abs(s * min(abs(beta_at(O, p0, normal_force(O, p0), bi, dphi, spin)), cap) / p0)
-    for _ in range(30):
-        v = math.sqrt(s * s + t * t)
-        gv, dg, us, ut = k, k, 0.0, 0.0      # the friction's slope at v = 0
-        if v > 0.0:
-            g = math.tanh(k * v)
-            gv, dg, us, ut = g / v, k * (1.0 - g * g), s / v, t / v
-        p = -mu * gv * s
-        B = min(abs(beta_at(O, p, normal_force(O, p), bi, dphi, spin)), cap)
-        a11 = mu * (gv * (1.0 - us * us) + dg * us * us)
-        a22 = mu * (gv * (1.0 - ut * ut) + dg * ut * ut)
-        a12 = mu * (dg - gv) * us * ut
-        r1 = rho * p - kt * s - rhs0
-        r2 = mu * gv * t - B
-        j11 = -rho * a11 - kt
-        j12 = -rho * a12
-        det = j11 * a22 - j12 * a12          # < 0: the friction's Jacobian is semi-definite
-        if not det < 0.0:
-            return False, s, 0.0
-        ds = (j12 * r2 - a22 * r1) / det
-        dt = (a12 * r1 - j11 * r2) / det
-        s += ds
-        t = abs(t + dt)
-        if abs(ds) < tol and abs(dt) < tol:
-            v = math.sqrt(s * s + t * t)
-            return True, s, -mu * (math.tanh(k * v) / v if v > 0.0 else k) * s
-    return False, s, 0.0
-
-
-def groove_forces(fn, p, beta, phi, xi, F):
-    """T6: (Fz, Fx, Fy, Fz_mod) [N] on the groove from the normal force fn [N], p, beta [1], the
-    pitch phi and roll tilt xi [rad], F the pressing load [N].  T1 on the groove: the ideal
-    bearing takes no force along the trunnion axis a = (sin xi, cos xi cos phi, cos xi sin phi),
-    so F . a = 0 gives Fy."""
-    Fz = -fn * (p * math.sin(phi) + beta * math.cos(phi))
-    Fx = fn * (math.sqrt(1.0 - p * p) + p * p - p * xi)
-    Fy = -(Fx * math.sin(xi) + Fz * math.cos(xi) * math.sin(phi)) / (math.cos(xi) * math.cos(phi))
-    return Fz, Fx, Fy, fz_mod(Fx, Fz, F)
-
-
-# --- the periodic solution: the settled table -------------------------------------------------
-# D (work, n + 1 values a row, rows D_*): the driving motion at the table's n + 1 points, the
-# cycle run and the best one; T: the table (n + 1 rows of Fz, Fz_mod, Fx, Fy [N], slip speed
-# [m/s]); SS, PS: the settled cycle's slide slip s [m/s] and p [1] at the table's points
-def drive_table(O, D, n):
-    """The driving motion at the table's points (whirl angles 2 pi i / n) into D."""
-    m = n + 1
-    for i in range(m):
-        phi, xi, V, dphi, spin, bi = drive_at(O, 2.0 * math.pi * i / n)
-        D[D_V * m + i] = V
-        D[D_BI * m + i] = bi
-        D[D_DPHI * m + i] = dphi
-        D[D_SPIN * m + i] = spin
-        D[D_PHI * m + i] = phi
-        D[D_XI * m + i] = xi
-
-
-def table_p(O, D, n, i, s):
-    """p at table point i for the slide slip s [m/s]."""
-    m = n + 1
-    return p_at(O, s, D[D_BI * m + i], D[D_DPHI * m + i], D[D_SPIN * m + i], 0.0, False)
-
-
-def cycle(O, D, n, s0):
-    """One whirl cycle of T4, rho_c dp/dt = s - V', by the trapezoidal rule in s (never
-    singular: d(rho_c p - h s / 2)/ds <= -h / 2) from slide slip s0 [m/s]: s and p at every
-    table point into D (D_SS, D_PS).  Returns s at the cycle's end."""
-    m = n + 1
-    h = 2.0 * math.pi / O[O_W] / n
-    rho, v, ss, ps = O[O_RHO], D_V * m, D_SS * m, D_PS * m
-    s = s0
-    p0 = table_p(O, D, n, 0, s)
-    D[ss] = s
-    D[ps] = p0
-    for i in range(n):
-        rhs0 = rho * p0 + 0.5 * h * (s - D[v + i] - D[v + i + 1])
-        j = i + 1
-        s = trapezoid_step(O, rhs0, s, h, D[D_BI * m + j], D[D_DPHI * m + j],
-                           D[D_SPIN * m + j], 0.0, False)
-        p0 = table_p(O, D, n, j, s)
-        D[ss + j] = s
-        D[ps + j] = p0
-    return s
-
-
-def keep_best(D, n):
-    """The cycle just run (D_SS, D_PS) as the best one."""
-    m = n + 1
-    for i in range(m):
-        D[D_BEST_SS * m + i] = D[D_SS * m + i]
-        D[D_BEST_PS * m + i] = D[D_PS * m + i]
-
-
-def periodic(O, D, n):
-    """The slide slip over one cycle with s(2 pi) = s(0): secant on the cycle map; the best
-    cycle run into D (D_BEST_SS, D_BEST_PS).  Returns (cycles run, |s(2 pi) - s(0)| [m/s]).
-    The cycle map carries the rounding of n inner solves, amplified where the slip crosses the
-    tanh's knee (up to about 1e-5 v_st, measured): where the secant wanders in that noise (no
-    better cycle in STALL tries) and the best cycle is within SETTLED_TOL, it stops there."""
-    vst = O[O_VST]
-    tol = PERIODIC_TOL * vst
-    a = 0.0
-    ga = cycle(O, D, n, a) - a
-    b = a + ga
-    gb = cycle(O, D, n, b) - b
-    best = abs(gb)
-    keep_best(D, n)
-    stall = 0
-    used = 2
-    while abs(gb) > tol and gb != ga and used < MAX_CYCLES:
-        a, ga, b = b, gb, b - gb * (b - a) / (gb - ga)
-        gb = cycle(O, D, n, b) - b
-        used += 1
-        if abs(gb) < best:
-            best, stall = abs(gb), 0
-            keep_best(D, n)
-        else:
-            stall += 1
-            if stall >= STALL and best <= SETTLED_TOL * vst:
-                break
-    return used, best
-
-
-def traverse_table(O, D, n, T, SS, PS):
-    """The settled table at O (O_W > 0) into T, SS, PS.  Returns (cycles of the cycle map run,
-    mismatch |s(2 pi) - s(0)| [m/s], g_max: the largest friction over mu_s f_n [1])."""
-    drive_table(O, D, n)
-    m = n + 1
-    bss, bps = D_BEST_SS * m, D_BEST_PS * m
-    if O[O_HELD] == 0.0:            # no friction, or no slip to drive it: the roller slips by V
-        for i in range(m):
-            D[bss + i] = D[D_V * m + i]
-            D[bps + i] = 0.0
-        cycles, mismatch = 0, 0.0
-    else:
-        cycles, mismatch = periodic(O, D, n)
-    g_max = 0.0
-    for i in range(m):
-        p = D[bps + i]
-        fn = normal_force(O, p) if O[O_F] > 0 else 0.0
-        beta = beta_at(O, p, fn, D[D_BI * m + i], D[D_DPHI * m + i],
-                       D[D_SPIN * m + i]) if fn > 0 else 0.0
-        Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, D[D_PHI * m + i], D[D_XI * m + i], O[O_F])
-        g = math.sqrt(p * p + beta * beta)
-        if g > g_max:
-            g_max = g
-        T[5 * i] = Fz
-        T[5 * i + 1] = Fzm
-        T[5 * i + 2] = Fx
-        T[5 * i + 3] = Fy
-        T[5 * i + 4] = abs(D[bss + i])
-        SS[i] = D[bss + i]
-        PS[i] = p
-    return cycles, mismatch, (g_max / O[O_MU] if O[O_MU] > 0 else 0.0)
-
-
-def table_index(n, x):
-    """(i, f): the table's interval and the fraction into it at whirl angle x [rad]."""
-    u = (x % TWO_PI) * (n / TWO_PI)
-    i = int(u)
-    if i >= n:
-        i = n - 1
-    return i, u - i
-
-
-def table_at(T, n, x, k):
-    """Column k (0 Fz, 1 Fz_mod, 2 Fx, 3 Fy [N], 4 slip speed [m/s]) of the table at whirl
-    angle x [rad]: linear interpolation."""
-    i, f = table_index(n, x)
-    a = T[5 * i + k]
-    return a + f * (T[5 * (i + 1) + k] - a)
-
-
-def table_state_at(SS, PS, n, x):
-    """(slide slip s [m/s], p [1]) of the settled cycle at whirl angle x [rad]: linear
-    interpolation, where the march starts when the inputs begin to move."""
-    i, f = table_index(n, x)
-    return SS[i] + f * (SS[i + 1] - SS[i]), PS[i] + f * (PS[i + 1] - PS[i])
-
-
-def order3(T, n, O):
-    """Whether the table's order 3 of Fz_mod lies within FULL_SLIP_REL (complex) of Eq.
-    (27)'s at O: the sums of y_i exp(-3 j x_i) over the table's points, compared."""
-    re_t = im_t = re_e = im_e = 0.0
-    for i in range(n):
-        x = 2.0 * math.pi * i / n
-        c, sn = math.cos(3.0 * x), math.sin(3.0 * x)
-        y = T[5 * i + 1]
-        e = thrust_at(O, x)[0]
-        re_t += y * c
-        im_t -= y * sn
-        re_e += e * c
-        im_e -= e * sn
-    d = math.sqrt((re_t - re_e) * (re_t - re_e) + (im_t - im_e) * (im_t - im_e))
-    m = math.sqrt(re_e * re_e + im_e * im_e)
-    return m > 0 and d <= FULL_SLIP_REL * m
-
-
-def regime(g_max, T, n, O):
-    """REGIME_MICRO_SLIP where the friction never reaches MICRO_SLIP_G of mu_s f_n (g_max [1]),
-    else REGIME_FULL_SLIP where the table's order 3 is Eq. (27)'s within FULL_SLIP_REL, else
-    REGIME_TRAVERSE."""
-    if g_max < MICRO_SLIP_G:
-        return REGIME_MICRO_SLIP
-    return REGIME_FULL_SLIP if order3(T, n, O) else REGIME_TRAVERSE
-
-
 # --- the checked range ------------------------------------------------------------------------
 def inertia_ratio(m, r, omega, load):
     """The roller's inertia force over the pressing load, m r (2 omega)^2 / |load| (the traverse
@@ -720,60 +259,6 @@ def note_run_outside(P, X, W):
                 note(W, NOTE_CHECKED + k, v0, 0.0, 0.0, 0.0)
             else:
                 note(W, NOTE_CHECKED_SPAN + k, v0, v1, 0.0, 0.0)
-
-
-# --- the slide stepped in time (inputs that move) ---------------------------------------------
-def march(O, X, r, x, dt):
-    """The slide of the roller whose march row starts at X[r] stepped in time at O from whirl
-    angle x [rad] over dt [s] (T4 is an ODE in time; the table is its periodic solution), by the
-    table's trapezoidal rule in substeps of at most the table's spacing (each by slip_step, or
-    trapezoid_step where that does not settle); the row's outputs at the end (T5, T2, T6).  From
-    rest (no slip yet): on the groove bottom, p = 0.  Returns x at the end.  The caller checks
-    the substeps' count (steps_of)."""
-    n, h = steps_of(O, dt)
-    wh = O[O_W] * h
-    V0 = drive_at(O, x)[2]
-    s, p = X[r + R_S], X[r + R_P]
-    if X[r + R_HAS_S] == 0.0:
-        s, p = V0, 0.0
-    phi = xi = bi = dphi = spin = 0.0
-    for i in range(n):
-        phi, xi, V1, dphi, spin, bi = drive_at(O, x + wh * (i + 1))
-        if O[O_HELD] != 0.0:
-            rhs0 = O[O_RHO] * p + 0.5 * h * (s - V0 - V1)
-            ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p)
-            if ok:
-                s, p = s1, p1
-            else:
-                s = trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p, True)
-                p = p_at(O, s, bi, dphi, spin, p, True)
-        V0 = V1
-    if O[O_HELD] == 0.0:
-        s, p = V0, 0.0
-    fn = normal_force(O, p) if O[O_F] > 0 else 0.0
-    beta = beta_at(O, p, fn, bi, dphi, spin) if fn > 0 else 0.0
-    Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, phi, xi, O[O_F])
-    X[r + R_S] = s
-    X[r + R_P] = p
-    X[r + R_FZ] = Fz
-    X[r + R_FZ_MOD] = Fzm
-    X[r + R_FX] = Fx
-    X[r + R_FY] = Fy
-    X[r + R_SLIP] = abs(s)
-    X[r + R_HAS_S] = 1.0
-    X[r + R_HAS_OUT] = 1.0
-    return x + wh * n
-
-
-def substeps(O, dt):
-    """The march's substeps over dt [s] (at most the table's spacing), before rounding up."""
-    return abs(O[O_W]) * dt * N_PER_CYCLE / (2.0 * math.pi) - 1e-9
-
-
-def steps_of(O, dt):
-    """(n, h [s]): the march's substeps over dt [s]."""
-    n = max(1, int(math.ceil(substeps(O, dt))))
-    return n, dt / n
 
 
 # --- the analytic FMU's lifecycle -------------------------------------------------------------
@@ -1048,23 +533,17 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
                   "a march row's p is outside [-mu_groove, mu_groove]",
                   "its step is not above 0")
 
-# the functions the FMU's binary compiles (c_functions), callees first
-COMPILED = ("note", "pressing_load", "transition_velocity", "operating_point", "thrust_at",
-            "drive_at", "normal_force", "beta_at", "share", "p_at", "trapezoid_step",
-            "slip_step", "groove_forces", "drive_table", "table_p", "cycle", "keep_best",
-            "periodic", "traverse_table", "table_index", "table_at", "table_state_at", "order3",
-            "regime",
-            "inertia_ratio", "hertz_ratio", "checked_value", "inside", "note_outside",
-            "note_run_outside",
-            "substeps", "steps_of", "march", "same_value", "same_step", "mirrored",
-            "take_inputs", "prepare", "roller_row", "outputs", "check_scene", "init", "step",
-            "end", "state_problem")
+# the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
+# callees first
+COMPILED = ("note", "inertia_ratio", "hertz_ratio", "checked_value", "inside", "note_outside",
+            "note_run_outside", "same_value", "same_step", "mirrored", "take_inputs", "prepare",
+            "roller_row", "outputs", "check_scene", "init", "step", "end", "state_problem")
 
 
 def compiled_namespace():
-    """This module's COMPILED functions as numba njit copies calling each other (IEEE
-    arithmetic: error_model numpy), with the reduced model's functions they call; the module
-    itself stays plain Python."""
+    """equations.py's, table.py's and this module's COMPILED functions as numba njit copies
+    calling each other (IEEE arithmetic: error_model numpy), with the reduced model's functions
+    they call; the modules themselves stay plain Python."""
     import types
 
     import numba as nb
@@ -1076,11 +555,11 @@ def compiled_namespace():
 
     h = dict(vars(hertz))
     h["groove_curvature_radii"] = jit(groove_curvature_radii)
-    g = dict(globals())
+    g = {**vars(equations), **vars(table), **globals()}
     g["hertz_point"] = jit(types.FunctionType(hertz_point.__code__, h, "hertz_point"))
     for f in (spin_moment, housing_forces, fz_mod):
         g[f.__name__] = jit(f)
-    for name in COMPILED:
+    for name in equations.COMPILED + table.COMPILED + COMPILED:
         f = g[name]
         g[name] = jit(types.FunctionType(f.__code__, g, f.__name__, f.__defaults__,
                                          f.__closure__))

@@ -35,9 +35,12 @@ import math
 
 import numpy as np
 
+from . import equations as E
 from . import kernel as K
-from .kernel import (CHECKED_AT_DEFAULT, CHECKED_RANGES, FULL_SLIP_REL, INERTIA, INERTIA_LIMIT,
-                     MAX_CYCLES, MICRO_SLIP_G, N_PER_CYCLE, PERIODIC_TOL, SETTLED_TOL, STALL)
+from . import table as TB
+from .kernel import CHECKED_AT_DEFAULT, CHECKED_RANGES, INERTIA, INERTIA_LIMIT
+from .table import (FULL_SLIP_REL, MAX_CYCLES, MICRO_SLIP_G, N_PER_CYCLE, PERIODIC_TOL,
+                    SETTLED_TOL, STALL)
 from .orders import order_spectrum
 from .scene import BY_NAME, MAX_SUBSTEPS, StepRefused, check_traverse_mu, too_long
 
@@ -49,13 +52,13 @@ __all__ = ["CHECKED_AT_DEFAULT", "FULL_SLIP_REL", "INERTIA", "INERTIA_LIMIT", "M
 def params_array(sc: dict) -> np.ndarray:
     """The scene's parameters as kernel.py's P (PARAM_NAMES' order; a key the scene lacks at
     its default)."""
-    return np.array([float(sc.get(n, BY_NAME[n].default)) for n in K.PARAM_NAMES])
+    return np.array([float(sc.get(n, BY_NAME[n].default)) for n in E.PARAM_NAMES])
 
 
 def operating_point(sc: dict) -> np.ndarray:
     """kernel.py's operating point O of the scene (coast: the drive scene whose turn it is)."""
-    O = np.zeros(K.O_LEN)
-    K.operating_point(params_array(sc), float(sc["theta"]), float(sc["omega"]),
+    O = np.zeros(E.O_LEN)
+    E.operating_point(params_array(sc), float(sc["theta"]), float(sc["omega"]),
                       float(sc["F_press"]), float(sc.get("torque", 0.0)),
                       float(sc.get("plunge_speed", 0.0)), O)
     return O
@@ -65,7 +68,7 @@ def inertia_ratio(sc: dict) -> float:
     """The roller's inertia force over the pressing load, m_roller r_roller (2 omega)^2 / F
     (the traverse slide runs at twice the whirl); inf without load."""
     O = operating_point(sc)
-    return K.inertia_ratio(sc["m_roller"], sc["r_roller"], O[K.O_W], O[K.O_F])
+    return K.inertia_ratio(sc["m_roller"], sc["r_roller"], O[E.O_W], O[E.O_F])
 
 
 def _value(k):
@@ -117,26 +120,26 @@ class Traverse:
                              "range (0, 10000] rad/s (or traverse = false)")
         check_traverse_mu(sc["mu_groove"])
         self.O = O = operating_point(sc)
-        self.F, self.mu, self.vst, self.r = O[K.O_F], O[K.O_MU], O[K.O_VST], O[K.O_R]
-        self.K, self.a1, self.clear, self.rho_c = O[K.O_K], O[K.O_A1], O[K.O_CLEAR], O[K.O_RHO]
-        self.vp, self.inertia = O[K.O_VP], O[K.O_I]
-        self.held = O[K.O_HELD] != 0.0
+        self.F, self.mu, self.vst, self.r = O[E.O_F], O[E.O_MU], O[E.O_VST], O[E.O_R]
+        self.K, self.a1, self.clear, self.rho_c = O[E.O_K], O[E.O_A1], O[E.O_CLEAR], O[E.O_RHO]
+        self.vp, self.inertia = O[E.O_VP], O[E.O_I]
+        self.held = O[E.O_HELD] != 0.0
         if not periodic:              # the operating point only, for march
             return
         m = n + 1
         self.x = 2.0 * math.pi * np.arange(m) / n
-        self.D = np.zeros(K.D_COUNT * m)
+        self.D = np.zeros(TB.D_COUNT * m)
         T, SS, PS = np.zeros(5 * m), np.zeros(m), np.zeros(m)
-        self.cycles, self.mismatch, self.g_max = K.traverse_table(O, self.D, n, T, SS, PS)
+        self.cycles, self.mismatch, self.g_max = TB.traverse_table(O, self.D, n, T, SS, PS)
         self.settled = self.mismatch <= SETTLED_TOL * self.vst
         self.T = T
         self.slip, self.p = SS, PS
-        D = self.D.reshape(K.D_COUNT, m)
-        self.V, self.phi, self.xi = D[K.D_V], D[K.D_PHI], D[K.D_XI]
+        D = self.D.reshape(TB.D_COUNT, m)
+        self.V, self.phi, self.xi = D[TB.D_V], D[TB.D_PHI], D[TB.D_XI]
         self.Fz, self.Fz_mod, self.Fx, self.Fy = (T[k::5] for k in range(4))
-        self.fn = np.array([K.normal_force(O, q) if self.F > 0 else 0.0 for q in PS])
-        self.beta = np.array([K.beta_at(O, PS[i], self.fn[i], D[K.D_BI, i], D[K.D_DPHI, i],
-                                        D[K.D_SPIN, i]) if self.fn[i] > 0 else 0.0
+        self.fn = np.array([E.normal_force(O, q) if self.F > 0 else 0.0 for q in PS])
+        self.beta = np.array([E.beta_at(O, PS[i], self.fn[i], D[TB.D_BI, i], D[TB.D_DPHI, i],
+                                        D[TB.D_SPIN, i]) if self.fn[i] > 0 else 0.0
                               for i in range(m)])
         self._rows = [tuple(r) for r in T.reshape(m, 5).tolist()]
         self._flat = T.tolist()     # (plain floats: at() runs per step in the reports)
@@ -156,12 +159,12 @@ class Traverse:
     @property
     def spin_moment_on(self):
         """Whether the spin moment, Eqs. (14)-(16), enters T2."""
-        return self.O[K.O_SM] != 0.0
+        return self.O[E.O_SM] != 0.0
 
     def at(self, x):
         """(Fz, Fz_mod, Fx, Fy, slip speed) at whirl angle x [rad] (scalar), N and m/s: linear
         interpolation in the periodic table."""
-        return tuple(K.table_at(self._flat, self.n, x, k) for k in range(5))
+        return tuple(TB.table_at(self._flat, self.n, x, k) for k in range(5))
 
     def state_at(self, x):
         """(slide slip s [m/s], p [1]) of the periodic solution at whirl angle x [rad]: where
@@ -175,15 +178,15 @@ class Traverse:
         None: at rest on the groove bottom, p = 0) at whirl angle x [rad] over dt [s]
         (kernel.march).  Works on Traverse(scene, periodic=False).  Returns (s, p, x at the end,
         the outputs there as ``at`` gives them)."""
-        nd = K.substeps(self.O, dt)
+        nd = E.substeps(self.O, dt)
         if nd > MAX_SUBSTEPS:     # refused before it starts (a host's huge step)
-            raise StepRefused(too_long(dt, 2.0 * math.pi / (abs(self.O[K.O_W]) * self.n)))
-        X = np.zeros(K.R_LEN)
-        X[K.R_HAS_S] = 0.0 if s is None else 1.0
-        X[K.R_S], X[K.R_P] = (0.0, 0.0) if s is None else (s, p)
-        x1 = K.march(self.O, X, 0, x, dt)
-        return float(X[K.R_S]), float(X[K.R_P]), float(x1), tuple(
-            float(X[k]) for k in (K.R_FZ, K.R_FZ_MOD, K.R_FX, K.R_FY, K.R_SLIP))
+            raise StepRefused(too_long(dt, 2.0 * math.pi / (abs(self.O[E.O_W]) * self.n)))
+        X = np.zeros(E.R_LEN)
+        X[E.R_HAS_S] = 0.0 if s is None else 1.0
+        X[E.R_S], X[E.R_P] = (0.0, 0.0) if s is None else (s, p)
+        x1 = E.march(self.O, X, 0, x, dt)
+        return float(X[E.R_S]), float(X[E.R_P]), float(x1), tuple(
+            float(X[k]) for k in (E.R_FZ, E.R_FZ_MOD, E.R_FX, E.R_FY, E.R_SLIP))
 
     def orders(self, name="Fz_mod", orders=(1, 3)):
         """{k: (amplitude N, phase deg)} of one of the tabulated signals over the cycle."""
@@ -200,5 +203,5 @@ class Traverse:
     def regime(self) -> str:
         """'micro-slip' (friction never reaches 95 % of mu_s f_n), 'full slip' (order 3 within
         5 % of Eq. 27), else 'traverse' (kernel.regime: the analytic FMU's)."""
-        return REGIMES[K.regime(self.g_max, self.T, self.n, self.O)]
+        return REGIMES[TB.regime(self.g_max, self.T, self.n, self.O)]
 

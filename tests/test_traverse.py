@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from harness import validation
-from reduced_model import kernel
+from reduced_model import equations, kernel, table
 from reduced_model import scene as sc
 from reduced_model.orders import order_spectrum
 from reduced_model.thrust import amplitudes, closed_form, transition_velocity
@@ -141,8 +141,8 @@ def test_table_solves_the_trapezoid_and_is_periodic(ov):
     # terms.
     i = np.arange(1, tr.n + 1)
     e = 1e-6 * tr.vst
-    dp = np.array([(kernel.table_p(tr.O, tr.D, tr.n, k, z + e)
-                    - kernel.table_p(tr.O, tr.D, tr.n, k, z - e)) / (2 * e)
+    dp = np.array([(table.table_p(tr.O, tr.D, tr.n, k, z + e)
+                    - table.table_p(tr.O, tr.D, tr.n, k, z - e)) / (2 * e)
                    for k, z in zip(i, s[1:])])
     slope = np.abs(tr.rho_c * dp) + 0.5 * h
     terms = tr.rho_c * (abs(p[1:]) + abs(p[:-1])) + 0.5 * h * (
@@ -158,7 +158,7 @@ def test_table_solves_the_trapezoid_and_is_periodic(ov):
 def test_a_table_that_is_not_periodic_says_so(monkeypatch):
     from reduced_model.analysis import format_analytic
     from reduced_model import analysis, traverse
-    monkeypatch.setattr(kernel, "MAX_CYCLES", 2)    # this scene needs more
+    monkeypatch.setattr(table, "MAX_CYCLES", 2)    # this scene needs more
     tr = Traverse(sc.validate(KNEE[1], "analytic"))
     assert not tr.settled and tr.mismatch > 1e-5 * tr.vst and tr.cycles == 2
     r = analysis.analytic_report(KNEE[1])
@@ -191,7 +191,7 @@ def test_march_at_the_tables_spacing_stays_on_the_table():
     {"omega": 0.02, "plunge_speed": 0.05},                # creep at the v_st floor, plunging
 ])
 def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
-    """The march solves each step by Newton on the slip vector (kernel.slip_step) and falls back
+    """The march solves each step by Newton on the slip vector (equations.slip_step) and falls back
     to the bracketed Newton in s with T3 inverted inside (trapezoid_step) where it does not
     settle.  Both
     solve T3 + T4 to 1e-9 v_st a step; where friction saturates the trapezoidal recursion is
@@ -200,7 +200,7 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
     range, 300 N at 40-80 Hz, friction cannot carry the spin inertia, T3 leaves s undetermined
     and the two differ by up to 2e-4 of the thrust: not tested.)"""
     s0 = sc.validate(over, "analytic")
-    first = kernel.slip_step
+    first = equations.slip_step
     runs = []
     for newton in (True, False):
         s, p, x, rows, fell_back = None, 0.0, 0.0, [], [0]
@@ -211,14 +211,14 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
                     r = first(*a)
                     fell_back[0] += not r[0]
                     return r
-                kernel.slip_step = counted
+                equations.slip_step = counted
             else:
-                kernel.slip_step = lambda *a: (False, 0.0, 0.0)
+                equations.slip_step = lambda *a: (False, 0.0, 0.0)
             try:
                 for _ in range(500):
                     s, p, x, out = op.march(s, p, x, 1e-4)
             finally:
-                kernel.slip_step = first
+                equations.slip_step = first
                 rows.append((s, p, out[0], out[2]))
         runs.append((np.array(rows), fell_back[0]))
     (a, fell), (b, _) = runs
@@ -236,7 +236,7 @@ def test_march_without_load_slips_by_the_drive():
     s = sc.validate({"F_press": 0.0}, "analytic")
     op = Traverse(s, periodic=False)
     sl, p, x, out = op.march(None, 0.0, 0.3, 1e-4)
-    V = kernel.drive_at(op.O, x)[2]
+    V = equations.drive_at(op.O, x)[2]
     assert p == 0.0 and sl == pytest.approx(V, rel=1e-12)
     assert out[:4] == (0.0, 0.0, 0.0, 0.0) and out[4] == abs(sl)
 
