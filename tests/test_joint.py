@@ -119,3 +119,21 @@ def test_the_joint_command_gives_each_fmu_its_start_values(capsys):
     assert r["outside_checked"] == []
     assert set(r["start_values"]["TripodRoller"]) == set(JOINT_KEYS)
     assert r["start_values"]["TripodRollerAnalytic"]["s"] == pytest.approx(0.01804)
+
+
+def test_the_launch_example_takes_a_joint_file(tmp_path):
+    """`tripod-thrust example --joint FILE`: the SSP's joint component gets the file's values
+    as start values (the analytic FMU: its eight), and the creep load at the joint's own pitch
+    circle; the launch runs (0.05 s here)."""
+    import zipfile
+    from driveline import powertrain as pt
+    from harness import example as E
+    j = load_joint(EXAMPLES / "small-car.toml")
+    r = E.launch(tmp_path, stop=0.05, step=1e-3, joints=("analytic",), tools=("fmpy",),
+                 check_step=False, plots=False, joint=j)
+    assert len(r["rows"]) == 1 and r["rows"][0]["tool"] == "fmpy"
+    ssd = zipfile.ZipFile(tmp_path / "launch_analytic.ssp").read("SystemStructure.ssd").decode()
+    assert f'<ssv:Parameter name="s"><ssv:Real value="{j["s"]!r}"/>' in ssd
+    creep = pt.defaults()["torque_creep"] / (3.0 * j["s"])
+    assert f'<ssv:Parameter name="F_press"><ssv:Real value="{creep!r}"/>' in ssd
+    assert 'name="n_needles"' not in ssd        # (the contact model's only)
