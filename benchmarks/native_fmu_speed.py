@@ -23,6 +23,7 @@ from pathlib import Path
 from fmpy import read_model_description
 
 from harness.docgen import write_marked
+from harness.bench import bare_fmu, bare_native_fmu
 from harness.fmus import builder, ensure_fmu, reference_fmu
 
 ROOT = Path(__file__).resolve().parents[1]
@@ -33,7 +34,10 @@ STEPS = 4000
 MOVING = {"theta": (0.17, 0.05, 3.0), "omega": (62.8, 20.0, 5.0), "torque": (300.0, 100.0, 7.0)}
 # (model, inputs the master moves: None every input (the host's default signals), Integer
 # parameters, what the row says)
-CASES = (("Powertrain", None, {}, "launch, every input moving"),
+CASES = (("BareSlave", {"theta": (0.17, 0.05, 3.0), "omega": (62.8, 20.0, 5.0),
+                        "torque": (300.0, 100.0, 7.0)}, {},
+          "the bare boundary: a step that does nothing, inputs moving"),
+         ("Powertrain", None, {}, "launch, every input moving"),
          ("TripodRollerAnalytic", {}, {}, "1 roller, fixed inputs"),
          ("TripodRollerAnalytic", MOVING, {}, "1 roller, inputs moving"),
          ("TripodRollerAnalytic", {}, {"n_rollers": 3}, "3 rollers, fixed inputs"),
@@ -67,13 +71,15 @@ def table(runs=5) -> str:
                         f"-I{builder()._fmi_headers()}", str(HOST), "-o", str(host), "-lm",
                         "-ldl"], check=True)
         for model, spec, ints, what in CASES:
-            for kind, fmu in (("compiled, no Python", ensure_fmu(model)),
-                              ("through Python (reference)", reference_fmu(model))):
+            pair = ((bare_native_fmu(), bare_fmu()) if model == "BareSlave" else
+                    (ensure_fmu(model), reference_fmu(model)))
+            for kind, fmu in zip(("compiled, no Python", "through Python (reference)"), pair):
                 d = Path(tmp) / str(len(rows))
                 zipfile.ZipFile(fmu).extractall(d)
+                md = read_model_description(str(fmu))
                 rows.append((f"{model}: {what}; {kind}", fmu,
-                             d / "binaries" / "linux64" / f"{model}.so",
-                             read_model_description(str(fmu)), spec, ints))
+                             d / "binaries" / "linux64" / f"{md.coSimulation.modelIdentifier}.so",
+                             md, spec, ints))
         got = {r[0]: [] for r in rows}
         for _ in range(runs):
             for label, _, binary, md, spec, ints in rows:
