@@ -45,8 +45,10 @@ RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("nu
 COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout"),
             "TripodRollerAnalytic": ("reduced_model.kernel:c_functions",
                                      "reduced_model.kernel:native_layout")}
-NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "fmi2_native.c",
-              FMU_SRC / "native" / "native_model.h", FMU_SRC / "native" / "exports.map")
+NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "exports.map",
+              *(FMU_SRC / "native" / f for f in ("fmi2_native.c", "native_values.c",
+                                                 "native_state.c", "native_model.h",
+                                                 "native_values.h", "native_state.h")))
 NATIVE_SRC = FMU_SRC / "native" / "fmi2_python.c"
 AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # the prebuilt kernel
 AOT_DIR = BUILD / "aot"

@@ -19,7 +19,9 @@ import aot
 
 FMU_SRC = Path(__file__).resolve().parent
 NATIVE = FMU_SRC / "native"
-SOURCES = (NATIVE / "fmi2_native.c", NATIVE / "native_model.h", NATIVE / "aot_stubs.c")
+LAYER = (NATIVE / "fmi2_native.c", NATIVE / "native_values.c", NATIVE / "native_state.c")
+SOURCES = LAYER + (NATIVE / "native_model.h", NATIVE / "native_values.h",
+                   NATIVE / "native_state.h", NATIVE / "aot_stubs.c")
 BINARY = {"linux64": "{id}.so", "win64": "{id}.dll"}
 
 
@@ -117,7 +119,7 @@ def binary(spec: str, xml: bytes, layout: dict, target: str, dest: Path, headers
                  ["-fPIC", "-fvisibility=hidden", "-Wl,-z,defs",
                   f"-Wl,--version-script={NATIVE / 'exports.map'}"])
         cmd = cc.split()[:1] + ["-std=c99", "-O2", "-shared", "-Wall", "-Wextra",
-                                f"-I{headers}", f"-I{NATIVE}", str(NATIVE / "fmi2_native.c"),
+                                f"-I{headers}", f"-I{NATIVE}", *map(str, LAYER),
                                 str(data), str(NATIVE / "aot_stubs.c")] + \
             [str(o) for o, _ in objs.values()] + ["-o", str(dest), "-lm"] + flags
         dest.parent.mkdir(parents=True, exist_ok=True)

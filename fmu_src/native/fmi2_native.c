@@ -1,9 +1,13 @@
-/* The FMI 2.0 co-simulation layer for a model compiled ahead of time (native_model.h): the whole
-   lifecycle without Python, in plain C99 over libc and libm, the same source for Linux and
-   Windows.  Variables from data generated at build time from the parameter table; values
-   checked as reduced_model/scene.py's check_param does, with its messages; the call sequence
-   enforced (the Reference-FMUs' masks); the FMU state a copy of the model's arrays, serialised
-   as checked data (magic, sizes, GUID, CRC-32), nothing in it sizing an allocation unchecked.
+/* The FMI 2.0 co-simulation functions and call states for a model compiled ahead of time: the
+   whole lifecycle without Python, in plain C99 over libc and libm, the same source for Linux
+   and Windows (nothing here is platform code: no loading, no paths, no threads).  In parts:
+   - this file: the FMI functions, the call sequence (the Reference-FMUs' masks), the instance
+     and the FMU state's copies, the model's notes logged;
+   - native_model.h: the binding to a compiled model (its variables, generated at build time
+     from the parameter table into model_data.c, its sizes, its four functions);
+   - native_values.c: values checked and worded as reduced_model/scene.py's check_param does;
+   - native_state.c: the FMU state serialised as checked data (magic, sizes, GUID, CRC-32),
+     nothing in it sizing an allocation.
    Each instance owns its memory; no global state, no thread, nothing at exit. */
 #include <float.h>
 #include <math.h>
@@ -14,6 +18,8 @@
 
 #include "fmi2Functions.h"
 #include "native_model.h"
+#include "native_state.h"
+#include "native_values.h"
 
 typedef enum { INSTANTIATED, INIT_MODE, STEP_COMPLETE, STEP_FAILED, TERMINATED, ERRORED } Phase;
 static const char *const PHASE_NAMES[] = {"instantiated", "initialization mode",
@@ -59,79 +65,6 @@ static void logf_(Inst *c, fmi2Status status, const char *fmt, ...)
                       status == fmi2Warning ? "logStatusWarning" : "logAll";
     /* the logger's message is a printf format (FMI 2.0): ours goes in as an argument */
     c->cb.logger(c->cb.componentEnvironment, c->name, status, cat, "%s", msg);
-}
-
-/* x as Python's repr() writes a float (the shortest digits that read back as x; fixed notation
-   for exponents -4 to 15, with ".0" when integral; else d.ddde+XX), so the messages are the
-   Python model's to the character. */
-static void py_repr(double x, char *out, size_t n)
-{
-    if (isnan(x)) { snprintf(out, n, "nan"); return; }
-    if (isinf(x)) { snprintf(out, n, x < 0 ? "-inf" : "inf"); return; }
-    char buf[40];
-    int p;
-    for (p = 1; p < 17; ++p) {
-        snprintf(buf, sizeof buf, "%.*e", p - 1, x);
-        if (strtod(buf, NULL) == x) break;
-    }
-    snprintf(buf, sizeof buf, "%.*e", p - 1, x);
-    char digits[24];
-    int nd = 0, neg = buf[0] == '-';
-    const char *q = buf + neg;
-    for (; *q && *q != 'e'; ++q)
-        if (*q >= '0' && *q <= '9' && nd < 23) digits[nd++] = *q;
-    digits[nd] = 0;
-    int e = atoi(q + 1);
-    while (nd > 1 && digits[nd - 1] == '0') digits[--nd] = 0;   /* (%.0e of 10: "1e+01") */
-    char *o = out;
-    size_t left = n;
-#define PUT(...) do { int w_ = snprintf(o, left, __VA_ARGS__); if (w_ < 0 || (size_t)w_ >= left) return; o += w_; left -= (size_t)w_; } while (0)
-    if (neg) PUT("-");
-    if (e >= -4 && e < 16) {
-        if (e < 0) {
-            PUT("0.");
-            for (int i = 0; i < -e - 1; ++i) PUT("0");
-            PUT("%s", digits);
-        } else {
-            for (int i = 0; i <= e; ++i) PUT("%c", i < nd ? digits[i] : '0');
-            PUT(".");
-            if (nd > e + 1) PUT("%s", digits + e + 1);
-            else PUT("0");
-        }
-    } else {
-        PUT("%c", digits[0]);
-        if (nd > 1) PUT(".%s", digits + 1);
-        PUT("e%c%02d", e < 0 ? '-' : '+', e < 0 ? -e : e);
-    }
-#undef PUT
-}
-
-/* The value of variable k as check_param words it: a float's repr, an integer's digits. */
-static void value_text(const ModelVar *v, double x, char *out, size_t n)
-{
-    if (v->type == 'I') snprintf(out, n, "%.0f", x);
-    else py_repr(x, out, n);
-}
-
-/* Whether x is a value variable v may take (reduced_model/scene.py: check_param); if not, the
-   reason, "NAME = VALUE is ...", in why. */
-static int value_ok(const ModelVar *v, double x, char *why, size_t n)
-{
-    int bad = !isfinite(x);
-    if (!bad && v->has_lo) bad = v->lo_open ? x <= v->lo : x < v->lo;
-    if (!bad && v->has_hi) bad = v->hi_open ? x >= v->hi : x > v->hi;
-    if (!bad && v->auto_or_min > 0.0) bad = 0.0 < x && x < v->auto_or_min;
-    int subnormal = !bad && x != 0.0 && fabs(x) < DBL_MIN;
-    if (!bad && !subnormal) return 1;
-    char text[48];     /* (worded only when refused: a float's repr costs microseconds) */
-    value_text(v, x, text, sizeof text);
-    if (subnormal)
-        snprintf(why, n, "%s = %s is subnormal (below %.4g in magnitude): give 0 or a value in %s",
-                 v->name, text, DBL_MIN, v->range_text);
-    else
-        snprintf(why, n, "%s = %s is outside the allowed range %s", v->name, text,
-                 v->range_text);
-    return 0;
 }
 
 /* ---- the model's notes (native_model.h) ----------------------------------------------------- */
@@ -296,7 +229,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
     char why[512];
     for (int i = 0; i < MODEL_N_CHECK; ++i) {
         const ModelVar *v = &MODEL_VARS[MODEL_CHECK_ORDER[i]];
-        if (!value_ok(v, *slot_of(c, v), why, sizeof why)) {
+        if (!native_value_ok(v, *slot_of(c, v), why, sizeof why)) {
             logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s", why);
             c->phase = ERRORED;
             return fmi2Error;
@@ -309,7 +242,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
             const ModelVar *v = &MODEL_VARS[k];
             if (v->array != IN_P || v->slot != -rc - 1) continue;
             char text[48];
-            value_text(v, c->arr[A_P][v->slot], text, sizeof text);
+            native_value_text(v, c->arr[A_P][v->slot], text, sizeof text);
             logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s = %s is too "
                   "small to compute with; allowed range %s", v->name, text, v->range_text);
         }
@@ -475,7 +408,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     char why[512];
     for (int k = 0; k < MODEL_N_VARS; ++k) {      /* the inputs a master set */
         const ModelVar *v = &MODEL_VARS[k];
-        if (v->array == IN_IN && !value_ok(v, *slot_of(c, v), why, sizeof why)) {
+        if (v->array == IN_IN && !native_value_ok(v, *slot_of(c, v), why, sizeof why)) {
             logf_(c, fmi2Error, "invalid input at t = %g s: %s", t, why);
             return discard(c, t);
         }
@@ -489,7 +422,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     if (rc == 5) {     /* an input the model derived (driving by angle: omega) */
         for (int k = 0; k < MODEL_N_VARS; ++k) {
             const ModelVar *v = &MODEL_VARS[k];
-            if (v->array == IN_IN && !value_ok(v, *slot_of(c, v), why, sizeof why)) {
+            if (v->array == IN_IN && !native_value_ok(v, *slot_of(c, v), why, sizeof why)) {
                 logf_(c, fmi2Error, "invalid input at t = %g s: %s", t, why);
                 break;
             }
@@ -513,19 +446,6 @@ fmi2Status fmi2CancelStep(fmi2Component c)
 }
 
 /* ---- FMU state ---------------------------------------------------------------------------- */
-
-static const char MAGIC[8] = {'T', 'T', 'N', 'A', 'T', 'V', '0', '1'};
-enum { HEADER = 8 + 4 * 4 + A_COUNT * 4 + 8 };   /* magic, version, phase, flag, GUID's CRC, sizes, time */
-
-static uint32_t crc32(const unsigned char *p, size_t n)
-{
-    uint32_t crc = 0xFFFFFFFFu;
-    for (size_t i = 0; i < n; ++i) {
-        crc ^= p[i];
-        for (int b = 0; b < 8; ++b) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
-    }
-    return ~crc;
-}
 
 static State *new_state(Inst *c)
 {
@@ -581,11 +501,11 @@ static int state_fits(Inst *c, const State *s, char *why, size_t n)
     for (int k = 0; k < MODEL_N_VARS; ++k) {
         const ModelVar *v = &MODEL_VARS[k];
         size_t at = (size_t)(slot_of(c, v) - c->data);
-        if (v->array == IN_IN && !value_ok(v, s->data[at], why, n)) return 0;
+        if (v->array == IN_IN && !native_value_ok(v, s->data[at], why, n)) return 0;
         if (v->array == IN_P && s->data[at] != c->data[at]) {
             char a[48], b[48];
-            value_text(v, s->data[at], a, sizeof a);
-            value_text(v, c->data[at], b, sizeof b);
+            native_value_text(v, s->data[at], a, sizeof a);
+            native_value_text(v, c->data[at], b, sizeof b);
             snprintf(why, n, "state taken with other parameters: %s = %s (this instance: %s)",
                      v->name, a, b);
             return 0;
@@ -642,7 +562,7 @@ fmi2Status fmi2FreeFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
     return fmi2OK;
 }
 
-static size_t serial_size(const State *s) { return HEADER + 8 * s->n_data + 4; }
+static size_t serial_size(const State *s) { return native_state_size(s->n_data); }
 
 fmi2Status fmi2SerializedFMUstateSize(fmi2Component component, fmi2FMUstate FMUstate, size_t *size)
 {
@@ -656,32 +576,6 @@ fmi2Status fmi2SerializedFMUstateSize(fmi2Component component, fmi2FMUstate FMUs
     return fmi2OK;
 }
 
-static void put_u32(unsigned char *p, uint32_t x)
-{
-    for (int i = 0; i < 4; ++i) p[i] = (unsigned char)(x >> (8 * i));
-}
-
-static uint32_t get_u32(const unsigned char *p)
-{
-    return (uint32_t)p[0] | (uint32_t)p[1] << 8 | (uint32_t)p[2] << 16 | (uint32_t)p[3] << 24;
-}
-
-static void put_f64(unsigned char *p, double x)
-{
-    uint64_t u;
-    memcpy(&u, &x, 8);
-    for (int i = 0; i < 8; ++i) p[i] = (unsigned char)(u >> (8 * i));
-}
-
-static double get_f64(const unsigned char *p)
-{
-    uint64_t u = 0;
-    for (int i = 0; i < 8; ++i) u |= (uint64_t)p[i] << (8 * i);
-    double x;
-    memcpy(&x, &u, 8);
-    return x;
-}
-
 fmi2Status fmi2SerializeFMUstate(fmi2Component component, fmi2FMUstate FMUstate,
                                  fmi2Byte serializedState[], size_t size)
 {
@@ -693,16 +587,8 @@ fmi2Status fmi2SerializeFMUstate(fmi2Component component, fmi2FMUstate FMUstate,
               "(needs %zu)", size, s ? serial_size(s) : 0);
         return fmi2Error;
     }
-    unsigned char *p = (unsigned char *)serializedState;
-    memcpy(p, MAGIC, 8);
-    put_u32(p + 8, 1);
-    put_u32(p + 12, (uint32_t)s->phase);
-    put_u32(p + 16, (uint32_t)s->wants_to_terminate);
-    put_u32(p + 20, crc32((const unsigned char *)MODEL_GUID, strlen(MODEL_GUID)));
-    for (int a = 0; a < A_COUNT; ++a) put_u32(p + 24 + 4 * a, (uint32_t)MODEL_SIZES[a]);
-    put_f64(p + 24 + 4 * A_COUNT, s->last_ok_time);
-    for (size_t i = 0; i < s->n_data; ++i) put_f64(p + HEADER + 8 * i, s->data[i]);
-    put_u32(p + HEADER + 8 * s->n_data, crc32(p, HEADER + 8 * s->n_data));
+    native_state_write((unsigned char *)serializedState, (uint32_t)s->phase,
+                       (uint32_t)s->wants_to_terminate, s->last_ok_time, s->data, s->n_data);
     return fmi2OK;
 }
 
@@ -714,19 +600,8 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
     Inst *c = (Inst *)component;
     if (!c) return fmi2Error;
     const unsigned char *p = (const unsigned char *)serializedState;
-    const char *why = NULL;
-    size_t want = HEADER + 8 * c->n_data + 4;
-    if (!p || !FMUstate) why = "NULL pointer";
-    else if (size != want || memcmp(p, MAGIC, 8) != 0)
-        why = "not a serialised state of this FMU (bad magic or size)";
-    else if (crc32(p, size - 4) != get_u32(p + size - 4))
-        why = "the state is damaged (checksum mismatch)";
-    else if (get_u32(p + 8) != 1) why = "corrupt state: another format version";
-    else if (get_u32(p + 20) != crc32((const unsigned char *)MODEL_GUID, strlen(MODEL_GUID)))
-        why = "state of another FMU or build (GUID)";
-    else if (get_u32(p + 12) > ERRORED || get_u32(p + 16) > 1) why = "corrupt state: its phase";
-    for (int a = 0; !why && a < A_COUNT; ++a)
-        if (get_u32(p + 24 + 4 * a) != (uint32_t)MODEL_SIZES[a]) why = "corrupt state: its sizes";
+    const char *why = !p || !FMUstate ? "NULL pointer" :
+                      native_state_check(p, size, c->n_data, ERRORED);
     if (why) {
         logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: %s", why);
         return fmi2Error;
@@ -736,10 +611,10 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
         logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: out of memory or a state of another FMU");
         return fmi2Error;
     }
-    s->phase = (Phase)get_u32(p + 12);
-    s->wants_to_terminate = (int)get_u32(p + 16);
-    s->last_ok_time = get_f64(p + 24 + 4 * A_COUNT);
-    for (size_t i = 0; i < s->n_data; ++i) s->data[i] = get_f64(p + HEADER + 8 * i);
+    uint32_t phase, wants;
+    native_state_read(p, &phase, &wants, &s->last_ok_time, s->data, s->n_data);
+    s->phase = (Phase)phase;
+    s->wants_to_terminate = (int)wants;
     *FMUstate = s;
     return fmi2OK;
 }
