@@ -13,7 +13,7 @@ UV := .uv/bin/uv
 # uv installs uv.lock exactly; it never downloads a Python of its own
 UV_ENV := UV_PROJECT_ENVIRONMENT=$(VENV) UV_PYTHON_DOWNLOADS=never UV_NO_PROGRESS=1
 
-.PHONY: demo example test venv lock fmu bench native-check docs docs-quick clean cross-tools
+.PHONY: demo example test test-slow venv lock fmu bench native-check docs docs-quick clean cross-tools
 
 venv: $(STAMP)
 
@@ -73,9 +73,13 @@ cross-tools:
 	  { [ "$$(id -u)" = 0 ] && apt-get update -qq && apt-get install -y -qq gcc-mingw-w64-x86-64 \
 	  wine64 >/dev/null; } || { echo "make: the win64 build and its tests need mingw-w64 and wine64 (as root: apt-get install gcc-mingw-w64-x86-64 wine64)"; exit 1; }
 
-# two workers (the machine's two cores; pytest-xdist), the slowest tests named at the end
+# two workers (the machine's two cores; pytest-xdist), the slowest tests named at the end;
+# the tests of a minute or more (marked slow) in their own tier, which CI runs too
 test: $(STAMP) cross-tools
-	$(BIN)/python -m pytest -q -n 2 --durations=15
+	$(BIN)/python -m pytest -q -n 2 --durations=15 -m "not slow"
+
+test-slow: $(STAMP) cross-tools
+	$(BIN)/python -m pytest -q -n 2 --durations=10 -m slow
 
 # regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
 # per-FMU variables, reference CSVs and plots, the validation grid, the demo's output, then the

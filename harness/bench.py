@@ -33,21 +33,6 @@ def bare_fmu() -> Path:
     return dest
 
 
-def bare_native_fmu() -> Path:
-    """build/BareNative.fmu: the bare boundary compiled under the native layer, no Python
-    (benchmarks/bare_model.py; built when missing or older than its sources): what that layer
-    alone costs a step."""
-    b = builder()
-    dest = BUILD / "BareNative.fmu"
-    srcs = [ROOT / "benchmarks" / "bare_model.py", *b.NATIVE_FMU, *b.AOT]
-    if not dest.exists() or any(dest.stat().st_mtime < f.stat().st_mtime for f in srcs):
-        from benchmarks import bare_model
-        b.build_module("native_fmu").package(bare_fmu(), dest, "benchmarks.bare_model:c_functions",
-                                             bare_model.native_layout(), b._fmi_headers(),
-                                             targets=("linux64",))
-    return dest
-
-
 # One worker script: loads an FMU once, warms up, then times whole runs and per-step costs.
 _WORKER = r'''
 import json, math, os, statistics, sys, time

@@ -26,6 +26,7 @@ print(json.dumps({"finite": all(math.isfinite(v) for v in r["Fz"]), "n": len(r),
 '''
 
 
+@pytest.mark.slow   # (make test-slow: CI runs it after make test)
 def test_read_only_fmu_folder_and_unwritable_home(tmp_path):
     if not shutil.which("unshare"):
         pytest.skip("needs unshare (util-linux) to make a read-only folder as root")

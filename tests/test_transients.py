@@ -101,6 +101,7 @@ def test_the_needle_rows_single_samples_meet_one_percent(resolved_10hz, name, fa
     assert dev < 1.0
 
 
+@pytest.mark.slow   # (make test-slow: CI runs it after make test)
 def test_the_needle_rows_order_3_follows_a_theta_step(resolved_10hz):
     # a held theta step moves the trunnion into the row at once: its single samples have no
     # converged reference (h/10 and h/20 part by up to 63 % of order 3 in the transients
