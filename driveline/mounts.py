@@ -11,6 +11,8 @@ root gives inf or NaN, which the step reports as a non-finite output).
 """
 import math
 
+from reduced_model.cfuncs import finite_into
+
 # slots of P: powertrain.PARAMS' order (tests/test_example.py checks it)
 (MASS, J_ROLL, K_X, K_Y, K_Z, K_ROLL, C_X, C_Y, C_Z, C_ROLL, JOINT_X, JOINT_Y, JOINT_Z,
  SHAFT_LENGTH, THETA0, N_SHAFTS, VEHICLE_MASS, WHEEL_RADIUS, TORQUE_CREEP, TORQUE_LAUNCH,
@@ -160,15 +162,9 @@ def outputs(P, X, Q, t, OUT):
     """The outputs at time t [s] with the mounts at X under Q, into OUT when every one is
     finite.  Returns 1, or 2 (a non-finite output; OUT untouched)."""
     theta, plunge, plunge_speed = joint_kinematics(P, X)
-    vals = (theta, plunge_speed, wheel_speed(P, t), launch_torque(P, t), plunge,
-            acceleration(P, X, Q, 0), acceleration(P, X, Q, 1), acceleration(P, X, Q, 2),
-            X[1], X[3])
-    for v in vals:
-        if not math.isfinite(v):
-            return 2
-    for j in range(OUT_LEN):
-        OUT[j] = vals[j]
-    return 1
+    return finite_into((theta, plunge_speed, wheel_speed(P, t), launch_torque(P, t), plunge,
+                        acceleration(P, X, Q, 0), acceleration(P, X, Q, 1),
+                        acceleration(P, X, Q, 2), X[1], X[3]), OUT)
 
 
 def init(P, IN, X, OUT, W):
@@ -193,8 +189,8 @@ def step(P, IN, X, OUT, W, t, h):
 
 
 # the functions the FMU's binary compiles (c_functions), callees first
-COMPILED = ("launch_torque", "wheel_speed", "housing_force", "generalised_force", "load",
-            "joint_kinematics", "dof", "transition", "transitions", "mounts_step",
+COMPILED = ("finite_into", "launch_torque", "wheel_speed", "housing_force", "generalised_force",
+            "load", "joint_kinematics", "dof", "transition", "transitions", "mounts_step",
             "acceleration", "outputs", "init", "step")
 
 

@@ -1,7 +1,19 @@
-"""A model's compiled functions as the C functions the native FMI layer calls
-(fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH).
-For the models written as scalar functions over flat arrays (reduced_model/kernel.py,
-driveline/mounts.py); used at build time only (fmu_src/aot.py)."""
+"""What the models written as scalar functions over flat arrays share (reduced_model/kernel.py,
+driveline/mounts.py): writing their outputs only when every one is finite, and, at build time
+(fmu_src/aot.py), their compiled functions as the C functions the native FMI layer calls
+(fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH)."""
+import math
+
+
+def finite_into(vals, OUT):
+    """vals into OUT when every one is finite.  Returns 1, or 2 (a non-finite value; OUT
+    untouched)."""
+    for v in vals:
+        if not math.isfinite(v):
+            return 2
+    for j in range(len(vals)):
+        OUT[j] = vals[j]
+    return 1
 
 
 def c_functions(g, sizes):

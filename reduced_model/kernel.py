@@ -24,6 +24,7 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
+from .cfuncs import finite_into
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
@@ -408,14 +409,8 @@ def outputs(P, X, OUT):
         total += fz3
     sp = P[S]
     hx, hy, ht = housing_forces(Fx1, Fy1, sp, fx2, fy2, sp, fx3, fy3, sp)
-    vals = (Fx1, Fy1, Fz1, Fzm1, Fx1 - F, slip1, total, fz2, fz3, X[X_WHIRL], fx2, fy2, fx3, fy3,
-            hx, hy, ht, F, X[X_PLUNGE], X[X_REGIME])
-    for v in vals:
-        if not math.isfinite(v):
-            return 2
-    for j in range(OUT_LEN):
-        OUT[j] = vals[j]
-    return 1
+    return finite_into((Fx1, Fy1, Fz1, Fzm1, Fx1 - F, slip1, total, fz2, fz3, X[X_WHIRL], fx2,
+                        fy2, fx3, fy3, hx, hy, ht, F, X[X_PLUNGE], X[X_REGIME]), OUT)
 
 
 def check_scene(P, W):
@@ -535,7 +530,7 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
 # callees first
-COMPILED = ("note", "inertia_ratio", "hertz_ratio", "checked_value", "inside", "note_outside",
+COMPILED = ("finite_into", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside", "note_outside",
             "note_run_outside", "same_value", "same_step", "mirrored", "take_inputs", "prepare",
             "roller_row", "outputs", "check_scene", "init", "step", "end", "state_problem")
 
