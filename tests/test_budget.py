@@ -94,8 +94,7 @@ def test_an_ordinary_step_input_runs_far_from_the_budget():
 
 
 @pytest.mark.parametrize("params", [{}, {"bearing": 1}, {"n_rollers": 3},
-                                    pytest.param({"bearing": 2, "n_needles": 12},
-                                                 marks=pytest.mark.slow)],
+                                    {"bearing": 2, "n_needles": 12}],
                          ids=["ideal", "lumped", "three", "resolved"])
 def test_states_a_run_reaches_pass_the_state_check(params):
     """No false refusal: the states of a launch (25 deg, 3000 N m) pass, at the start and

@@ -108,7 +108,6 @@ def test_state_rollback_bitwise_while_inputs_move(name, rollers):
     assert r["rollback_identical"] and r["before_identical"] and r["moves"]
 
 
-@pytest.mark.slow   # (make test-slow: CI runs it after make test)
 def test_state_rollback_bitwise_with_resolved_needles():
     # the needle-resolved bearing carries 11 floats a needle of state and its diagnostics
     r = _worker("TripodRoller", "state", {"bearing": 2, "n_needles": 12})

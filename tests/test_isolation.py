@@ -7,7 +7,6 @@ import sys
 import zipfile
 from pathlib import Path
 
-import pytest
 
 from harness.fmus import ensure_fmu
 
@@ -46,7 +45,6 @@ def _run(python, jobs):
     return json.loads(p.stdout.strip().splitlines()[-1])
 
 
-@pytest.mark.slow   # (make test-slow: CI runs it after make test)
 def test_any_sequence_of_both_fmus_in_one_process(tmp_path):
     # in a Python without the project: the contact FMU (bearings 0, 1, 2), the analytic FMU and
     # the contact FMU again in one process (FMPy deletes each run's extraction folder while its
