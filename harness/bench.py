@@ -281,7 +281,7 @@ def ladder():
     rows.append((f"{lab}, integrator 4", "TripodRoller", b, 1e-3, False))
     for h in (4e-6, 2e-6):
         rows.append((f"{lab}, integrator 4", "TripodRoller", dict(b, max_substep=h), 1e-4, False))
-    # one linear solve a BDF2 substep (the default until 2026-11-28), at its own substep
+    # one linear solve a BDF2 substep (newton_passes 1), at its own substep
     rows.append((f"{lab}, integrator 4, newton_passes 1", "TripodRoller",
                  dict(b, newton_passes=1), 1e-4, False))
     rows.append((f"{lab}, integrator 3", "TripodRoller", dict(b, integrator=3), 1e-4, False))

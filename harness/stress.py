@@ -106,7 +106,8 @@ def cases(quick=False):
     add("lumped bearing", {"bearing": 1}, None, 0.2, 1e-4, True)
     add("needle-resolved bearing, 46 needles", {"bearing": 2}, None, 0.2, 1e-4, True)
     add("needle-resolved bearing, 5 kN", {"bearing": 2, "F_press": 5000.0}, None, 0.1, 1e-4, True)
-    # where the roller's spin flipped every substep until 2026-11-27 (docs/integrators.md)
+    # where the roller's spin flipped every substep while BDF2 took its friction by the
+    # tangent (docs/integrators.md)
     add("needle-resolved bearing, 15 kN", {"bearing": 2, "F_press": 15e3}, None, 0.1, 1e-4, True)
     add("needle-resolved bearing, a launch's 45 kN", {"bearing": 2, "F_press": 45e3}, None, 0.1,
         1e-4, True)

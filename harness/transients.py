@@ -28,8 +28,7 @@ RESOLVED_CYCLE_ROW = "needle-resolved, order 3 over the cycle after"
 # and its rows at a launch's torque (single samples): (label, theta [rad])
 RESOLVED_LAUNCH = (("needle-resolved, 3000 N m, 8 deg", THETA),
                    ("needle-resolved, 3000 N m, 25 deg", LAUNCH_THETA))
-# the same row with one Newton pass a substep (newton_passes = 1, the default until
-# 2026-11-28): single samples and the 1e-15 twin at 300 N m, single samples at a launch's
+# the same row with one Newton pass a substep (newton_passes = 1): single samples and the 1e-15 twin at 300 N m, single samples at a launch's
 # torque and angle: (label, parameters, theta [rad], torque [N m], case's keywords)
 ONE_PASS = {"bearing": 2, "newton_passes": 1}
 RESOLVED_ONE_PASS = (("needle-resolved, one pass", ONE_PASS, THETA, TORQUE, {}),

@@ -20,8 +20,8 @@ from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I
 # fine reference (one roller, 10 Hz: omega and theta +-10 %).  The row answers a step within
 # about a millisecond, so the communication steps of the next BDF_FINE_TIME (at least
 # BDF_FINE_STEPS of them) take substeps of h / BDF_FINE_SPLIT, the last h/2 (its first
-# substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4 (until
-# 2026-11-27): at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
+# substep restarts BDF2 by the one-step start: a ratio above 2).  h/16, not h/4:
+# at a launch's 45 kN the row's answer to a 10 % step in torque or theta missed
 # the reference by 1.2-1.4 % of order 3 at h/4 (8 deg; at 25 deg theta by 9-12 %), 0.6-0.7 %
 # (2.9 % and 0.8 %) at h/16 (one Newton pass).  A step input from JUMP_STEP on, not from
 # JUMP_RELAX (0.02 v_st, an omega step of about 0.5 %), though with two Newton passes that

@@ -33,8 +33,8 @@ CYCLE_SUBSTEPS = 1960.0
 # resolved); docs/integrators.md
 RING_QUIET_FORCE = 3e-4
 # The BDF2 substep with the needle-resolved bearing takes at most this whirl angle [rad]
-# (10 Hz: 8 us, not binding; 40 Hz: 2 us).  Measured with one-pass BDF2 (newton_passes = 1,
-# the default until 2026-11-28), which linearizes once a substep, the needles' friction by its
+# (10 Hz: 8 us, not binding; 40 Hz: 2 us).  Measured with one-pass BDF2 (newton_passes = 1),
+# which linearizes once a substep, the needles' friction by its
 # secant: the linearization error grows with speed, one roller's order 1 at 300 N m and 8 deg
 # read 1 % high at 25 Hz and 4.5 % at 40 and 80 Hz at the row's 2.9 us (a second linear solve
 # at the corrected state, or half the substep, removes it).  At this bound 0.7 % at 40 Hz and
@@ -161,7 +161,7 @@ def row_substep(P, F):
     paper's scene, nearly independent of the load (k_r grows as F^(1/10)): 3.9 us with two
     passes, 2.9 us with one.  One pass: order 3 within 0.2 % of 1 us at 3 us, 0.5 % at 3.3 us,
     1.5 % at 4 us; at 10 us runs change regime, at 20 us the roller is lost; at 5 kN 3 us is
-    within 0.05 % of 0.6 us.  Two passes (2026-11-28, settled order 3): 0.03 % off 1 us at
+    within 0.05 % of 0.6 us.  Two passes (settled order 3): 0.03 % off 1 us at
     4 us, 0.5 % at 5 us; at 45 kN and 25 deg 0.24 % off at 3.5 us (one pass 0.38 % at its
     2.6 us), against the converged 635.7 N."""
     Fe = max(abs(F), 100.0)
