@@ -13,7 +13,7 @@ from pythonfmu import DefaultExperiment, Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model import kernel as K
-from reduced_model.analytic_model import AnalyticModel
+from reduced_model.analytic_model import AnalyticModel, state_problem
 from reduced_model.scene import check_value, params_for
 from slavekit import DataState, Guarded, StateError, register_table, same_layout
 
@@ -76,9 +76,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
             a = st[key]
             if not (isinstance(a, np.ndarray) and a.dtype == np.float64 and a.shape == (n,)):
                 raise StateError(f"{key}: expected {n} float64 values")
-        model = self.model or AnalyticModel({p.name: getattr(self, p.name)
-                                             for p in self._params})
-        why = model.state_problem(st)
+        why = state_problem({p.name: getattr(self, p.name) for p in self._params}, st)
         if why:
             raise StateError(why)
         try:

@@ -19,6 +19,14 @@ from .traverse import params_array
 INPUTS = K.INPUT_NAMES[:K.N_KEY]   # the inputs an operating point is derived at
 
 
+def state_problem(values: dict, st) -> str:
+    """Why the state st (AnalyticModel.get_state's) cannot be stepped by a model of the
+    parameters ``values`` ('' when it can): kernel.state_problem, every value finite."""
+    if not np.all(np.isfinite(st["X"])) or not np.all(np.isfinite(st["IN"])):
+        return "the state cannot be stepped: it holds a non-finite value"
+    return K.STATE_PROBLEMS[K.state_problem(params_array(values), st["X"])]
+
+
 class AnalyticModel:
     """n rollers (0, 120, 240 deg) of the reduced model at the inputs of each step.
 
@@ -50,8 +58,7 @@ class AnalyticModel:
         driven by angle, omega is derived (and checked)."""
         for name, value in zip(K.INPUT_NAMES, inputs):
             check_value(name, value)
-        IN = self.IN.copy()
-        IN[:] = inputs
+        IN = np.array(inputs, dtype=float)
         rc = K.step(self.P, IN, self.X, self.OUT, self.W, current_time, dt)
         self.IN = IN
         if rc == 5:
@@ -82,12 +89,6 @@ class AnalyticModel:
     def get_state(self):
         return {"X": self.X.copy(), "IN": self.IN.copy()}
 
-    def state_problem(self, st) -> str:
-        """Why the state st (get_state's) cannot be stepped ('' when it can)."""
-        X = st["X"]
-        if not np.all(np.isfinite(X)) or not np.all(np.isfinite(st["IN"])):
-            return "the state cannot be stepped: it holds a non-finite value"
-        return K.STATE_PROBLEMS[K.state_problem(self.P, X)]
 
     def set_state(self, st):
         self.X = np.array(st["X"], dtype=float)

@@ -10,7 +10,7 @@ import math
 
 from .friction import V_ST_FLOOR, spin_moment
 from .hertz import hertz_point
-from .scene import params_for
+from .scene import params_for, pressing_load
 from .thrust import fz_mod
 
 TWO_PI = 6.283185307179586   # math.tau
@@ -36,12 +36,6 @@ P_LEN = len(PARAM_NAMES)
 R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_LEN = range(10)
 
 # --- the scene's constants --------------------------------------------------------------------
-def pressing_load(F_press, torque, s):
-    """Pressing load per roller [N]: torque / (3 s) when a torque [N m] is given (not 0; < 0
-    coast), else F_press (< 0 coast); s [m] the pitch-circle radius (scene.pressing_load)."""
-    return torque / (3.0 * s) if torque != 0 else F_press
-
-
 def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
     """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2 + B^2 + Vp^2) / 4, at least
     V_ST_FLOOR (friction.v_st_auto), with A = s w th^2 / 2 (Eq. 19), B = -r w (1 - cos th) /
@@ -360,6 +354,6 @@ def steps_of(O, dt):
 
 
 # the functions kernel.py compiles (callees first)
-COMPILED = ("pressing_load", "transition_velocity", "operating_point", "thrust_at", "drive_at",
+COMPILED = ("transition_velocity", "operating_point", "thrust_at", "drive_at",
             "normal_force", "beta_at", "share", "p_at", "trapezoid_step", "slip_step",
             "groove_forces", "substeps", "steps_of", "march")

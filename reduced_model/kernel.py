@@ -28,8 +28,8 @@ from .cfuncs import finite_into
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
-from .scene import BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, STEP_ROUNDING, \
-    params_for
+from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, params_for,
+                    pressing_load, same_step, same_value)   # (pressing_load: compiled_namespace)
 from .table import D_COUNT, SETTLED_TOL, regime, table_at, table_state_at, traverse_table
 from .thrust import fz_mod
 
@@ -151,15 +151,23 @@ NOTE_CHECKED_SPAN = NOTE_CHECKED + len(CHECKED_RANGES)  # + k: a span
 NOTE_DEFAULT = NOTE_CHECKED_SPAN + len(CHECKED_RANGES)  # + j: CHECKED_AT_DEFAULT[j]
 
 
+def notes(W):
+    """[(code, level, text)] of the notes W holds, each worded alone."""
+    out = []
+    for n in range(int(W[W_NOTES])):
+        at = W_NOTES + 1 + n * (1 + NOTE_ARGS)
+        code = int(W[at])
+        level, fmt = NOTE_TEXT[code]
+        args = tuple(float(W[at + 1 + i]) for i in range(fmt.count("%")))
+        out.append((code, level, fmt % args))
+    return out
+
+
 def notes_text(W):
     """[(level, message)] of the notes W holds, a note starting with "; " joined to the one
     before (as the FMU's binary words them: fmu_src/native/fmi2_native.c)."""
     out = []
-    for n in range(int(W[W_NOTES])):
-        at = W_NOTES + 1 + n * (1 + NOTE_ARGS)
-        level, fmt = NOTE_TEXT[int(W[at])]
-        args = tuple(float(W[at + 1 + i]) for i in range(fmt.count("%")))
-        text = fmt % args
+    for _, level, text in notes(W):
         if text.startswith("; ") and out:
             prev_level, prev = out[-1]
             out[-1] = (prev_level, prev + (text[2:] if prev.endswith(": ") else text))
@@ -263,18 +271,6 @@ def note_run_outside(P, X, W):
 
 
 # --- the analytic FMU's lifecycle -------------------------------------------------------------
-def same_value(a, b):
-    """Whether a and b differ only by rounding (scene.same_value)."""
-    return math.isfinite(a) and math.isfinite(b) and \
-        abs(a - b) <= STEP_ROUNDING * max(abs(a), abs(b))
-
-
-def same_step(dt, dt0, t):
-    """Whether a step of dt [s] at t [s] is the step dt0 up to a master's rounding
-    (scene.same_step)."""
-    return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
-
-
 def mirrored(X, x):
     """The reduced model's whirl angle for a roller's angle x [rad] (coast: turned)."""
     return -x if X[X_OP + O_MIRROR] != 0.0 else x
@@ -530,9 +526,9 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
 # callees first
-COMPILED = ("finite_into", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside", "note_outside",
-            "note_run_outside", "same_value", "same_step", "mirrored", "take_inputs", "prepare",
-            "roller_row", "outputs", "check_scene", "init", "step", "end", "state_problem")
+COMPILED = ("finite_into", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside",
+            "note_outside", "note_run_outside", "mirrored", "take_inputs", "prepare", "roller_row",
+            "outputs", "check_scene", "init", "step", "end", "state_problem")
 
 
 def compiled_namespace():
@@ -552,7 +548,7 @@ def compiled_namespace():
     h["groove_curvature_radii"] = jit(groove_curvature_radii)
     g = {**vars(equations), **vars(table), **globals()}
     g["hertz_point"] = jit(types.FunctionType(hertz_point.__code__, h, "hertz_point"))
-    for f in (spin_moment, housing_forces, fz_mod):
+    for f in (spin_moment, housing_forces, fz_mod, pressing_load, same_step, same_value):
         g[f.__name__] = jit(f)
     for name in equations.COMPILED + table.COMPILED + COMPILED:
         f = g[name]

@@ -287,9 +287,10 @@ def too_long(dt, h) -> str:
 def same_step(dt, dt0, t):
     """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
     a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
-    Both FMUs then take the step dt0 (the contact model reuses dt0's operating point); the
-    native layer's fast path applies the same rule (fmu_src/native/fmi2_python.c), so the
-    compiled and the Python path take the same steps."""
+    Both FMUs then take the step dt0 (the contact model reuses dt0's operating point; the
+    analytic FMU's kernel compiles this function); the contact FMU's fast path applies the
+    same rule (fmu_src/native/fmi2_python.c), so the compiled and the Python path take the
+    same steps."""
     return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
 
 
@@ -367,30 +368,6 @@ def check_param(p: Param, value) -> None:
                          f"magnitude): give 0 or a value in {p.range_text()}")
     if bad:
         raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
-
-
-def compiled_bounds(name: str, scene: dict, march: bool) -> tuple:
-    """(lo, hi, lo_open, hi_open) of the input ``name`` that the analytic FMU's compiled steps
-    take at ``scene``'s inputs (outside them a step goes through Python): the table's runs
-    drive at forward whirl; the march's any whirl, and drive or coast as now (the side of the
-    pressing load stays that of the operating point it was offered at: torque / (3 s) when a
-    torque is given, else F_press).  None: unbounded."""
-    p = BY_NAME[name]
-    lo, hi, lo_open, hi_open = p.lo, p.hi, p.lo_open, p.hi_open
-    if name == "omega" and not march:
-        lo, lo_open = 0.0, False
-    elif name in ("F_press", "torque"):
-        tq = scene["torque"]
-        coast = pressing_load(scene["F_press"], tq, scene["s"]) < 0
-        if not (march and coast):              # drive: both from 0 up
-            lo, lo_open = 0.0, False
-        elif tq != 0 and name == "torque":     # coast by the torque: it stays below 0
-            hi, hi_open = 0.0, True
-        elif tq == 0 and name == "torque":     # coast by F_press: the torque stays 0
-            lo, hi, lo_open, hi_open = 0.0, 0.0, False, False
-        elif tq == 0:                          # (F_press) ... and F_press below 0
-            hi, hi_open = 0.0, True
-    return lo, hi, lo_open, hi_open
 
 
 def check_drive(scene: dict, what: str) -> None:

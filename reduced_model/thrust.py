@@ -7,7 +7,6 @@ import math
 import numpy as np
 
 from . import sliding
-from .friction import v_st_auto
 from .orders import wrap_deg
 from .scene import pressing_load
 
@@ -38,12 +37,10 @@ def amplitudes(scene):
 
 def transition_velocity(scene):
     """v_st [m/s] in use: the scene's, or the automatic sqrt(A^2+B^2+Vp^2)/4 when it is 0 (Vp
-    the plunge's sliding, sliding.amplitude_plunge)."""
-    if scene["v_st"] > 0:
-        return scene["v_st"]
-    Vp = sliding.amplitude_plunge(scene.get("plunge_speed", 0.0), scene["theta"],
-                                  scene["pitch"])
-    return v_st_auto(*amplitudes(scene), Vp)
+    the plunge's sliding): equations.transition_velocity, the analytic FMU's."""
+    from .equations import transition_velocity as of
+    return of(scene["v_st"], scene["s"], scene["r_roller"], scene["omega"], scene["theta"],
+              scene.get("plunge_speed", 0.0), scene["pitch"], scene["roll"])
 
 
 def second_order_amplitude(F, mu_s, R, v_st):

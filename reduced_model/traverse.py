@@ -96,7 +96,7 @@ def outside_checked(sc: dict) -> list[str]:
     CHECKED_AT_DEFAULT), one short phrase each; [] inside it."""
     W = np.zeros(K.W_LEN)
     K.note_outside(params_array(sc), operating_point(sc), W)
-    return [text for _, msg in K.notes_text(W) for text in msg.split(": ", 1)[1].split("; ")]
+    return [text[2:] for code, _, text in K.notes(W) if code != K.NOTE_OUTSIDE]
 
 
 class Traverse:

@@ -416,9 +416,11 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     c->arr[A_TH][0] = t;
     c->arr[A_TH][1] = h;
     int32_t rc = model_step(c->arr);
-    char prefix[96];
-    snprintf(prefix, sizeof prefix, "step refused at t = %g s: ", t);
-    log_notes(c, prefix);
+    if (MODEL_NOTES_AT >= 0 && c->arr[A_W][MODEL_NOTES_AT] != 0.0) {   /* (worded only then) */
+        char prefix[96];
+        snprintf(prefix, sizeof prefix, "step refused at t = %g s: ", t);
+        log_notes(c, prefix);
+    }
     if (rc == 5) {     /* an input the model derived (driving by angle: omega) */
         for (int k = 0; k < MODEL_N_VARS; ++k) {
             const ModelVar *v = &MODEL_VARS[k];
