@@ -30,39 +30,36 @@ TARGETS = {
               "lib": "_step.dll", "imports": ("KERNEL32.dll", "msvcrt.dll")},
 }
 
-# a module's C functions (its factory returns {name: numba cfunc}), each emitted as an object
+# a module's C functions (its factory returns {name: numba cfunc}), compiled once, each emitted
+# as an object per target (out/TARGET/NAME.o)
 _EMIT_FUNCTIONS = r"""
-import importlib, json, sys
+import importlib, json, os, sys
 import llvmlite.binding as llvm
-out, spec, triple = sys.argv[1], sys.argv[2], sys.argv[3] or None
+out, spec, targets = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
 module, factory = spec.split(":")
 functions = getattr(importlib.import_module(module), factory)()
-if triple:
-    llvm.initialize_all_targets()
-    llvm.initialize_all_asmprinters()
-    target = llvm.Target.from_triple(triple)
-else:
-    llvm.initialize_native_target()
-    llvm.initialize_native_asmprinter()
-    target = llvm.Target.from_default_triple()
-tm = target.create_target_machine(cpu="generic", features="", opt=3, reloc="pic")
-symbols = {}
-for name, fn in functions.items():
-    mod = llvm.parse_assembly(fn._library.get_llvm_str())
-    if triple:   # numba stamps the host's triple and data layout on its IR: the target's
-        mod.triple = triple
-        mod.data_layout = str(tm.target_data)
-    mod.verify()
-    open(f"{out}/{name}.o", "wb").write(tm.emit_object(mod))
-    symbols[name] = fn.native_name
+llvm.initialize_all_targets()
+llvm.initialize_all_asmprinters()
+symbols = {name: fn.native_name for name, fn in functions.items()}
+for target, triple in targets.items():
+    tm = (llvm.Target.from_triple(triple) if triple else llvm.Target.from_default_triple()
+          ).create_target_machine(cpu="generic", features="", opt=3, reloc="pic")
+    os.makedirs(f"{out}/{target}", exist_ok=True)
+    for name, fn in functions.items():
+        mod = llvm.parse_assembly(fn._library.get_llvm_str())
+        if triple:   # numba stamps the host's triple and data layout on its IR: the target's
+            mod.triple = triple
+            mod.data_layout = str(tm.target_data)
+        mod.verify()
+        open(f"{out}/{target}/{name}.o", "wb").write(tm.emit_object(mod))
 json.dump(symbols, open(f"{out}/symbols.json", "w"))
 """
 
 
-def compile_functions(spec: str, dest: Path, target: str = "linux64") -> dict:
-    """Objects dest/NAME.o of the C functions module:factory returns (numba cfuncs, compiled
-    in a fresh process for a generic x86-64 CPU, retargeted to ``target``); returns
-    {NAME: (object path, its symbol)}."""
+def compile_functions(spec: str, dest: Path, targets=("linux64",)) -> dict:
+    """Objects dest/TARGET/NAME.o of the C functions module:factory returns (numba cfuncs,
+    compiled once in a fresh process for a generic x86-64 CPU, emitted for each target);
+    returns {TARGET: {NAME: (object path, its symbol)}}."""
     dest.mkdir(parents=True, exist_ok=True)
     with tempfile.TemporaryDirectory() as tmp:
         # empty caches (the LLVM module is then at hand), a generic x86-64 CPU, SVML off (its
@@ -70,13 +67,15 @@ def compile_functions(spec: str, dest: Path, target: str = "linux64") -> dict:
         env = dict(os.environ, NUMBA_CACHE_DIR=tmp, TRIPOD_NUMBA_CACHE=tmp, TRIPOD_NUMBA="1",
                    NUMBA_CPU_NAME="generic", NUMBA_CPU_FEATURES="", NUMBA_DISABLE_INTEL_SVML="1",
                    PYTHONPATH=os.pathsep.join((str(FMU_SRC.parent), str(FMU_SRC))))
+        triples = {t: TARGETS[t]["triple"] or "" for t in targets}
         p = subprocess.run([sys.executable, "-c", _EMIT_FUNCTIONS, str(dest), spec,
-                            TARGETS[target]["triple"] or ""], env=env, capture_output=True,
-                           text=True, timeout=900)
+                            json.dumps(triples)], env=env, capture_output=True, text=True,
+                           timeout=1800)
     if p.returncode != 0:
         raise RuntimeError(f"compiling {spec} failed:\n{p.stderr[-3000:]}")
     symbols = json.loads((dest / "symbols.json").read_text())
-    return {name: (dest / f"{name}.o", sym) for name, sym in symbols.items()}
+    return {t: {name: (dest / t / f"{name}.o", sym) for name, sym in symbols.items()}
+            for t in targets}
 
 
 def compiler(target: str) -> str:
@@ -112,7 +111,8 @@ def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]
     dest.mkdir(parents=True, exist_ok=True)
     lib, meta = dest / spec["lib"], dest / "_step.json"
     with tempfile.TemporaryDirectory() as tmp:
-        obj, symbol = compile_functions("tripod_model.kernel:c_functions", Path(tmp), target)["step"]
+        obj, symbol = compile_functions("tripod_model.kernel:c_functions", Path(tmp),
+                                        (target,))[target]["step"]
         extra = ["-static-libgcc"] if spec["triple"] else ["-fPIC"]
         cmd = cc.split()[:1] + ["-shared", "-O2", str(obj), str(STUBS), "-o", str(lib),
                                 "-lm"] + extra

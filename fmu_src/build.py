@@ -44,7 +44,9 @@ RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("nu
 # (module:factory) and where the variables live (a function of the model's package)
 COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout"),
             "TripodRollerAnalytic": ("reduced_model.kernel:c_functions",
-                                     "reduced_model.kernel:native_layout")}
+                                     "reduced_model.kernel:native_layout"),
+            "TripodRoller": ("tripod_model.lifecycle:c_functions",
+                             "tripod_model.lifecycle:native_layout")}
 NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "exports.map",
               *(FMU_SRC / "native" / f for f in ("fmi2_native.c", "native_values.c",
                                                  "native_state.c", "native_model.h",
@@ -59,9 +61,7 @@ PLATFORM = "linux64"
 
 def _sources(name):
     files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
-    if name == "TripodRoller":
-        files += list(AOT)
-    elif name in COMPILED:
+    if name in COMPILED:
         files += list(AOT) + list(NATIVE_FMU)
     for pkg in BUNDLE[name]:
         files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]

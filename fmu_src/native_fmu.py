@@ -106,12 +106,13 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
         *optional, ""])
 
 
-def binary(spec: str, xml: bytes, layout: dict, target: str, dest: Path, headers: Path) -> Path:
-    """dest: the FMU's binary for ``target``: the model's C functions (spec, module:factory)
-    compiled by aot.compile_functions, linked with the native layer and the generated data."""
+def binary(objs: dict, xml: bytes, layout: dict, target: str, dest: Path,
+           headers: Path) -> Path:
+    """dest: the FMU's binary for ``target``: the model's C functions (objs: {NAME: (object,
+    symbol)} from aot.compile_functions for this target) linked with the native layer and the
+    generated data."""
     cc = aot.compiler(target)
     with tempfile.TemporaryDirectory() as tmp:
-        objs = aot.compile_functions(spec, Path(tmp), target)
         data = Path(tmp) / "model_data.c"
         data.write_text(model_data(xml, symbols={k: v[1] for k, v in objs.items()}, **layout))
         # every symbol resolved when linked (-z defs: on Linux too, as Windows demands)
@@ -137,13 +138,18 @@ def package(reference: Path, dest: Path, spec: str, layout: dict, headers: Path,
     with zipfile.ZipFile(reference) as z:
         xml = z.read("modelDescription.xml")
     model_id = ET.fromstring(xml).find("CoSimulation").get("modelIdentifier")
+    for target in targets:
+        aot.compiler(target)     # (a missing cross compiler said before the compile)
     with tempfile.TemporaryDirectory() as tmp:
+        # the model's functions compiled once, emitted for every target
+        objs = aot.compile_functions(spec, Path(tmp) / "objects", targets)
         out = Path(tmp) / "native.fmu"
         with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
             z.writestr("modelDescription.xml", xml)
             for target in targets:
                 name = BINARY[target].format(id=model_id)
-                lib = binary(spec, xml, layout, target, Path(tmp) / target / name, headers)
+                lib = binary(objs[target], xml, layout, target, Path(tmp) / target / name,
+                             headers)
                 z.write(lib, f"binaries/{target}/{name}")
         dest.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(out), dest)

@@ -19,7 +19,8 @@ def finite_into(vals, OUT):
 def c_functions(g, sizes):
     """numba cfuncs of g's init, step and, where g has them, end and check_state (njit
     functions: init(P, IN, X, OUT, W), step(P, IN, X, OUT, W, t, h), end as init,
-    check_state(P, X)); sizes: the lengths of P, IN, X, OUT, W."""
+    check_state(P, X) or (P, IN, X, W), W the instance's work); sizes: the lengths of P, IN, X,
+    OUT, W."""
     import numba as nb
     from numba import carray
 
@@ -50,8 +51,12 @@ def c_functions(g, sizes):
         out["end"] = c_end
     if "state_problem" in g:
         problem_c = g["state_problem"]
-
-        def c_check(args):
-            return problem_c(carray(args[0], (n_p,)), carray(args[2], (n_x,)))
+        if problem_c.py_func.__code__.co_argcount == 4:   # (P, IN, X, W)
+            def c_check(args):
+                return problem_c(carray(args[0], (n_p,)), carray(args[1], (n_in,)),
+                                 carray(args[2], (n_x,)), carray(args[4], (n_w,)))
+        else:                                             # (P, X)
+            def c_check(args):
+                return problem_c(carray(args[0], (n_p,)), carray(args[2], (n_x,)))
         out["check_state"] = c_check
     return {name: nb.cfunc(sig, error_model="numpy")(f) for name, f in out.items()}

@@ -28,7 +28,8 @@ from .cfuncs import finite_into
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
-from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, params_for,
+from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, RELATIONS, TOO_LONG,
+                    params_for,
                     pressing_load, same_step, same_value)   # (pressing_load: compiled_namespace)
 from .table import D_COUNT, SETTLED_TOL, regime, table_at, table_state_at, traverse_table
 from .thrust import fz_mod
@@ -132,12 +133,10 @@ NOTE_TEXT = (
     (WARNING, "during the run the inputs left the range " + _RANGE_HEAD),
     (INFO, "communication steps: %.0f; traverse tables derived: %.0f"),
     (INFO, "; the slide stepped in time since the inputs moved"),
-    (ERROR, "the communication step of %.4g s in substeps of %.3g s "
-            f"needs more than the {MAX_SUBSTEPS:.0f} substeps one step may take: take shorter "
-            "communication steps"),
-    (ERROR, "r_groove = %g m must exceed r_roller = %g m (range (r_roller, 1] m)"),
-    (ERROR, "r_bore = %g m must be below r_roller = %g m (range (0, r_roller) m)"),
-    (ERROR, "n_rollers = %.0f is not allowed; allowed: 1 or 3"),
+    (ERROR, TOO_LONG),
+    (ERROR, RELATIONS["groove"]),
+    (ERROR, RELATIONS["bore"]),
+    (ERROR, RELATIONS["n_rollers"]),
     (ERROR, "mu_groove = %g: the traverse model needs mu_groove < 1 (the friction it balances "
             "tilts the contact normal by asin(mu_groove)); allowed range [0, 1) (or traverse = "
             "false)"),

@@ -277,11 +277,16 @@ class StepRefused(RuntimeError):
 MAX_SUBSTEPS = float(2 ** 20)
 
 
-def too_long(dt, h) -> str:
-    """The refusal of a communication step of dt [s] in substeps of h [s] above MAX_SUBSTEPS."""
-    return (f"the communication step of {dt:.4g} s in substeps of {h:.3g} s needs more than "
+# The refusal of a communication step of dt [s] in substeps of h [s] above MAX_SUBSTEPS: a
+# printf format (the FMUs' binaries word it alike)
+TOO_LONG = ("the communication step of %.4g s in substeps of %.3g s needs more than "
             f"the {MAX_SUBSTEPS:.0f} substeps one step may take: take shorter communication "
             "steps")
+
+
+def too_long(dt, h) -> str:
+    """The refusal of a communication step of dt [s] in substeps of h [s] (TOO_LONG)."""
+    return TOO_LONG % (dt, h)
 
 
 def same_step(dt, dt0, t):
@@ -392,6 +397,18 @@ def check_traverse_mu(mu: float) -> None:
                          "allowed range [0, 1) (or traverse = false)")
 
 
+# The relations between parameters the table's ranges cannot state (validate), as printf
+# formats of the values they name (the FMUs' binaries word them alike)
+RELATIONS = {
+    "groove": "r_groove = %g m must exceed r_roller = %g m (range (r_roller, 1] m)",
+    "running_clearance": "running_clearance = %g m is below 2 (r_groove - r_roller) = %g m, "
+                         "where the roller would touch both flanks (range 0 (from the "
+                         "geometry) or [%g, 0.01] m)",
+    "n_rollers": "n_rollers = %.0f is not allowed; allowed: 1 or 3",
+    "bore": "r_bore = %g m must be below r_roller = %g m (range (0, r_roller) m)",
+}
+
+
 def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
     """A complete scene for ``model``: defaults updated by ``overrides``, every value checked.
 
@@ -408,18 +425,14 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
         p = BY_NAME[name]
         scene[name] = bool(value) if p.kind == "bool" else int(value) if p.kind == "int" else float(value)
     if scene["r_groove"] <= scene["r_roller"]:
-        raise ValueError(f"r_groove = {scene['r_groove']:g} m must exceed r_roller = "
-                         f"{scene['r_roller']:g} m (range (r_roller, 1] m)")
+        raise ValueError(RELATIONS["groove"] % (scene["r_groove"], scene["r_roller"]))
     c, c0 = scene.get("running_clearance", 0.0), 2.0 * (scene["r_groove"] - scene["r_roller"])
     if c != 0.0 and c < c0:
-        raise ValueError(f"running_clearance = {c:g} m is below 2 (r_groove - r_roller) = "
-                         f"{c0:g} m, where the roller would touch both flanks (range 0 (from "
-                         f"the geometry) or [{c0:g}, 0.01] m)")
+        raise ValueError(RELATIONS["running_clearance"] % (c, c0, c0))
     if scene.get("n_rollers", 1) not in (1, 3):
-        raise ValueError(f"n_rollers = {scene['n_rollers']} is not allowed; allowed: 1 or 3")
+        raise ValueError(RELATIONS["n_rollers"] % scene["n_rollers"])
     if model == "analytic" and scene["traverse"]:
         check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:
-        raise ValueError(f"r_bore = {scene['r_bore']:g} m must be below r_roller = "
-                         f"{scene['r_roller']:g} m (range (0, r_roller) m)")
+        raise ValueError(RELATIONS["bore"] % (scene["r_bore"], scene["r_roller"]))
     return scene

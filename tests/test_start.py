@@ -1,4 +1,4 @@
-"""The contact model's start on the settled cycle (tripod_model/start_slide.py;
+"""The contact model's start on the settled cycle (tripod_model/start_slide.py, roller_setup.py;
 docs/integrators.md, "The start")."""
 import math
 import sys
@@ -10,7 +10,7 @@ import pytest
 ROOT = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(ROOT / "fmu_src"))
 
-from tripod_model import layout as K, start_slide  # noqa: E402
+from tripod_model import layout as K, roller_setup, start_slide  # noqa: E402
 from tripod_model.model import ContactModel, JointModel  # noqa: E402
 from reduced_model import scene as S  # noqa: E402
 
@@ -26,15 +26,15 @@ def test_slide_tilts_the_normal_as_asked(tilt, D, a):
     central difference of the slide over a short time, the tilt and a moving at their rates
     (to the difference's truncation, rel 1e-6)."""
     rate, ad = 3.0, (0.7, -0.4)
-    u, ud = start_slide.slide_for_tilt(tilt, rate, D, a, ad)
+    u, ud = roller_setup.slide_for_tilt(tilt, rate, D, *a, *ad)
     cx, cy = D + u * a[0], u * a[1]
     n_dot_a = (cx * a[0] + cy * a[1]) / math.hypot(cx, cy)
     assert n_dot_a == pytest.approx(tilt, abs=1e-14)
     dt = 1e-6
 
     def at(t):
-        return start_slide.slide_for_tilt(tilt + rate * t, rate, D,
-                                          (a[0] + ad[0] * t, a[1] + ad[1] * t), ad)[0]
+        return roller_setup.slide_for_tilt(tilt + rate * t, rate, D, a[0] + ad[0] * t,
+                                           a[1] + ad[1] * t, *ad)[0]
     assert ud == pytest.approx((at(dt) - at(-dt)) / (2 * dt), rel=1e-6)
 
 

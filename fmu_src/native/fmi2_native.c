@@ -38,16 +38,17 @@ typedef struct {
     Phase phase;
     double last_ok_time;
     int wants_to_terminate;
-    double *data;                  /* every array, one block */
+    double *data;                  /* every array, one block: the state's arrays, then W */
     double *arr[A_COUNT];
-    size_t n_data;
+    size_t n_data;                 /* doubles in the block */
+    size_t n_state;                /* of them, an FMU state's: all but W (work and notes) */
 } Inst;
 
 typedef struct {
     Phase phase;
     double last_ok_time;
     int wants_to_terminate;
-    double *data;
+    double *data;                  /* the instance's first n_state doubles */
     size_t n_data;
 } State;
 
@@ -139,6 +140,19 @@ static void destroy(Inst *c)
     free(c);
 }
 
+/* The arrays in one block: every one but W in A_ order (what an FMU state holds), then W (the
+   model's work and notes, rebuilt by every call). */
+static void place_arrays(double *arr[A_COUNT], double *data)
+{
+    size_t at = 0;
+    for (int a = 0; a < A_COUNT; ++a)
+        if (a != A_W) {
+            arr[a] = data + at;
+            at += (size_t)MODEL_SIZES[a];
+        }
+    arr[A_W] = data + at;
+}
+
 fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2String fmuGUID,
                               fmi2String fmuResourceLocation,
                               const fmi2CallbackFunctions *functions, fmi2Boolean visible,
@@ -156,12 +170,13 @@ fmi2Component fmi2Instantiate(fmi2String instanceName, fmi2Type fmuType, fmi2Str
     size_t n = 0;
     for (int a = 0; a < A_COUNT; ++a) n += (size_t)MODEL_SIZES[a];
     c->n_data = n;
+    c->n_state = n - (size_t)MODEL_SIZES[A_W];
     c->data = calloc(n, sizeof *c->data);
     if (!c->name || !c->data) {
         destroy(c);
         return NULL;
     }
-    for (int a = 0, at = 0; a < A_COUNT; at += MODEL_SIZES[a++]) c->arr[a] = c->data + at;
+    place_arrays(c->arr, c->data);
     if (fmuType != fmi2CoSimulation) {
         logf_(c, fmi2Error, "fmi2Instantiate: this FMU supports co-simulation only");
         destroy(c);
@@ -452,18 +467,18 @@ fmi2Status fmi2CancelStep(fmi2Component c)
 static State *new_state(Inst *c)
 {
     State *s = calloc(1, sizeof *s);
-    if (s) s->data = malloc(c->n_data * sizeof *s->data);
+    if (s) s->data = malloc(c->n_state * sizeof *s->data);
     if (s && !s->data) {
         free(s);
         s = NULL;
     }
-    if (s) s->n_data = c->n_data;
+    if (s) s->n_data = c->n_state;
     return s;
 }
 
 static void take(Inst *c, State *s)
 {
-    memcpy(s->data, c->data, c->n_data * sizeof *c->data);
+    memcpy(s->data, c->data, c->n_state * sizeof *c->data);
     s->phase = c->phase;
     s->last_ok_time = c->last_ok_time;
     s->wants_to_terminate = c->wants_to_terminate;
@@ -478,7 +493,7 @@ fmi2Status fmi2GetFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
         return fmi2Error;
     }
     State *s = *FMUstate ? (State *)*FMUstate : new_state(c);   /* given back: overwritten */
-    if (!s || s->n_data != c->n_data) {
+    if (!s || s->n_data != c->n_state) {
         logf_(c, fmi2Error, "fmi2GetFMUstate: out of memory or a state of another FMU");
         return fmi2Error;
     }
@@ -491,7 +506,7 @@ fmi2Status fmi2GetFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
    parameters this instance's (they are fixed; before initialisation, the ones set so far). */
 static int state_fits(Inst *c, const State *s, char *why, size_t n)
 {
-    if (s->n_data != c->n_data) {
+    if (s->n_data != c->n_state) {
         snprintf(why, n, "a state of another model");
         return 0;
     }
@@ -518,8 +533,10 @@ static int state_fits(Inst *c, const State *s, char *why, size_t n)
         return 0;
     }
     if (s->phase == STEP_COMPLETE || s->phase == STEP_FAILED || s->phase == TERMINATED) {
-        double *arr[A_COUNT];     /* the model's own check of what it would step */
-        for (int a = 0, at = 0; a < A_COUNT; at += MODEL_SIZES[a++]) arr[a] = s->data + at;
+        double *arr[A_COUNT];     /* the model's own check of what it would step (its work:
+                                     this instance's) */
+        place_arrays(arr, s->data);
+        arr[A_W] = c->arr[A_W];
         int32_t code = model_check_state(arr);
         if (code != 0) {
             snprintf(why, n, "corrupt state: %s",
@@ -545,7 +562,7 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
         logf_(c, fmi2Error, "fmi2SetFMUstate: %s", why);
         return fmi2Error;    /* the instance as it was, its phase included */
     }
-    memcpy(c->data, s->data, c->n_data * sizeof *c->data);
+    memcpy(c->data, s->data, c->n_state * sizeof *c->data);
     c->phase = s->phase;
     c->last_ok_time = s->last_ok_time;
     c->wants_to_terminate = s->wants_to_terminate;
@@ -603,13 +620,13 @@ fmi2Status fmi2DeSerializeFMUstate(fmi2Component component, const fmi2Byte seria
     if (!c) return fmi2Error;
     const unsigned char *p = (const unsigned char *)serializedState;
     const char *why = !p || !FMUstate ? "NULL pointer" :
-                      native_state_check(p, size, c->n_data, ERRORED);
+                      native_state_check(p, size, c->n_state, ERRORED);
     if (why) {
         logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: %s", why);
         return fmi2Error;
     }
     State *s = *FMUstate ? (State *)*FMUstate : new_state(c);
-    if (!s || s->n_data != c->n_data) {
+    if (!s || s->n_data != c->n_state) {
         logf_(c, fmi2Error, "fmi2DeSerializeFMUstate: out of memory or a state of another FMU");
         return fmi2Error;
     }

@@ -26,10 +26,20 @@ ADAPT_TRIES_MIN = 5e4
 ADAPT_TRIES_PER = 100.0
 
 
-_WHY = {FAIL_ESTIMATE: "the error estimate is not finite",
-        FAIL_FLOOR: f"the substep fell below its floor, {ADAPT_FLOOR:g} x the largest",
-        FAIL_TRIES: f"the substeps tried reached their budget, {ADAPT_TRIES_MIN:g} + "
-                    f"{ADAPT_TRIES_PER:g} per largest substep in the step"}
+WHY = {FAIL_ESTIMATE: "the error estimate is not finite",
+       FAIL_FLOOR: f"the substep fell below its floor, {ADAPT_FLOOR:g} x the largest",
+       FAIL_TRIES: f"the substeps tried reached their budget, {ADAPT_TRIES_MIN:g} + "
+                   f"{ADAPT_TRIES_PER:g} per largest substep in the step"}
+# the refusal of a step whose adaptive substeps ran out: a printf format of the share of the
+# step done [%], the substep and the largest [s], for the reason {why} (WHY); the FMU's binary
+# words it alike
+ADAPT_REFUSAL = ("the adaptive substeps stopped at %.3g %% of the step ({why}; substep %.3g s, "
+                 "largest %.3g s): the state cannot be stepped")
+
+
+def adapt_refusal(why: str) -> str:
+    """ADAPT_REFUSAL's format for the reason why."""
+    return ADAPT_REFUSAL.replace("{why}", why)
 
 
 def refusal(hs, P) -> str:
@@ -37,6 +47,5 @@ def refusal(hs, P) -> str:
     kernel.run_substeps for a step too long) and where, for the FMU's log."""
     if hs[H_FAIL] == FAIL_LONG:
         return too_long(hs[H_FAIL_DONE], hs[H_FAIL_H])
-    return (f"the adaptive substeps stopped at {100.0 * hs[H_FAIL_DONE]:.3g} % of the step "
-            f"({_WHY.get(float(hs[H_FAIL]), 'unknown')}; substep {hs[H_FAIL_H]:.3g} s, largest "
-            f"{P[P_HMAX]:.3g} s): the state cannot be stepped")
+    return adapt_refusal(WHY.get(float(hs[H_FAIL]), "unknown")) % (
+        100.0 * hs[H_FAIL_DONE], hs[H_FAIL_H], P[P_HMAX])

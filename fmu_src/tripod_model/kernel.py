@@ -20,7 +20,7 @@ import math
 from reduced_model.housing import housing_forces
 from reduced_model.thrust import fz_mod
 from . import layout as K
-from . import oppoint
+from . import oppoint, roller_setup
 from .jit import c_function, carray, compiled_copies, njit
 from .assembly import resolved_forces
 from .budget import MAX_SUBSTEPS
@@ -41,6 +41,10 @@ from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL
 _op = compiled_copies(oppoint, oppoint.FUNCTIONS)
 derive_op, copy_op = _op.derive, _op.copy_derived
 _housing = njit(housing_forces)
+# the needle-resolved row's static offset (roller_setup.py), compiled with its callees
+_pressing_offset = compiled_copies(roller_setup, ("needle_line_stiffness", "groove_offset", "lumped_offset",
+                                        "row_load", "needle_radial_offset", "radial_offset",
+                                        "pressing_offset")).pressing_offset
 _fz_mod = njit(fz_mod)
 
 
@@ -119,6 +123,31 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     return True
 
 
+@njit
+def resolved_drive(P, T, OP, F_was, n, ramped, cache):
+    """The needle-resolved bearing's drive for a step at OP's operating point (derived): the
+    pressing offset x0 [m] at its load (roller_setup.pressing_offset: the row's static offset,
+    which oppoint.derive leaves to the model) and, where ``ramped`` and the load changed from
+    F_was [N] (NaN: no step before), the rate [m/s] that moves the offset there over the
+    step's n substeps: a jump drove the trunnion into the row at infinite speed
+    (docs/integrators.md).  T: the table's values; cache: (x0, its load, set), kept between
+    steps (about 0.2 ms an offset).  Returns (x0, rate)."""
+    F = OP[OP_F]
+    was_cached = cache[2] != 0.0 and cache[1] == F_was
+    x_was = cache[0]
+    if not (cache[2] != 0.0 and cache[1] == F):
+        cache[0] = _pressing_offset(P, T, F)
+        cache[1] = F
+        cache[2] = 1.0
+    x0 = cache[0]
+    rate = 0.0
+    if n > 0 and ramped and F_was == F_was and F_was != F:
+        if not was_cached:
+            x_was = _pressing_offset(P, T, F_was)
+        rate = (x0 - x_was) / OP[OP_DT]
+    return x0, rate
+
+
 # --- the step as a C function (the native layer's) ---
 
 
@@ -178,45 +207,25 @@ def _roller(Y, P, OP, W, out, jump):
                         0 if OP[OP_NOSTEP] > 0.0 else int(OP[OP_N]), out, W, None)
 
 
-def step(args):
-    """One communication step at the inputs in OP (their operating point derived again when
-    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output, 3: a
-    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; steplib.adaptive_steps)
-    (2, 3: nothing written; the state has moved, as in the Python step).  args: the arrays' addresses in
-    layout's FA_ places.
+@njit
+def step_roller(Y, P, OP, W, out, dst):
+    """One roller's communication step at the inputs in its own OP (kernel.step's n = 0): W its
+    work arrays (layout.Work), out its output vector, dst the FMU's outputs (N_OUT).  Returns
+    step's codes."""
+    if not _roller(Y, P, OP, W, out, derive_op(P, OP)):
+        return 3
+    if not outputs_into(out, OP[OP_F], dst):
+        return 2
+    return 1   # (joint_into then, at the caller's hand: it takes the output vector as a row)
 
-    OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays).  OP is then a header
-    row, whose inputs (where the native layer writes a master's values) every roller takes,
-    over the n rollers' own OP rows; every other array holds the rollers' arrays one after the
-    other.  The outputs are roller 1's and the joint's (JointModel.step)."""
-    pY, pP, pOP, pOUT = args[K.FA_Y], args[K.FA_P], args[K.FA_OP], args[K.FA_OUT]
-    pL, pres, pY1, pY2 = args[K.FA_L], args[K.FA_RES], args[K.FA_Y1], args[K.FA_Y2]
-    pG, pA, pb, phs = args[K.FA_G], args[K.FA_A], args[K.FA_B], args[K.FA_HS]
-    pGW, pout = args[K.FA_GW], args[K.FA_OUTV]
-    head = carray(pOP, (OP_LEN,))
-    n = int(head[OP_NROLL])
-    dst = carray(pOUT, (N_OUT,))
-    if n == 0:
-        out = carray(pout, (K.O_LEN,))
-        W = K.Work(carray(pL, (K.L_LEN,)), carray(pres, (K.R_LEN,)), carray(pY1, (K.Y_LEN,)),
-                   carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
-                   carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
-        P1 = carray(pP, (K.P_LEN,))
-        if not _roller(carray(pY, (K.Y_LEN,)), P1, head, W, out, derive_op(P1, head)):
-            return 3
-        if not outputs_into(out, head[OP_F], dst):
-            return 2
-        # (the same output array seen as one row: no reshape, whose helper the prebuilt
-        # library does not carry)
-        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, P1[K.P_S],
-                               head[OP_F], dst) else 2
-    OP = carray(pOP, (n + 1, OP_LEN))
-    Y, P = carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN))
-    L, res = carray(pL, (n, K.L_LEN)), carray(pres, (n, K.R_LEN))
-    Y1, Y2 = carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN))
-    G, A = carray(pG, (n, K.NV, 3)), carray(pA, (n, K.NV, K.NV))
-    b, hs = carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN))
-    GW, out = carray(pGW, (n, K.NV + 8, K.NV)), carray(pout, (n, K.O_LEN))
+
+@njit
+def step_joint(n, Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out, dst):
+    """A joint of n rollers in one call (kernel.step's n > 0): OP a header row, whose inputs
+    every roller takes, over the rollers' own rows; every other array the rollers' arrays as
+    rows.  The outputs are roller 1's and the joint's (JointModel.step).  Returns step's
+    codes."""
+    head = OP[0]
     total = 0.0   # left to right, as JointModel.step
     jump = -1.0
     for i in range(n):
@@ -240,6 +249,44 @@ def step(args):
     dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
     dst[OUT_FZ_3] = out[2, K.O_FZ] if n > 2 else 0.0
     return 1
+
+
+def step(args):
+    """One communication step at the inputs in OP (their operating point derived again when
+    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output, 3: a
+    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; steplib.adaptive_steps)
+    (2, 3: nothing written; the state has moved, as in the Python step).  args: the arrays'
+    addresses in layout's FA_ places.
+
+    OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays, step_joint).  OP is
+    then a header row over the n rollers' own OP rows; every other array holds the rollers'
+    arrays one after the other.  n = 0: one roller (step_roller)."""
+    pY, pP, pOP, pOUT = args[K.FA_Y], args[K.FA_P], args[K.FA_OP], args[K.FA_OUT]
+    pL, pres, pY1, pY2 = args[K.FA_L], args[K.FA_RES], args[K.FA_Y1], args[K.FA_Y2]
+    pG, pA, pb, phs = args[K.FA_G], args[K.FA_A], args[K.FA_B], args[K.FA_HS]
+    pGW, pout = args[K.FA_GW], args[K.FA_OUTV]
+    head = carray(pOP, (OP_LEN,))
+    n = int(head[OP_NROLL])
+    dst = carray(pOUT, (N_OUT,))
+    if n == 0:
+        W = K.Work(carray(pL, (K.L_LEN,)), carray(pres, (K.R_LEN,)), carray(pY1, (K.Y_LEN,)),
+                   carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
+                   carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
+        P1 = carray(pP, (K.P_LEN,))
+        rc = step_roller(carray(pY, (K.Y_LEN,)), P1, head, W, carray(pout, (K.O_LEN,)), dst)
+        if rc != 1:
+            return rc
+        # (the same output array seen as one row: no reshape, whose helper the prebuilt
+        # library does not carry)
+        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, P1[K.P_S],
+                               head[OP_F], dst) else 2
+    return step_joint(n, carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN)),
+                      carray(pOP, (n + 1, OP_LEN)), carray(pL, (n, K.L_LEN)),
+                      carray(pres, (n, K.R_LEN)), carray(pY1, (n, K.Y_LEN)),
+                      carray(pY2, (n, K.Y_LEN)), carray(pG, (n, K.NV, 3)),
+                      carray(pA, (n, K.NV, K.NV)), carray(pb, (n, K.NV)),
+                      carray(phs, (n, K.H_LEN)), carray(pGW, (n, K.NV + 8, K.NV)),
+                      carray(pout, (n, K.O_LEN)), dst)
 
 
 _C_STEP = []

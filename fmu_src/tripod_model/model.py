@@ -11,7 +11,7 @@ import numpy as np
 
 from reduced_model import scene as scene_mod
 
-from . import hertz, layout as K, native, needle_setup, oppoint, start_slide   # numba only when needed
+from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide   # numba only when needed
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
@@ -31,55 +31,16 @@ class ContactModel:
         self.phase = phase
         self.p = scene_mod.validate(params, "contact")
         p = self.p
-        self.Kh, self.a1, _ = hertz.hertz_point(p["r_roller"], p["r_groove"], p["E"], p["nu"])
+        # the roller's parameter vector from the table's values (roller_setup: the FMU's binary
+        # derives it by the same function)
+        self.T = np.array(start_slide.params_array(p))
         P = np.zeros(K.P_LEN)
-        P[K.P_S] = p["s"]
-        P[K.P_R] = p["r_roller"]
-        P[K.P_RG] = p["r_groove"]
-        P[K.P_M] = p["m_roller"]
-        P[K.P_IS] = spin_inertia(p["m_roller"], p["r_roller"], p["r_bore"])   # thick ring
-        P[K.P_K] = self.Kh
-        P[K.P_A1] = self.a1
-        P[K.P_MU] = p["mu_groove"]
-        for idx, name in ((K.P_PITCH, "pitch"), (K.P_YAW, "yaw"), (K.P_ROLL, "roll"),
-                          (K.P_AXIAL, "axial"), (K.P_TRAV, "traverse"),
-                          (K.P_FRIC, "friction_groove"), (K.P_SPIN, "spin_moment"),
-                          (K.P_FRICN, "friction_needle"), (K.P_ROLLR, "rolling_resistance")):
-            P[idx] = 1.0 if p[name] else 0.0
-        P[K.P_BEAR] = p["bearing"]
-        P[K.P_MUN] = p["mu_needle"]
-        P[K.P_MUR] = p["mu_rolling"]
-        # lumped needle row: Eq. (17) per needle (two line contacts in series), summed over
-        # the loaded half of the row at angles 2 pi j / n_needles from the pressing direction
-        psi = 2 * np.pi * np.arange(p["n_needles"]) / p["n_needles"]
-        c = np.cos(psi)[np.cos(psi) > 1e-12]
-        C_line = hertz.needle_line_stiffness(p["l_needle"])
-        s19, s10 = float(np.sum(c ** (19 / 9))), float(np.sum(c ** (10 / 9)))
-        self.K_row = C_line * 2.0 ** (-10 / 9) * s19          # F_r = K_row g^(10/9)
-        P[K.P_KN] = self.K_row
-        P[K.P_QSUM] = s10 / s19                                 # sum of needle loads / F_r
-        P[K.P_RB] = p["r_bore"]
-        P[K.P_CLR] = p["needle_clearance"]
-        # across the load and in tilt (lumped row): stiffness ratios to the radial one
-        s_a = float(np.sum(c ** (1 / 9) * (1 - c * c)))
-        P[K.P_KWR] = s_a / s19                                  # across / along the load
-        P[K.P_LT] = p["l_needle"] ** 2 / 12.0                   # tilt = radial x l^2/12
-        P[K.P_IT] = p["m_roller"] * (3 * (p["r_roller"] ** 2 + p["r_bore"] ** 2)
-                                     + p["roller_width"] ** 2) / 12.0   # ring about a diameter
-        P[K.P_INTEG] = p["integrator"]
-        P[K.P_TOL] = p["step_tolerance"] or (3e-3 if p["bearing"] == K.BEAR_RESOLVED else 1e-3)
-        P[K.P_VST0] = p["v_st"]
-        P[K.P_HSUB] = p["max_substep"]
-        P[K.P_NPASS], P[K.P_NTOL] = p["newton_passes"], p["newton_tol"]
-        P[K.P_HC] = p["contact_damping"]
-        P[K.P_ZROW] = p["row_damping"]
-        # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
-        c = p["running_clearance"]
-        P[K.P_FLANK] = 0.5 * c - (p["r_groove"] - p["r_roller"]) if c > 0.0 else 0.0
+        roller_setup.kernel_params(self.T, P)
+        self.Kh, self.a1, self.K_row = P[K.P_K], P[K.P_A1], P[K.P_KN]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == K.BEAR_RESOLVED else 0
         # None unless the needles are resolved: the kernel is then compiled without them
-        self.NW = (needle_setup.needle_work(p, self.n_needle_bodies, C_line)
+        self.NW = (needle_setup.needle_work(self.T, self.n_needle_bodies, p["n_spheres"])
                    if self.n_needle_bodies else None)
         self.Y = np.zeros(K.Y_LEN + K.N_F * self.n_needle_bodies)
         self.out = np.zeros(K.O_LEN)
@@ -103,7 +64,8 @@ class ContactModel:
         self._argv = None     # the prebuilt kernel's argument: its arrays' addresses (native.py)
         self._fout = np.zeros(K.N_OUT)   # its output slot for the FMU (unused here)
         self._started = False
-        self._x0, self._x0_for = 0.0, None   # resolved bearing: pressing offset, at load
+        # resolved bearing: the pressing offset, the load it is for, whether set (a cache)
+        self._x0c = np.zeros(3)
 
     def _bind_work(self):
         """The work record the kernel takes (layout.Work), over the arrays as now bound (a
@@ -127,22 +89,13 @@ class ContactModel:
 
     def pressing_offset(self, F_press):
         """Compulsory displacement: x position of the trunnion axis [m] that gives F_press
-        with the roller at the groove bottom (Hertz approach, plus the needle row if lumped)."""
-        x0 = oppoint.groove_offset(self.P, F_press)
-        if self.p["bearing"] != K.BEAR_IDEAL:
-            x0 -= self.radial_offset(F_press)
-        return x0
+        with the roller at the groove bottom (Hertz approach, plus the needle row if any)."""
+        return roller_setup.pressing_offset(self.P, self.T, F_press)
 
     def radial_offset(self, F):
         """Static x offset of the roller from the trunnion axis [m] under a radial load F [N]
-        (lumped bearing; the same estimate starts the resolved one): the clearance plus the
-        row's approach (F/K_row)^0.9, negative."""
-        p = self.p
-        if p["bearing"] == K.BEAR_IDEAL:
-            return 0.0
-        if p["bearing"] == K.BEAR_LUMPED:
-            return oppoint.lumped_offset(self.P, F)
-        return needle_setup.radial_offset(p, F)
+        (roller_setup.radial_offset): 0 with the ideal bearing, negative in drive."""
+        return roller_setup.radial_offset(self.P, self.T, F)
 
     def bearing_load(self):
         """Radial load carried by the needle row now [N]: along the pressing direction, the sum
@@ -159,29 +112,23 @@ class ContactModel:
         of a joint): the roller rolling without slip, and along the trunnion where the settled
         cycle has it (start_slide; at the groove bottom and at rest where that does not hold)."""
         p = self.p
-        self.Y[:] = 0.0
-        self.Y[K.Y_X] = self.phase
-        T = math.tan(theta) if p["pitch"] else 0.0
-        # dz/dt / r with z = s tan(phi), tan(phi) = T sin(x)
-        c = math.cos(self.phase)
-        sec2 = 1.0 + (T * math.sin(self.phase)) ** 2
-        self.Y[K.Y_OM] = p["s"] * T * c * omega / p["r_roller"] / math.sqrt(sec2)
-        if F_press < 0:   # coast: the contact on the other side of the roller rolls it back
-            self.Y[K.Y_OM] = -self.Y[K.Y_OM]
-        self.Y[K.Y_E] = self.radial_offset(F_press)           # row loaded in equilibrium
-        table = None if p["bearing"] == K.BEAR_RESOLVED else start_slide.traverse_table(
-            p, theta, omega, F_press, plunge_speed)
+        roller_setup.start_state(self.Y, self.P, self.T, self.phase, theta, omega, F_press)
+        table = start_slide.traverse_table(p, theta, omega, F_press, plunge_speed)
         if table is not None:
-            start_slide.place_on_cycle(self, table, theta, omega, F_press, plunge_speed)
+            roller_setup.place_on_cycle(self.Y, self.P, F_press, omega, table.slip, table.p,
+                                        table.n, _probe, (self, theta, omega, F_press,
+                                                          plunge_speed))
         if self.n_needle_bodies:
-            needle_setup.start_needles(self.Y, p, self.phase, theta, self.n_needle_bodies)
+            from .contact import trunnion_axial   # numba: the resolved bearing compiles its kernel
+            roller_setup.start_needles(self.Y, self.T, self.phase, theta, self.n_needle_bodies,
+                                       trunnion_axial(self.phase, theta, p["s"], p["axial"]))
         self._hs[K.H_GA] = 0.0   # no previous step (generalized-alpha, BDF2) to continue from
         self._hs[K.H_RING] = K.RING_OPEN   # the roller's ring resolved from the start
         self._started = True
 
     def row_bore_radius(self):
-        """Radius of the needles' outer race [m] (needle_setup.row_bore_radius)."""
-        return needle_setup.row_bore_radius(self.p)
+        """Radius of the needles' outer race [m] (roller_setup.row_bore_radius)."""
+        return roller_setup.row_bore_radius(self.T)
 
     def needle_loads(self):
         """Needle diagnostics at the last output [N], one row per needle: normal loads on the
@@ -289,15 +236,8 @@ class ContactModel:
         n = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
         x0, rate = OP[K.OP_X0], 0.0
         if self.NW is not None:
-            x_was = self._x0 if self._x0_for == F_was else None   # (0.5 ms a pressing_offset)
-            if self._x0_for != OP[K.OP_F]:   # the row's static offset (numpy)
-                self._x0, self._x0_for = self.pressing_offset(OP[K.OP_F]), OP[K.OP_F]
-            x0 = self._x0
-            # a load change moves the offset there over the step, not at once: a jump drove the
-            # trunnion into the row at infinite speed (docs/integrators.md)
-            if n > 0 and self.load_ramped and F_was == F_was and F_was != OP[K.OP_F]:
-                x_was = self.pressing_offset(F_was) if x_was is None else x_was
-                rate = (x0 - x_was) / OP[K.OP_DT]
+            x0, rate = _resolved_drive(self.P, self.T, OP, F_was, n, self.load_ramped,
+                                       self._x0c)
         if not kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
                                    OP[K.OP_H], n, self.out, self._W, self.NW):
             raise StepRefused(refusal(self._hs, self.P))
@@ -352,6 +292,23 @@ class ContactModel:
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X],
                 "plunge": o[K.O_PL]}
+
+
+_RESOLVED = []
+
+
+def _resolved_drive(P, T, OP, F_was, n, ramped, cache):
+    """kernel.resolved_drive compiled (numba: the resolved bearing's kernel needs it anyway)."""
+    if not _RESOLVED:
+        from . import kernel
+        _RESOLVED.append(kernel.resolved_drive)
+    return _RESOLVED[0](P, T, OP, F_was, n, ramped, cache)
+
+
+def _probe(ctx):
+    """(L, res) of ContactModel ctx[0] at its state now at the inputs ctx[1:] (its probe), for
+    roller_setup.place_on_cycle."""
+    return ctx[0].probe(ctx[1], ctx[2], ctx[3], ctx[4])
 
 
 # the model's arrays at layout's FA_ places but OUT (the FMU's), in their order

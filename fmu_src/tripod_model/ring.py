@@ -58,7 +58,9 @@ def ring_solve(AN, UN, FN, h, n, CW, XW, S, T):
     for j in range(n):
         for i in range(6):
             FN[j, i] *= h
-    ring_solve_m(AN, UN, FN.reshape((n, 6, 1)), 1, n, CW, XW, S, T)
+    # (FN seen with one column: a view by indexing, as reshape needs a helper of numba's
+    # runtime that the FMU's binary does not carry)
+    ring_solve_m(AN, UN, FN[:, :, None], 1, n, CW, XW, S, T)
 
 
 @njit
