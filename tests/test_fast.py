@@ -1,10 +1,8 @@
-"""Compiled steps against Python's.  The contact FMU: the native layer's fast path
-(fmu_src/tripod_model/kernel.py's step) runs steps as one compiled call without entering
-Python; every output bit for bit the same FMU stepping through Python (TRIPOD_FAST=0), also
-when the inputs change during the run, and the step count the FMU logs at the end.  The
-analytic FMU runs compiled throughout, without Python (reduced_model/kernel.py under
-fmu_src/native/fmi2_native.c): every output bit for bit its reference FMU's (the pythonfmu
-slave running the same kernel as Python, build/reference/), and the same end-of-run log."""
+"""Compiled steps against Python's.  Both joint FMUs run compiled throughout, without Python
+(fmu_src/tripod_model/lifecycle.py and reduced_model/kernel.py under
+fmu_src/native/fmi2_native.c): every output bit for bit their reference FMUs' (the pythonfmu
+slaves, build/reference/, stepping through Python: TRIPOD_FAST=0), also when the inputs change
+during the run, and the same end-of-run log of how roller 1 was stepped."""
 import json
 import os
 import subprocess
@@ -43,7 +41,7 @@ r = simulate_fmu(req["fmu"], stop_time=0.2, output_interval=1e-4, start_values=r
                  logger=lambda c, n, s, cat, msg: logs.append(msg.decode()))
 np.save(req["out"], np.column_stack([r[n] for n in r.dtype.names]))
 print(json.dumps([m for m in logs if m.startswith("roller 1:")]))
-print(json.dumps(sum("run compiled, without entering Python" in m for m in logs)))
+print(json.dumps(sum("compiled model, no Python" in m for m in logs)))
 print(json.dumps([m for m in logs if m.startswith("communication steps:")]))
 '''
 
@@ -52,8 +50,9 @@ ANALYTIC = "TripodRollerAnalytic"
 
 
 def _fmu(name, fast):
-    """The FMU a run takes: the analytic FMU's reference (Python) for the slow run."""
-    return reference_fmu(name) if name == ANALYTIC and fast == "0" else ensure_fmu(name)
+    """The FMU a run takes: its reference (Python) for the slow run, the FMU itself (compiled)
+    for the fast one."""
+    return reference_fmu(name) if fast == "0" else ensure_fmu(name)
 
 
 def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
@@ -78,15 +77,13 @@ def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
 def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
     slow, slow_log, slow_said, _ = _run(tmp_path, sv, "0", ramp)
     fast, fast_log, fast_said, steps = _run(tmp_path, sv, "1", ramp)
-    assert (slow_said, fast_said) == (0, 1)   # the fast path ran in one run only
+    assert (slow_said, fast_said) == (0, 1)   # the compiled model ran in one run only
     assert slow.shape == fast.shape and np.array_equal(slow, fast)
     assert np.ptp(fast[:, 3]) > 1.0          # Fz moves (not two runs of zeros)
-    # the end-of-run log counts the compiled steps too: same steps, same time
+    # the end-of-run log: the same substeps over the same time (FMPy's step sizes t_{k+1} -
+    # t_k differ in their last bits: both take those as the same step)
     assert slow_log and slow_log == fast_log, (slow_log, fast_log)
-    # FMPy's step sizes t_{k+1} - t_k differ in their last bits: those are the same step; new
-    # input values go to the compiled step too (the slave's _fast_inputs), so only the first
-    # step goes through Python, also when every input moves every step
-    assert steps == ["communication steps: 1999 compiled, 1 through Python"], steps
+    assert steps == ["communication steps: 2000, each compiled (no Python)"], steps
 
 
 @pytest.mark.parametrize("sv,ramp", [({}, False), ({"traverse": False, "n_rollers": 3}, False),
@@ -271,12 +268,11 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     if angle:   # the whirl follows the master's angle (to rounding: 1e-9 rad of up to 15 rad)
         tt = np.cumsum(np.random.default_rng(7).uniform(2e-5, 2e-4, 1500))
         assert np.allclose(fast[:, 3], 62.8 * (tt + tt ** 2), rtol=0, atol=1e-9)
-    if fmu == ANALYTIC:     # compiled throughout: the reference's log
+    if fmu == ANALYTIC:     # the reference runs the same functions: the same log
         assert slow_steps == fast_steps and "communication steps: 1500" in fast_steps[0]
         return
     assert "communication steps: 0 compiled, 1500 through Python" in slow_steps[0], slow_steps
-    # Python takes the first step only (the inputs move from it on)
-    assert "communication steps: 1499 compiled, 1 through Python" in fast_steps[0], fast_steps
+    assert "communication steps: 1500, each compiled (no Python)" in fast_steps[0], fast_steps
 
 
 _ANGLE_JUMP = _INSTANCE + r'''
@@ -302,8 +298,7 @@ def test_driving_by_angle_out_of_omega_range_is_refused_on_the_compiled_path(fmu
     assert p.returncode == 0, p.stderr[-3000:]
     r = json.loads(p.stdout.strip().splitlines()[-1])
     assert r["status"] != "OK" and r["after"] == r["before"], r
-    assert ("run compiled" if fmu == "TripodRoller" else "compiled model, no Python") \
-        in p.stdout, p.stdout[-2000:]
+    assert "compiled model, no Python" in p.stdout, p.stdout[-2000:]
     assert "omega" in p.stdout and "allowed range" in p.stdout, p.stdout[-2000:]
 
 
@@ -346,18 +341,10 @@ print(json.dumps(out))
 def test_a_rollback_every_step_runs_compiled_bitwise_the_python_step(fmu, ints, move, angle,
                                                                      hold):
     """An iterative master (get the state, a trial step, set the state back, the step again,
-    every step): the contact FMU offers the compiled step right after the state is set (the
-    state's inputs written where it reads them), so every step after the first runs
-    compiled; the repeated step equals the trial bit for bit, and the run equals the same
-    run through Python and the run without rollback (before, each step after a set went
-    through Python: 315 us a kept step with three rollers, 124 us now with the state check
-    skipped too, against 21 us without rollback; one in-process run).  The analytic FMU
-    steps through Python after a set; its kept step is the trial's too (before, a state from
-    its settled table with the next inputs already set made the kept step derive a new table
-    at them, 36 ms, and part from the trial by up to 0.04 N).  hold: the inputs move from
-    that step on, so states are taken on the settled table after steps were taken there (a
-    compiled table step offered after such a set kept the old inputs: 2026-11-27, caught in
-    a scratch copy)."""
+    every step): the repeated step equals the trial bit for bit, and the run equals the same
+    run through Python (the reference) and the run without rollback.  hold: the inputs move
+    from that step on, so states are taken on the analytic FMU's settled table after steps
+    were taken there."""
     runs = {}
     for fast, plain in (("0", False), ("1", False), ("1", True)):
         p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(_fmu(fmu, fast)),
@@ -373,9 +360,8 @@ def test_a_rollback_every_step_runs_compiled_bitwise_the_python_step(fmu, ints, 
     assert slow.shape == fast.shape == plain.shape == (300, 6)
     assert np.array_equal(slow, fast) and np.array_equal(fast, plain)
     assert np.ptp(fast[:, 2]) > 1.0
-    if fmu == "TripodRoller":
-        # Python takes the first step and, the state set back to before it, that step again
-        assert "communication steps: 598 compiled, 2 through Python" in fast_steps[0], \
+    if fmu == "TripodRoller":   # (a state holds the step count: the kept steps only)
+        assert "communication steps: 300, each compiled (no Python)" in fast_steps[0], \
             fast_steps
 
 

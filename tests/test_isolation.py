@@ -1,6 +1,7 @@
-"""Each FMU runs its own code: its Python is a package of its own (resources/PKG/, PKG named
-after its sources' hash, fmu_src/build.py: own_package), so FMUs, and builds of one FMU, in
-one process never run each other's modules or an installed copy of the project."""
+"""Each FMU runs its own code: the FMUs, compiled, carry no Python; a reference FMU's Python is
+a package of its own (resources/PKG/, PKG named after its sources' hash, fmu_src/build.py:
+own_package), so FMUs, and builds of one FMU, in one process never run each other's modules or
+an installed copy of the project."""
 import json
 import subprocess
 import sys
@@ -8,7 +9,7 @@ import zipfile
 from pathlib import Path
 
 
-from harness.fmus import ensure_fmu
+from harness.fmus import ensure_fmu, reference_fmu
 
 SEQ = [("TripodRoller", {"bearing": 0}), ("TripodRoller", {"bearing": 1}),
        ("TripodRoller", {"bearing": 2, "n_needles": 12}), ("TripodRollerAnalytic", {}),
@@ -82,7 +83,7 @@ def _second_build(fmu: Path, dest: Path, marker: str) -> Path:
 
 
 def test_two_builds_in_one_process_each_run_their_own_code(tmp_path):
-    a = ensure_fmu("TripodRoller")
+    a = reference_fmu("TripodRoller")
     b = _second_build(a, tmp_path / "TripodRoller.fmu", "this is build B")
     res = _run(sys.executable, [(str(a), {}), (str(b), {}), (str(a), {}), (str(b), {})])
     said = ["this is build B" in "\n".join(r["log"]) for r in res["runs"]]

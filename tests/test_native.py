@@ -1,6 +1,8 @@
-"""The FMUs' native layer (fmu_src/native/fmi2_python.c) in the hosts that load it: a plain C
-host (dlopen, no libpython linked or preloaded, a clean environment), FMPy in fresh processes
-whose exit status must be 0, and the call sequence and status codes of FMI 2.0."""
+"""The FMUs' native layers in the hosts that load them: a plain C host (dlopen, no libpython
+linked or preloaded, a clean environment), FMPy in fresh processes whose exit status must be 0,
+and the call sequence and status codes of FMI 2.0.  The FMUs run compiled
+(fmu_src/native/fmi2_native.c); the Python layer (fmi2_python.c) runs their references
+(build/reference/), whose Python it starts: what it says where that Python falls short."""
 import os
 import subprocess
 import sys
@@ -10,7 +12,7 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 
-from harness.fmus import ROOT, ensure_fmu
+from harness.fmus import ROOT, ensure_fmu, reference_fmu
 
 NAMES = ("TripodRoller", "TripodRollerAnalytic")
 HOST_SRC = Path(__file__).with_name("c_host") / "fmi2_host.c"
@@ -32,14 +34,14 @@ def c_host(tmp_path_factory):
     return exe
 
 
-def _unzipped(name):
-    fmu = ensure_fmu(name)
+def _unzipped(name, reference=False):
+    fmu = reference_fmu(name) if reference else ensure_fmu(name)
     md = read_model_description(str(fmu))
     return md, extract(str(fmu)), {v.name: v.valueReference for v in md.modelVariables}
 
 
-def _host(c_host, name, out, *ints, env=None):
-    md, d, vr = _unzipped(name)
+def _host(c_host, name, out, *ints, env=None, reference=False):
+    md, d, vr = _unzipped(name, reference)
     return subprocess.run([str(c_host), d, md.coSimulation.modelIdentifier, md.guid,
                            str(vr["Fz"]), "0.2", "1e-4", str(out)] + [f"{vr[k]}={v}" for k, v in ints],
                           capture_output=True, text=True, timeout=600, env=env or CLEAN_ENV)
@@ -71,12 +73,12 @@ def test_c_host_invalid_parameter_is_error_not_fatal(c_host, tmp_path):
 
 
 def test_c_host_says_what_python_lacks(c_host, tmp_path):
-    """A Python without numpy: instantiation fails with one line naming numpy and how to get
-    it (numba too), and the host carries on and exits cleanly."""
+    """A Python without numpy: the reference's instantiation fails with one line naming numpy
+    and how to get it (numba too), and the host carries on and exits cleanly."""
     venv = tmp_path / "bare"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
     env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
-    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env)
+    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env, reference=True)
     assert p.returncode == 1 and "first_round FAILED" in p.stdout       # no instance, no crash
     lines = [ln for ln in p.stderr.splitlines() if "needs the Python package 'numpy'" in ln]
     assert lines, p.stderr
@@ -84,7 +86,8 @@ def test_c_host_says_what_python_lacks(c_host, tmp_path):
 
 
 def test_c_host_warns_when_numba_is_missing(c_host, tmp_path):
-    """A Python with numpy but no numba: the contact FMU runs, and says once what it lacks."""
+    """A Python with numpy but no numba: the contact FMU's reference runs, and says once what
+    it lacks."""
     import numpy
     venv, site = tmp_path / "numpy-only", tmp_path / "site"
     subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
@@ -95,7 +98,7 @@ def test_c_host_warns_when_numba_is_missing(c_host, tmp_path):
             (site / d.name).symlink_to(d)
     sp = next(venv.glob("lib/python3.*/site-packages"))
     (sp / "numpy_only.pth").write_text(str(site) + "\n")
-    md, d, vr = _unzipped("TripodRoller")
+    md, d, vr = _unzipped("TripodRoller", reference=True)
     env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
     # a short run: the kernel as plain Python is slow
     p = subprocess.run([str(c_host), d, "TripodRoller", md.guid, str(vr["Fz"]), "0.002", "1e-4",
@@ -144,11 +147,11 @@ def test_c_host_bounds_the_wait_for_its_python(c_host, tmp_path):
     hang.chmod(0o755)
     env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(hang), TRIPOD_THRUST_PYTHON_TIMEOUT="2")
     t0 = time.monotonic()
-    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env)
+    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env, reference=True)
     assert time.monotonic() - t0 < 30
     assert "did not answer within 2 s" in p.stdout + p.stderr, p.stdout + p.stderr[-2000:]
-    # the analytic FMU starts no Python: the same environment does not touch it
-    p = _host(c_host, "TripodRollerAnalytic", tmp_path / "fz2.txt", env=env)
+    # the FMUs start no Python: the same environment does not touch them
+    p = _host(c_host, "TripodRoller", tmp_path / "fz2.txt", env=env)
     assert p.returncode == 0 and "0 failed" in p.stdout, p.stdout + p.stderr[-2000:]
 
 

@@ -1,7 +1,7 @@
 """The FMUs that need nothing on their host (fmu_src/native_fmu.py): the powertrain's model
-(driveline/mounts.py) and the analytic joint's (reduced_model/kernel.py) compiled ahead of time
-under the native FMI layer (fmu_src/native/fmi2_native.c), binaries for linux64 and win64 and
-nothing else in them.  Each held to the pythonfmu slave's FMU of the same model
+(driveline/mounts.py), the analytic joint's (reduced_model/kernel.py) and the contact joint's
+(fmu_src/tripod_model/lifecycle.py) compiled ahead of time under the native FMI layer
+(fmu_src/native/fmi2_native.c), binaries for linux64 and win64 and nothing else in them.  Each held to the pythonfmu slave's FMU of the same model
 (build/reference/), bit for bit; run by a plain C host with no Python reachable on Linux, and
 cross-compiled under wine64 from a folder named 'jürgen x'."""
 import os
@@ -21,7 +21,7 @@ from harness.fmus import builder, ensure_fmu
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
 WINE = "/usr/lib/wine/wine64"
-STEPS, DT = 4000, 1e-4
+DT = 1e-4
 
 
 # per FMU under test: the inputs a master moves (name: offset, amplitude, rate [1/s]; None:
@@ -29,9 +29,19 @@ STEPS, DT = 4000, 1e-4
 # foreign state differs in
 ANALYTIC_INPUTS = {"theta": (0.17, 0.05, 3.0), "omega": (62.8, 20.0, 5.0),
                    "F_press": (1000.0, 300.0, 7.0), "plunge_speed": (0.0, 0.01, 11.0)}
-CASES = {"Powertrain": (None, {}, ("mass", 200.0)),
-         "TripodRollerAnalytic": (ANALYTIC_INPUTS, {}, ("mu_groove", 0.07)),
-         "TripodRollerAnalytic-three": (ANALYTIC_INPUTS, {"n_rollers": 3}, ("mu_groove", 0.07))}
+# the contact FMU: a master moving the angle, the speed, the torque and the plunge
+CONTACT_INPUTS = {"theta": (0.17, 0.03, 3.0), "omega": (62.8, 10.0, 5.0),
+                  "torque": (300.0, 100.0, 7.0), "plunge_speed": (0.0, 0.01, 11.0)}
+# (and the run's length [s]: the needle-resolved row's run is short)
+CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
+         "TripodRollerAnalytic": (ANALYTIC_INPUTS, {}, ("mu_groove", 0.07), 0.5),
+         "TripodRollerAnalytic-three": (ANALYTIC_INPUTS, {"n_rollers": 3}, ("mu_groove", 0.07),
+                                        0.5),
+         "TripodRoller": (CONTACT_INPUTS, {}, ("mu_groove", 0.07), 0.5),
+         "TripodRoller-lumped-three": (CONTACT_INPUTS, {"bearing": 1, "n_rollers": 3},
+                                       ("mu_groove", 0.07), 0.5),
+         "TripodRoller-resolved": (CONTACT_INPUTS, {"bearing": 2, "n_needles": 12},
+                                   ("mu_groove", 0.07), 0.03)}
 
 
 @pytest.fixture(scope="module", params=sorted(CASES))
@@ -79,13 +89,13 @@ def test_fmpy_runs_it_as_the_python_slave_bit_for_bit(fmus):
     output equal to the last bit to the pythonfmu slave's (one source, mounts.py or kernel.py;
     the same libm)."""
     md = read_model_description(str(fmus[0]))
-    spec, ints, _ = _case(fmus)
-    t = np.linspace(0.0, 0.5, 51)
+    spec, ints, _, stop = _case(fmus)
+    t = np.linspace(0.0, stop, 51)
     cols = [("time", t)] + [(v.name, o + a * np.sin(w * t)) for v, o, a, w in _signals(md, spec)]
     inp = np.array(list(zip(*[c for _, c in cols])), dtype=[(n, float) for n, _ in cols])
-    kw = dict(stop_time=0.5, output_interval=DT, input=inp, start_values=ints)
+    kw = dict(stop_time=stop, output_interval=DT, input=inp, start_values=ints)
     a, b = simulate_fmu(str(fmus[0]), **kw), simulate_fmu(str(fmus[1]), **kw)
-    assert len(a) == len(b) == 5001
+    assert len(a) == len(b) == round(stop / DT) + 1
     for name in a.dtype.names:
         assert np.array_equal(a[name], b[name]), name
     moved = "acc_y" if "acc_y" in a.dtype.names else "Fz"    # (the run moved)
@@ -106,16 +116,17 @@ def _windows(path):
 def _run(cmd, fmus, outfile, env, wine=False):
     fmu = fmus[0]
     md = read_model_description(str(fmu))
-    spec, ints, _ = _case(fmus)
+    spec, ints, _, stop = _case(fmus)
+    steps = round(0.8 * stop / DT)
     ins = ",".join(f"{v.valueReference}:{o!r}:{a!r}:{w!r}" for v, o, a, w in _signals(md, spec))
     outs = ",".join(str(v.valueReference) for v in _outputs(md))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     sets = [",".join(f"{vr[k]}={v}" for k, v in ints.items())] if ints else []
-    p = subprocess.run(cmd + [md.guid, str(STEPS), repr(DT),
+    p = subprocess.run(cmd + [md.guid, str(steps), repr(DT),
                               _windows(outfile) if wine else str(outfile), ins, outs, *sets],
                        capture_output=True, text=True, timeout=300, env=env)
     rows = np.fromfile(outfile, dtype="<f8") if Path(outfile).exists() else np.zeros(0)
-    return p, rows.reshape(STEPS, -1) if rows.size else rows
+    return p, rows.reshape(steps, -1) if rows.size else rows
 
 
 def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
@@ -269,7 +280,7 @@ def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
     deserialise or set, or steps 20 times to finite outputs or is refused at a step; none
     crashes the host; the good state still restores after them all."""
     import json
-    _, ints, other = _case(fmus)
+    _, ints, other, _ = _case(fmus)
     p = subprocess.run([sys.executable, "-c", _ABUSE, str(fmus[0]), json.dumps(ints),
                         json.dumps(other)], capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
@@ -286,3 +297,52 @@ def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
     assert len(values) == 300
     # a non-finite value anywhere in a state is refused when it is set
     assert all(v == "refused" for k, v in values.items() if k.endswith("nonfinite"))
+
+
+# a contact FMU's state after 50 steps with one of its values set, stepped 20 times
+_CRAFTED = r'''
+import json, struct, sys, zlib
+from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+fmu, at, value = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+md = read_model_description(fmu)
+s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu),
+              modelIdentifier=md.coSimulation.modelIdentifier, instanceName="a")
+s.instantiate(loggingOn=True)
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.exitInitializationMode()
+for i in range(50):
+    s.doStep(i * 1e-4, 1e-4)
+b = bytearray(bytes(s.serializeFMUstate(s.getFMUstate()))[:-4])
+struct.pack_into("<d", b, 8 + 4 * 4 + 6 * 4 + 8 + 8 * at, value)
+b += struct.pack("<I", zlib.crc32(bytes(b)))
+try:
+    s.setFMUstate(s.deSerializeFMUstate(bytes(b)))
+    for i in range(20):
+        s.doStep(0.1 + i * 1e-4, 1e-4)
+    print("OUTCOME stepped")
+except FMICallException:
+    print("OUTCOME refused")
+'''
+
+
+@pytest.mark.parametrize("slide,outcome,said", [
+    (0.5, "refused", "fmi2SetFMUstate: corrupt state: a roller's slide u is beyond half the "
+                     "needle length"),
+    (3e-3, "refused", "step refused at t = 0.1 s: roller 1: the adaptive substeps stopped at")])
+def test_a_crafted_contact_state_is_refused_or_meets_the_budget(slide, outcome, said):
+    """The roller's slide u in a serialised state (checksum made valid): at 0.5 m (the joint is
+    0.022 m) refused when set, naming the bound; at 3 mm (inside the 6 mm bound, runs reach
+    0.1 mm) taken, and its next step refused once the adaptive substeps have tried their
+    budget, with one line saying so (budget.py)."""
+    sys.path.insert(0, str(ROOT / "fmu_src"))
+    from tripod_model import layout as K, lifecycle as LC
+    at = LC.T_LEN + LC.IN_LEN + LC.X_Y + K.Y_U   # (the state's arrays: P, IN, X, ...)
+    p = subprocess.run([sys.executable, "-c", _CRAFTED, str(ensure_fmu("TripodRoller")),
+                        str(at), repr(slide)], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    assert f"OUTCOME {outcome}" in p.stdout and said in p.stdout, p.stdout[-3000:]
+    if slide == 3e-3:
+        assert "the substeps tried reached their budget" in p.stdout

@@ -1,5 +1,6 @@
-"""The prebuilt kernel (fmu_src/aot.py, tripod_model/native.py): the contact FMU ships its
-step compiled ahead of time, so a scene without resolved needles runs without numba.  It must
+"""The prebuilt kernel (fmu_src/aot.py, tripod_model/native.py): the contact FMU's reference
+(the pythonfmu slave the compiled FMU is held to) carries its step compiled ahead of time, so a
+scene without resolved needles runs without numba.  It must
 be the same kernel: every output bit for bit against the FMU with numba compiling it
 (TRIPOD_AOT=0), through Python and through the native fast path, one and three rollers, with
 the inputs changing mid-run; and the process must not import numba at all."""
@@ -11,7 +12,7 @@ import sys
 import numpy as np
 import pytest
 
-from harness.fmus import ensure_fmu
+from harness.fmus import reference_fmu
 
 _RUN = r'''
 import json, sys, numpy as np
@@ -32,7 +33,7 @@ print(json.dumps({"numba": "numba" in sys.modules,
 
 def _run(tmp_path, sv, aot):
     out = str(tmp_path / f"r{aot}.npy")
-    req = {"fmu": str(ensure_fmu("TripodRoller")), "sv": sv, "out": out}
+    req = {"fmu": str(reference_fmu("TripodRoller")), "sv": sv, "out": out}
     p = subprocess.run([sys.executable, "-c", _RUN, json.dumps(req)], capture_output=True,
                        text=True, env=dict(os.environ, TRIPOD_AOT=aot), timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
@@ -52,7 +53,7 @@ def test_prebuilt_kernel_is_bitwise_the_numba_kernel(tmp_path, sv):
 
 def test_needle_resolved_bearing_still_compiles_with_numba(tmp_path):
     # the prebuilt step has no needles: the resolved bearing says so and runs on numba
-    req = {"fmu": str(ensure_fmu("TripodRoller")), "sv": {"bearing": 2, "n_needles": 12},
+    req = {"fmu": str(reference_fmu("TripodRoller")), "sv": {"bearing": 2, "n_needles": 12},
            "out": str(tmp_path / "n.npy")}
     code = _RUN.replace("stop_time=0.2", "stop_time=0.002")
     p = subprocess.run([sys.executable, "-c", code, json.dumps(req)], capture_output=True,

@@ -1,7 +1,7 @@
 """A serialised FMU state is data: a pickle payload runs nothing, a damaged, crafted, foreign
 or inconsistent state is refused with fmi2Error, a good one restores (issue: untrusted input).
-The pythonfmu slaves' states: the contact FMU's, and the analytic FMU's reference (its shipped
-FMU is compiled, its states checked in C: tests/test_native_fmu.py).  The long run (every
+The pythonfmu slaves' states: the references of the FMUs (the shipped FMUs are compiled, their
+states checked in C and by the compiled model: tests/test_native_fmu.py).  The long run (every
 truncation, thousands of flips and random states, under valgrind) is
 benchmarks/state_fuzz.py."""
 import json
@@ -23,7 +23,7 @@ ARRAYS = ["array-longer-than-data", "array-offset-past-end", "array-negative-sha
 
 def abuse(name, tmp_path, **spec):
     spec = dict(spec, marker=str(tmp_path / "code-ran"))
-    fmu = reference_fmu(name) if name == "TripodRollerAnalytic" else ensure_fmu(name)
+    fmu = reference_fmu(name)
     p = subprocess.run([sys.executable, str(WORKER), str(fmu), json.dumps(spec)],
                        capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]

@@ -220,11 +220,11 @@ def step_roller(Y, P, OP, W, out, dst):
 
 
 @njit
-def step_joint(n, Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out, dst):
+def step_joint(n, Y, P, OP, Wn, out, dst):
     """A joint of n rollers in one call (kernel.step's n > 0): OP a header row, whose inputs
     every roller takes, over the rollers' own rows; every other array the rollers' arrays as
-    rows.  The outputs are roller 1's and the joint's (JointModel.step).  Returns step's
-    codes."""
+    rows (Wn: their layout.Work, each array one row a roller).  The outputs are roller 1's and
+    the joint's (JointModel.step).  Returns step's codes."""
     head = OP[0]
     total = 0.0   # left to right, as JointModel.step
     jump = -1.0
@@ -237,8 +237,9 @@ def step_joint(n, Y, P, OP, L, res, Y1, Y2, G, A, b, hs, GW, out, dst):
             jump = derive_op(P[0], row)
         else:
             copy_op(P[0], OP[1], P[i], row)
-        if not _roller(Y[i], P[i], row, K.Work(L[i], res[i], Y1[i], Y2[i], G[i], A[i], b[i],
-                                                hs[i], GW[i]), out[i], jump):
+        if not _roller(Y[i], P[i], row, K.Work(Wn.L[i], Wn.res[i], Wn.Y1[i], Wn.Y2[i], Wn.G[i],
+                                                Wn.A[i], Wn.b[i], Wn.hs[i], Wn.GW[i]),
+                       out[i], jump):
             return 3
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
@@ -280,13 +281,12 @@ def step(args):
         # library does not carry)
         return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, P1[K.P_S],
                                head[OP_F], dst) else 2
+    Wn = K.Work(carray(pL, (n, K.L_LEN)), carray(pres, (n, K.R_LEN)),
+                carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN)), carray(pG, (n, K.NV, 3)),
+                carray(pA, (n, K.NV, K.NV)), carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN)),
+                carray(pGW, (n, K.NV + 8, K.NV)))
     return step_joint(n, carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN)),
-                      carray(pOP, (n + 1, OP_LEN)), carray(pL, (n, K.L_LEN)),
-                      carray(pres, (n, K.R_LEN)), carray(pY1, (n, K.Y_LEN)),
-                      carray(pY2, (n, K.Y_LEN)), carray(pG, (n, K.NV, 3)),
-                      carray(pA, (n, K.NV, K.NV)), carray(pb, (n, K.NV)),
-                      carray(phs, (n, K.H_LEN)), carray(pGW, (n, K.NV + 8, K.NV)),
-                      carray(pout, (n, K.O_LEN)), dst)
+                      carray(pOP, (n + 1, OP_LEN)), Wn, carray(pout, (n, K.O_LEN)), dst)
 
 
 _C_STEP = []

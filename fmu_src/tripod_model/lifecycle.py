@@ -1,239 +1,38 @@
 """The contact FMU's lifecycle as scalar functions over flat arrays, as reduced_model/kernel.py
-keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``check_state``, compiled ahead of time
-(c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without Python.  They
+keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``state_problem``, compiled ahead of
+time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without Python.  They
 compose the model's own functions: roller_setup.py (the parameter vector, the needle row, the
 start on the settled cycle) and kernel.py (the step: the same functions the pythonfmu slave's
 prebuilt kernel runs), so the binary is held to the slave bit for bit
-(tests/test_native_fmu.py).
-
-Arrays (float64; flags and counts as 0.0 / 1.0, integers as floats):
-- P: the FMU's parameters in PARAM_NAMES' order (roller_setup's table values T);
-- IN: its inputs in INPUT_NAMES' order; OUT: its outputs in layout.OUTPUT_NAMES' order;
-- X: the state (X_* places): started, time, steps; per roller its parameter vector, operating
-  point (a header row first), state Y and previous state Y2, the integrators' history hs, its
-  output vector and needle diagnostics ND; sized for three rollers of N_MAX needles;
-- W: work, not part of an FMU state: each roller's work arrays (layout.Work) and needle work
-  (layout.NeedleWork), a probe's saved rows, the resolved offset's cache, the start's traverse
-  table, the notes (the messages a call leaves for the FMU's log: codes and numbers, worded by
-  NOTE_TEXT in the binary).
-Views of X and W in the shapes the kernel takes are made at run time (``_at``): a joint of ideal
-or lumped rollers as rows of one block each (kernel.step_joint), a needle-resolved roller's
-state with its needles.  Every size is a constant or a parameter checked against its range:
-nothing read from a state sizes or indexes an array.
+(tests/test_native_fmu.py).  The arrays, their places and views: fmu_arrays.py.
 """
 import math
 
 from reduced_model import equations as RE
 from reduced_model.equations import operating_point
-from reduced_model.scene import BY_NAME, RELATIONS, TOO_LONG, params_for, pressing_load, same_step
+from reduced_model.scene import BY_NAME, params_for, pressing_load, same_step
 from reduced_model.table import D_COUNT, SETTLED_TOL, traverse_table
 from . import layout as K
-from .budget import WHY, adapt_refusal
 from .contact import trunnion_axial
+from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAMES, MAX_NOTES,
+                         NOTE_ADAPT, NOTE_ARGS, NOTE_BORE, NOTE_CLEARANCE, NOTE_GROOVE,
+                         NOTE_INFO, NOTE_INFO_OP, NOTE_ROLLERS, NOTE_STEPS, NOTE_SUMMARY,
+                         NOTE_SUMMARY_ADAPT, NOTE_SUMMARY_BDF, NOTE_SUMMARY_GA, NOTE_TEXT,
+                         NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
+                         SHAFT_ANGLE, STATE_PROBLEMS, T_LEN, TABLE_N, TABLE_ROWS, THETA, TORQUE,
+                         VST_HI, W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
+                         W_T, W_X0, WHIRL_HI, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
+                         X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
+                         work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
 from .kernel import (_roller, derive_op, inputs_moved, joint_into, outputs_into, resolved_drive,
                      run_substeps, step_joint, step_roller)
 from .oppoint import P_DERIVED, OP_DERIVED, substep, v_st
 from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE, T_L_NEEDLE,
-                           T_MU_GROOVE, T_N_NEEDLES, T_N_ROLLERS, T_N_SPHERES, T_R_BORE,
-                           T_R_GROOVE, T_R_ROLLER, T_RUNNING_CLEARANCE, T_S, T_AXIAL, T_TRAVERSE,
-                           kernel_params, needle_params, place_on_cycle, pressing_offset,
-                           start_needles, start_state, uses_table)
+                           T_N_ROLLERS, T_R_BORE, T_R_GROOVE, T_R_ROLLER, T_RUNNING_CLEARANCE,
+                           T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
+                           place_on_cycle, pressing_offset, start_needles, start_state,
+                           uses_table)
 from .state_check import SPEED_MARGIN
-
-# --- the FMU's variables --------------------------------------------------------------------
-T_LEN = len(PARAM_NAMES)
-INPUT_NAMES = tuple(p.name for p in params_for("contact") if p.causality == "input")
-THETA, OMEGA, F_PRESS, TORQUE, PLUNGE_SPEED, SHAFT_ANGLE = map(INPUT_NAMES.index, (
-    "theta", "omega", "F_press", "torque", "plunge_speed", "shaft_angle"))
-IN_LEN = len(INPUT_NAMES)
-IN_LO = tuple(BY_NAME[n].lo for n in INPUT_NAMES)
-IN_HI = tuple(BY_NAME[n].hi for n in INPUT_NAMES)
-VST_HI = BY_NAME["v_st"].hi                  # (a state's transition velocity)
-WHIRL_HI = BY_NAME["shaft_angle"].hi + 2.0 * math.pi   # (a state's whirl angle)
-OUT_LEN = K.N_OUT
-# the analytic model's parameters (its traverse table starts the roller) as the contact FMU's
-ANALYTIC_SLOTS = tuple(PARAM_NAMES.index(n) for n in RE.PARAM_NAMES)
-
-# --- sizes: three rollers, the table's most needles and spheres -------------------------------
-R_MAX = 3
-N_MAX = int(BY_NAME["n_needles"].hi)
-S_MAX = int(BY_NAME["n_spheres"].hi)
-Y_MAX = K.Y_LEN + K.N_F * N_MAX
-TABLE_N = RE.N_PER_CYCLE              # the start's traverse table: its intervals
-TABLE_ROWS = TABLE_N + 1
-GW_LEN = (K.NV + 8) * K.NV
-# a roller's needle work (layout.NeedleWork but ND, which is state): per needle, then fixed
-NW_PER_NEEDLE = 6 + 36 + 10 + 10 + 36 + 36 + 42 + 36 + 10 + 42 + 78 + 36 + 36 + 1
-NW_FIXED = K.N_LEN + 6 + 36 + 6 + 78 + 10 + 6 + 36 + 78 + 114
-NW_LEN = NW_FIXED + N_MAX * (S_MAX * 3 + NW_PER_NEEDLE)
-
-# --- the state X ------------------------------------------------------------------------------
-X_STARTED, X_TIME, X_STEPS = 0, 1, 2
-X_P = 3                                     # R_MAX rows of K.P_LEN
-X_OP = X_P + R_MAX * K.P_LEN                # a header row, then R_MAX rows of K.OP_LEN
-X_Y = X_OP + (R_MAX + 1) * K.OP_LEN         # R_MAX states (a row's stride: ystride)
-X_Y2 = X_Y + R_MAX * Y_MAX
-X_HS = X_Y2 + R_MAX * Y_MAX                 # R_MAX rows of K.H_LEN
-X_OUTV = X_HS + R_MAX * K.H_LEN             # R_MAX rows of K.O_LEN
-X_ND = X_OUTV + R_MAX * K.O_LEN             # R_MAX blocks of N_MAX x K.D_LEN
-X_LEN = X_ND + R_MAX * N_MAX * K.D_LEN
-
-# --- the work W -------------------------------------------------------------------------------
-W_L = 0
-W_RES = W_L + R_MAX * K.L_LEN
-W_Y1 = W_RES + R_MAX * K.R_LEN
-W_G = W_Y1 + R_MAX * Y_MAX
-W_A = W_G + R_MAX * K.NV * 3
-W_B = W_A + R_MAX * K.NV * K.NV
-W_GW = W_B + R_MAX * K.NV
-W_SAVE = W_GW + R_MAX * GW_LEN              # a probe's P, OP and hs, kept
-W_X0 = W_SAVE + K.P_LEN + K.OP_LEN + K.H_LEN   # per roller: the resolved offset's cache (3)
-W_PA = W_X0 + 3 * R_MAX                     # the traverse table: the analytic parameters,
-W_O = W_PA + RE.P_LEN                       # its operating point,
-W_D = W_O + RE.O_LEN                        # its derivation,
-W_T = W_D + D_COUNT * TABLE_ROWS            # the table,
-W_SS = W_T + 5 * TABLE_ROWS                 # the slide slip and tilt on the settled cycle
-W_PS = W_SS + TABLE_ROWS
-W_NW = W_PS + TABLE_ROWS                    # R_MAX needle works of NW_LEN
-W_NOTES = W_NW + R_MAX * NW_LEN
-NOTE_ARGS = 4
-MAX_NOTES = 8
-W_LEN = W_NOTES + 1 + MAX_NOTES * (1 + NOTE_ARGS)
-
-# --- the notes: a code and up to four numbers each; NOTE_TEXT words them (printf formats, which
-# Python's % applies alike).  A note whose text starts with "; " continues the one before.
-INFO, WARNING, ERROR = 0, 1, 2
-FAILS = (K.FAIL_ESTIMATE, K.FAIL_FLOOR, K.FAIL_TRIES)
-NOTE_TEXT = (
-    (INFO, "%.0f roller(s), bearing %.0f, traverse %.0f"),
-    (INFO, "; pressing %.6g N per roller, v_st %.4g m/s, substep %.3g s, pressing offset "
-           "%.6g m; kernel compiled ahead of time (no Python)"),
-    (INFO, "roller 1: %.0f steps, %.6g s"),
-    (INFO, "; generalized-alpha, %.0f step(s) handed to the extrapolated substeps when Newton "
-           "did not converge"),
-    (INFO, "; BDF2, a second Newton pass in %.0f substep(s), %.0f pass(es) refused as not "
-           "contracting"),
-    (INFO, "; %.0f substep(s) rejected by the error estimate"),
-    (INFO, "communication steps: %.0f, each compiled (no Python)"),
-    (ERROR, "roller %.0f: " + TOO_LONG),
-    (ERROR, RELATIONS["groove"]),
-    (ERROR, RELATIONS["running_clearance"]),
-    (ERROR, RELATIONS["n_rollers"]),
-    (ERROR, RELATIONS["bore"]),
-) + tuple((ERROR, "roller %.0f: " + adapt_refusal(WHY[f])) for f in FAILS)
-(NOTE_INFO, NOTE_INFO_OP, NOTE_SUMMARY, NOTE_SUMMARY_GA, NOTE_SUMMARY_BDF, NOTE_SUMMARY_ADAPT,
- NOTE_STEPS, NOTE_TOO_LONG, NOTE_GROOVE, NOTE_CLEARANCE, NOTE_ROLLERS, NOTE_BORE) = range(12)
-NOTE_ADAPT = 12                      # + the index of hs[H_FAIL] in FAILS
-
-
-def note(W, code, a0, a1, a2, a3):
-    """Leave a note (code, four numbers) for the FMU's log; beyond MAX_NOTES it is dropped."""
-    n = int(W[W_NOTES])
-    if n >= MAX_NOTES:
-        return
-    at = W_NOTES + 1 + n * (1 + NOTE_ARGS)
-    W[at] = code
-    W[at + 1] = a0
-    W[at + 2] = a1
-    W[at + 3] = a2
-    W[at + 4] = a3
-    W[W_NOTES] = n + 1
-
-
-# --- views ------------------------------------------------------------------------------------
-def _at(A, offset, shape):
-    """A's doubles from offset on as an array of this shape (plain Python: a reshaped slice;
-    compiled: a view at that address, compiled_namespace)."""
-    size = 1
-    for d in shape:
-        size *= d
-    return A[offset:offset + size].reshape(shape)
-
-
-def shape_of(T):
-    """(rollers, whether the needles are resolved, needles, spheres a needle, a roller state's
-    length, its stride in X): from the parameters (checked against their ranges)."""
-    resolved = T[T_BEARING] == K.BEAR_RESOLVED
-    nn = int(T[T_N_NEEDLES]) if resolved else 0
-    ny = K.Y_LEN + K.N_F * nn
-    return int(T[T_N_ROLLERS]), resolved, nn, int(T[T_N_SPHERES]), ny, \
-        (Y_MAX if resolved else K.Y_LEN)
-
-
-def op_row(n, resolved, i):
-    """The row of X's operating points roller i steps at: the header itself for one roller
-    without resolved needles (kernel.step_roller), else its own row under the header."""
-    return 0 if (n == 1 and not resolved) else i + 1
-
-
-def work(X, W, i, ny, ys):
-    """Roller i's work arrays (layout.Work) over W, with its Y2 in X."""
-    return K.Work(W[W_L + i * K.L_LEN:W_L + (i + 1) * K.L_LEN],
-                  W[W_RES + i * K.R_LEN:W_RES + (i + 1) * K.R_LEN],
-                  W[W_Y1 + i * ys:W_Y1 + i * ys + ny], X[X_Y2 + i * ys:X_Y2 + i * ys + ny],
-                  _at(W, W_G + i * K.NV * 3, (K.NV, 3)),
-                  _at(W, W_A + i * K.NV * K.NV, (K.NV, K.NV)),
-                  W[W_B + i * K.NV:W_B + (i + 1) * K.NV],
-                  X[X_HS + i * K.H_LEN:X_HS + (i + 1) * K.H_LEN],
-                  _at(W, W_GW + i * GW_LEN, (K.NV + 8, K.NV)))
-
-
-def needle_work(X, W, i, nn, ns):
-    """Roller i's needle work (layout.NeedleWork) over W, its diagnostics ND in X: nn needles of
-    ns spheres, laid out one after the other in NeedleWork's order."""
-    a = W_NW + i * NW_LEN
-    NP = W[a:a + K.N_LEN]
-    a += K.N_LEN
-    SP = _at(W, a, (nn, ns, 3))
-    a += nn * ns * 3
-    FN = _at(W, a, (nn, 6))
-    a += nn * 6
-    AN = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    FR = W[a:a + 6]
-    a += 6
-    AR = _at(W, a, (6, 6))
-    a += 36
-    MOM = _at(W, a, (nn, 10))
-    a += nn * 10
-    gn = W[a:a + 6]
-    a += 6
-    PM = _at(W, a, (nn, 10))
-    a += nn * 10
-    RS = _at(W, a, (6, 13))
-    a += 78
-    UN = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    MR = W[a:a + 10]
-    a += 10
-    gn2 = W[a:a + 6]
-    a += 6
-    CW = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    XW = _at(W, a, (nn, 6, 7))
-    a += nn * 42
-    S = _at(W, a, (6, 6))
-    a += 36
-    T = _at(W, a, (6, 13))
-    a += 78
-    BN = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    PB = _at(W, a, (nn, 10))
-    a += nn * 10
-    RH = _at(W, a, (nn, 6, 7))
-    a += nn * 42
-    XW7 = _at(W, a, (nn, 6, 13))
-    a += nn * 78
-    T7 = _at(W, a, (6, 19))
-    a += 114
-    BP = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    LF = _at(W, a, (nn, 6, 6))
-    a += nn * 36
-    ZF = W[a:a + nn]
-    ND = _at(X, X_ND + i * N_MAX * K.D_LEN, (nn, K.D_LEN))
-    return K.NeedleWork(NP, SP, FN, AN, FR, AR, ND, MOM, gn, PM, RS, UN, MR, gn2, CW, XW, S, T,
-                        BN, PB, RH, XW7, T7, BP, LF, ZF)
 
 
 # --- set-up and start -------------------------------------------------------------------------
@@ -494,13 +293,14 @@ def step(T, IN, X, OUT, W, t, h):
                                           X[X_OP + K.OP_F], OUT):
                 rc = 2
         else:
+            Wn = K.Work(_at(W, W_L, (n, K.L_LEN)), _at(W, W_RES, (n, K.R_LEN)),
+                        _at(W, W_Y1, (n, K.Y_LEN)), _at(X, X_Y2, (n, K.Y_LEN)),
+                        _at(W, W_G, (n, K.NV, 3)), _at(W, W_A, (n, K.NV, K.NV)),
+                        _at(W, W_B, (n, K.NV)), _at(X, X_HS, (n, K.H_LEN)),
+                        _at(W, W_GW, (n, K.NV + 8, K.NV)))
             rc = step_joint(n, _at(X, X_Y, (n, K.Y_LEN)), _at(X, X_P, (n, K.P_LEN)),
-                            _at(X, X_OP, (n + 1, K.OP_LEN)), _at(W, W_L, (n, K.L_LEN)),
-                            _at(W, W_RES, (n, K.R_LEN)), _at(W, W_Y1, (n, K.Y_LEN)),
-                            _at(X, X_Y2, (n, K.Y_LEN)), _at(W, W_G, (n, K.NV, 3)),
-                            _at(W, W_A, (n, K.NV, K.NV)), _at(W, W_B, (n, K.NV)),
-                            _at(X, X_HS, (n, K.H_LEN)), _at(W, W_GW, (n, K.NV + 8, K.NV)),
-                            _at(X, X_OUTV, (n, K.O_LEN)), OUT)
+                            _at(X, X_OP, (n + 1, K.OP_LEN)), Wn, _at(X, X_OUTV, (n, K.O_LEN)),
+                            OUT)
     if rc == 3:
         refused(X, W, n)
     X[X_TIME] += dt
@@ -578,16 +378,18 @@ def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
         Y = X[(X_Y if k == 0 else X_Y2) + i * ys:(X_Y if k == 0 else X_Y2) + i * ys + ny]
         if not within(Y[K.Y_X], WHIRL_HI):
             return 5
-        if not (within(Y[K.Y_U], 0.5 * T[T_L_NEEDLE]) and within(Y[K.Y_UD], v)
-                and within(Y[K.Y_OM], v / T[T_R_ROLLER])):
-            return 5
+        if not within(Y[K.Y_U], 0.5 * T[T_L_NEEDLE]):
+            return 6
+        if not (within(Y[K.Y_UD], v) and within(Y[K.Y_OM], v / T[T_R_ROLLER])):
+            return 7
         if T[T_BEARING] == K.BEAR_IDEAL:
             continue
         if not (within(Y[K.Y_E], T[T_D_NEEDLE]) and within(Y[K.Y_W], T[T_D_NEEDLE])
-                and within(Y[K.Y_B1], tilt) and within(Y[K.Y_B2], tilt)
-                and within(Y[K.Y_ED], v) and within(Y[K.Y_WD], v)
+                and within(Y[K.Y_B1], tilt) and within(Y[K.Y_B2], tilt)):
+            return 8
+        if not (within(Y[K.Y_ED], v) and within(Y[K.Y_WD], v)
                 and within(Y[K.Y_B1D], v / T[T_R_BORE]) and within(Y[K.Y_B2D], v / T[T_R_BORE])):
-            return 5
+            return 7
     return 0
 
 
@@ -596,7 +398,7 @@ def state_problem(T, IN, X, W):
     check), else a code of STATE_PROBLEMS: its flags or counts none the model writes (1), a
     roller's parameters not this instance's (2), its operating point not its inputs' (3), its
     transition velocity, substep or counts out of range (4), its motion beyond the scene's
-    bounds (5: state_check.py)."""
+    bounds (5-8: state_check.py's)."""
     if X[X_STARTED] != 0.0 and X[X_STARTED] != 1.0:
         return 1
     if X[X_TIME] < 0.0 or X[X_STEPS] < 0.0:
@@ -611,37 +413,10 @@ def state_problem(T, IN, X, W):
     return 0
 
 
-STATE_PROBLEMS = ("", "its flags or counts are none the model writes",
-                  "a roller's parameters are not this instance's",
-                  "a roller's operating point is not the one its inputs give",
-                  "a roller's transition velocity, substep or counts are out of range",
-                  "a roller's motion is beyond the scene's bounds (state_check.py)")
-
 # what the FMU's binary compiles of this module (c_functions), callees first
-COMPILED = ("note", "shape_of", "op_row", "work", "needle_work", "check_scene", "setup", "no_key",
+COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
             "step_resolved", "step", "end", "within", "roller_problem", "state_problem")
-
-
-def _compiled_at():
-    """_at compiled: a view of an array's doubles from an offset on, at that address (no copy,
-    no allocation: what the binary can run)."""
-    from numba import carray, njit, types
-    from numba.extending import intrinsic
-
-    @intrinsic
-    def data_at(typingctx, arr, offset):
-        sig = types.CPointer(types.float64)(arr, types.intp)
-
-        def codegen(context, builder, signature, args):
-            ary = context.make_array(signature.args[0])(context, builder, args[0])
-            return builder.gep(ary.data, [args[1]])
-        return sig, codegen
-
-    @njit
-    def at(A, offset, shape):
-        return carray(data_at(A, offset), shape)
-    return at
 
 
 def compiled_namespace():
@@ -654,13 +429,13 @@ def compiled_namespace():
 
     from reduced_model.kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import hertz, oppoint, roller_setup
+    from . import fmu_arrays, hertz, oppoint, roller_setup
 
     def jit(f):
         return nb.njit(f)
 
     red = reduced()
-    g = {**vars(roller_setup), **globals()}
+    g = {**vars(roller_setup), **vars(fmu_arrays), **globals()}
     for name in ("operating_point", "traverse_table", "table_state_at", "hertz_point",
                  "pressing_load", "same_step"):
         g[name] = red[name]
@@ -669,8 +444,8 @@ def compiled_namespace():
         g[f.__name__] = jit(f)
     for name in ("v_st", "substep"):
         g[name] = getattr(oppoint_compiled(), name)
-    g["_at"] = _compiled_at()
-    for name in roller_setup.COMPILED + COMPILED:
+    g["_at"] = fmu_arrays.compiled_at()
+    for name in roller_setup.COMPILED + fmu_arrays.COMPILED + COMPILED:
         f = g[name]
         g[name] = jit(types.FunctionType(f.__code__, g, f.__name__, f.__defaults__,
                                          f.__closure__))

@@ -15,7 +15,7 @@ from . import layout as K, native, needle_setup, oppoint, roller_setup, start_sl
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
-from reduced_model.thrust import fz_mod, spin_inertia
+from reduced_model.thrust import fz_mod
 from reduced_model.scene import StepRefused, same_step
 from .budget import refusal
 

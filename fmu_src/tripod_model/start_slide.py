@@ -15,7 +15,6 @@ imports it.  How close the start is: docs/integrators.md, "The start".
 """
 from __future__ import annotations
 
-import math
 from functools import lru_cache
 
 from reduced_model import scene as scene_mod
