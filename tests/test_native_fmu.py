@@ -113,12 +113,16 @@ def _windows(path):
     return "Z:" + str(path).replace("/", "\\")
 
 
-def _run(cmd, fmus, outfile, env, wine=False):
+def _run(cmd, fmus, outfile, env, wine=False, theta_ulps=0):
+    """The C host's run (cmd) of the case's master; theta_ulps: theta's offset moved by that
+    many ulps."""
     fmu = fmus[0]
     md = read_model_description(str(fmu))
     spec, ints, _, stop = _case(fmus)
     steps = round(0.8 * stop / DT)
-    ins = ",".join(f"{v.valueReference}:{o!r}:{a!r}:{w!r}" for v, o, a, w in _signals(md, spec))
+    eps = float(np.finfo(float).eps)
+    ins = ",".join(f"{v.valueReference}:{o * (1 + theta_ulps * eps if v.name == 'theta' else 1)!r}"
+                   f":{a!r}:{w!r}" for v, o, a, w in _signals(md, spec))
     outs = ",".join(str(v.valueReference) for v in _outputs(md))
     vr = {v.name: v.valueReference for v in md.modelVariables}
     sets = [",".join(f"{vr[k]}={v}" for k, v in ints.items())] if ints else []
@@ -148,8 +152,11 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     """The DLL imports only KERNEL32 and msvcrt; the same host, cross-compiled, loads it from a
     folder named 'jürgen x' under wine64 (the path as a UTF-16 Windows path): checks pass, no
     Python in the process, the outputs within 1e-9 of each output's scale of the Linux run
-    (the two C runtimes' sin, cos and asin may differ in the last bit; the mounts are damped,
-    so a last bit stays a last bit)."""
+    (the two C runtimes' sin, cos, pow and tanh may differ in the last bit; the mounts and the
+    joint's groove contact are damped, so a last bit stays a last bit).  The needle-resolved
+    row is not: its impacts grow a last bit (benchmarks/needle_chaos.py), so there the first
+    step agrees within 1e-9 and the run within ten times the Linux run's own spread when
+    theta moves by 4 ulps (what another libm's last bit grows into)."""
     assert shutil.which("x86_64-w64-mingw32-gcc") and os.path.exists(WINE), \
         "mingw-w64 and wine64 missing: make test installs them (make cross-tools)"
     aot = builder().build_module("aot")
@@ -170,7 +177,14 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     assert "FAILED" not in pw.stdout and "check rollback bit for bit ok" in pw.stdout
     assert "python-in-process no" in pw.stdout
     scale = np.abs(rl).max(axis=0)
-    assert (np.abs(rw - rl).max(axis=0) <= 1e-9 * scale).all()
+    if not fmus[2].endswith("resolved"):
+        assert (np.abs(rw - rl).max(axis=0) <= 1e-9 * scale).all()
+        return
+    assert (np.abs(rw[0] - rl[0]) <= 1e-9 * scale).all()
+    _, rp = _run([str(lin), str(d / f"binaries/linux64/{mid}.so")], fmus, tmp_path / "p.bin",
+                 {"PATH": "/usr/bin:/bin"}, theta_ulps=4)
+    spread = np.abs(rp - rl).max(axis=0)
+    assert (np.abs(rw - rl).max(axis=0) <= 10 * spread + 1e-9 * scale).all()
 
 
 @pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind not installed "
