@@ -92,28 +92,29 @@ def _compile(src: Path, lib: Path, flags) -> Path:
     return lib
 
 
-_HELD = [0]   # this process's depth inside _exclusive
+_HELD = {}   # this process's depth inside _exclusive, per lock
 
 
 @contextlib.contextmanager
-def _exclusive():
-    """One build at a time in build/ across processes (parallel test workers each build what
-    they find stale); re-entrant within a process."""
-    if _HELD[0]:
-        _HELD[0] += 1
+def _exclusive(what="shared"):
+    """One build of ``what`` at a time in build/ across processes (parallel test workers each
+    build what they find stale): an FMU's name (two FMUs build side by side), or "shared" for
+    what the FMUs share (the Python layer, the prebuilt kernel); re-entrant within a process."""
+    if _HELD.get(what):
+        _HELD[what] += 1
         try:
             yield
         finally:
-            _HELD[0] -= 1
+            _HELD[what] -= 1
         return
     BUILD.mkdir(parents=True, exist_ok=True)
-    with open(BUILD / ".lock", "w") as f:
+    with open(BUILD / f".lock-{what}", "w") as f:
         fcntl.flock(f, fcntl.LOCK_EX)
-        _HELD[0] = 1
+        _HELD[what] = 1
         try:
             yield
         finally:
-            _HELD[0] = 0
+            _HELD[what] = 0
 
 
 def _fresh(lib: Path, src: Path) -> bool:
@@ -125,9 +126,10 @@ def native_library(force=False) -> Path:
 
     Needs only a C compiler ($CC, else cc): the Python C API is bound at run time, so neither
     the Python headers nor libpython are needed to build it."""
-    if not force and _fresh(NATIVE_LIB, NATIVE_SRC):
-        return NATIVE_LIB
-    return _compile(NATIVE_SRC, NATIVE_LIB, [f"-I{_fmi_headers()}", "-ldl", "-lpthread"])
+    with _exclusive():
+        if not force and _fresh(NATIVE_LIB, NATIVE_SRC):
+            return NATIVE_LIB
+        return _compile(NATIVE_SRC, NATIVE_LIB, [f"-I{_fmi_headers()}", "-ldl", "-lpthread"])
 
 
 def build_module(name: str):
@@ -331,7 +333,7 @@ def _initial_unknowns(root):
 
 def build(name="TripodRoller", force=False) -> Path:
     """Build build/<name>.fmu if missing or stale (or forced); returns its path."""
-    with _exclusive():
+    with _exclusive(name):
         return _build(name, force)
 
 
