@@ -1,11 +1,11 @@
-"""The FMUs that need no Python beside the same models through Python: the powertrain FMU and
-the analytic joint FMU (compiled models under fmu_src/native/fmi2_native.c) and their
-references (the pythonfmu slaves under the Python layer, build/reference/), each run by the
-plain C host tests/c_host/fmu_run.c in fresh processes: the time from the program's start
+"""The FMUs, which need no Python, beside the same models through Python: the powertrain, the
+analytic joint and the contact joint FMUs (compiled models under fmu_src/native/fmi2_native.c)
+and their references (the pythonfmu slaves under the Python layer, build/reference/), each run
+by the plain C host tests/c_host/fmu_run.c in fresh processes: the time from the program's start
 (before the binary is loaded) to the first step done, and the cost of a step after it (setReal
-of the inputs a master moves, doStep, getReal of every Real output).  The analytic FMU with one
-and three rollers, at fixed inputs (its settled table) and with a master moving theta, omega and
-the torque every step (its slide stepped in time).  Medians of interleaved runs; prints a
+of the inputs a master moves, doStep, getReal of every Real output).  The joints with one and
+three rollers, at fixed inputs and with a master moving theta, omega and the torque every step
+(the analytic FMU's slide then stepped in time); the contact joint's bearings too.  Medians of interleaved runs; prints a
 markdown table and writes it into docs/benchmarks.md (between the native-speed markers).
 
     python -m benchmarks.native_fmu_speed [--runs N] [--no-docs]
@@ -41,7 +41,13 @@ CASES = (("BareSlave", {"theta": (0.17, 0.05, 3.0), "omega": (62.8, 20.0, 5.0),
          ("TripodRollerAnalytic", {}, {}, "1 roller, fixed inputs"),
          ("TripodRollerAnalytic", MOVING, {}, "1 roller, inputs moving"),
          ("TripodRollerAnalytic", {}, {"n_rollers": 3}, "3 rollers, fixed inputs"),
-         ("TripodRollerAnalytic", MOVING, {"n_rollers": 3}, "3 rollers, inputs moving"))
+         ("TripodRollerAnalytic", MOVING, {"n_rollers": 3}, "3 rollers, inputs moving"),
+         ("TripodRoller", {}, {}, "1 roller, fixed inputs"),
+         ("TripodRoller", MOVING, {}, "1 roller, inputs moving"),
+         ("TripodRoller", {}, {"n_rollers": 3}, "3 rollers, fixed inputs"),
+         ("TripodRoller", MOVING, {"n_rollers": 3}, "3 rollers, inputs moving"),
+         ("TripodRoller", {}, {"bearing": 1, "n_rollers": 3}, "3 rollers, lumped bearing"),
+         ("TripodRoller", {}, {"bearing": 2}, "1 roller, needle-resolved row (46 needles)"))
 
 
 def bare_native_fmu() -> Path:
