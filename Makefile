@@ -74,7 +74,8 @@ cross-tools:
 	  wine64 >/dev/null; } || { echo "make: the win64 build and its tests need mingw-w64 and wine64 (as root: apt-get install gcc-mingw-w64-x86-64 wine64)"; exit 1; }
 
 # two workers (the machine's two cores; pytest-xdist), the slowest tests named at the end;
-# the tests of a minute or more (marked slow) in their own tier, which CI runs too
+# the slowest tests (marked slow: the needle row's convergence, a reference compiling in memory)
+# in their own tier, which CI runs too
 test: $(STAMP) cross-tools
 	$(BIN)/python -m pytest -q -n 2 --durations=15 -m "not slow"
 

@@ -247,6 +247,7 @@ def _orders_last_cycle(params, F, cycles=1.5, dt=1e-4, last=1):
     return np.mean([[o[1][0], o[3][0]] for o in orders], axis=0)
 
 
+@pytest.mark.slow   # (about 35 s each: make test-slow, which CI runs after make test)
 @pytest.mark.parametrize("F, tol", [(15e3, 0.005), (45e3, 0.015)])
 def test_the_row_converges_at_a_launch_load(F, tol):
     # 15 kN (1000 N m through the default joint) and a launch's 45 kN per roller, 46 needles:
@@ -266,6 +267,7 @@ def test_the_row_converges_at_a_launch_load(F, tol):
     assert np.all(err < tol)
 
 
+@pytest.mark.slow   # (about 20 s)
 def test_the_row_converges_at_40_hz():
     # One roller at 40 Hz, 8 deg and 300 N m's 4.5 kN, 46 needles: orders 1 and 3 of Fz (mean
     # over cycles 2-3) at the default substep against half of it.  Until 2026-11-27 the
