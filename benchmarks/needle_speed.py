@@ -100,8 +100,8 @@ def substep_profile(m, reps=1000):
     AN0, FN0 = NW.AN.copy(), NW.FN.copy()
     for j in range(n):   # the solve's ring matrix carries the needles' masses
         AN0[j] += np.diag([NW.NP[LY.N_MN]] * 3 + [NW.NP[LY.N_I1]] * 2 + [NW.NP[LY.N_I3]])
-    A0 = NW.AR.copy() + np.diag([m.P[LY.P_M], m.P[LY.P_IS], m.P[LY.P_M], m.P[LY.P_IT],
-                                 m.P[LY.P_IT], m.P[LY.P_M]])
+    A0 = NW.AR.copy() + np.diag([m.P[LY.P_M_ROLLER], m.P[LY.P_IS], m.P[LY.P_M_ROLLER], m.P[LY.P_IT],
+                                 m.P[LY.P_IT], m.P[LY.P_M_ROLLER]])
     a = (NW, n, h, A0, NW.FR.copy(), np.empty((6, 6)), np.empty(6), AN0, FN0)
     tr = timed(_loop_solve, *a) - timed(_loop_copy, *a)
     W = m._W._replace(Y2=m._Y2.copy())   # the model's own previous state left as it is

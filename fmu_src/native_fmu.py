@@ -64,6 +64,11 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
             _c_double(p.auto_or_min or 0.0) if p else "0.0",
             _c_string(p.range_text() if p else "")))
     order = ", ".join(str(index[n]) for n in check_order)
+    # the variables by value reference (-1: none, or two types sharing it: searched then)
+    refs = [int(sv.get("valueReference")) for sv in root.iter("ScalarVariable")]
+    by_vr = [-1] * (max(refs) + 1)
+    for k, vr in enumerate(refs):
+        by_vr[vr] = k if refs.count(vr) == 1 else -1
     guid = root.get("guid")
     model_id = root.find("CoSimulation").get("modelIdentifier")
     size = ", ".join(str(sizes[k]) for k in ("P", "IN", "X", "OUT", "W", "TH"))
@@ -88,6 +93,8 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
         f"const char MODEL_GUID[] = {_c_string(guid)};",
         "const ModelVar MODEL_VARS[] = {", *rows, "};",
         f"const int MODEL_N_VARS = {len(rows)};",
+        f"const int MODEL_BY_VR[] = {{{', '.join(map(str, by_vr))}}};",
+        f"const int MODEL_N_BY_VR = {len(by_vr)};",
         f"const int MODEL_CHECK_ORDER[] = {{{order}}};",
         f"const int MODEL_N_CHECK = {len(check_order)};",
         f"const int MODEL_SIZES[A_COUNT] = {{{size}}};",

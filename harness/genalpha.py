@@ -30,7 +30,7 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
     p = m.p
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
-    m.P[LY.P_VST] = m.v_st(theta, w)
+    m.P[LY.P_VST_OP] = m.v_st(theta, w)
     x0 = m.pressing_offset(F)
     every = max(1, int(round(dt_out / h)))
     if abs(every * h - max(dt_out, h)) > 1e-9 * h:

@@ -36,7 +36,7 @@ def solve_ivp_run(method: str = "LSODA", rtol: float = 1e-6, params=None, cycles
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
     vst = m.v_st(theta, w)
-    m.P[LY.P_VST] = vst
+    m.P[LY.P_VST_OP] = vst
     x0 = m.pressing_offset(F)
     Y, P, L, res, Q, M = m.Y.copy(), m.P, m._L, m._res, m._b, m._GW[LY.W_M]
     xs = Y[LY.Y_X]
@@ -85,7 +85,7 @@ def exudyn_run(h: float, params=None, cycles: float = 2.0, dt_out: float = 1e-4,
     p = m.p
     theta, w, F = float(p["theta"]), float(p["omega"]), float(p["F_press"])
     m.start(theta, w, F)
-    m.P[LY.P_VST] = m.v_st(theta, w)
+    m.P[LY.P_VST_OP] = m.v_st(theta, w)
     mbs = exu.SystemContainer().AddSystem()
     sensors = _exudyn_roller(mbs, m, _TrunnionMotion(m, theta, w, m.pressing_offset(F)))
     mbs.Assemble()
@@ -168,7 +168,7 @@ def _exudyn_roller(mbs, m, tmotion):
     a0 = R0[:, 2]
     wr0 = w0 + (m.Y[LY.Y_OM] - w0 @ a0) * a0     # spin om about a, rolling without slip
     roller = mbs.CreateRigidBody(
-        inertia=RigidBodyInertia(P[LY.P_M], np.diag([P[LY.P_IT], P[LY.P_IT], P[LY.P_IS]])),
+        inertia=RigidBodyInertia(P[LY.P_M_ROLLER], np.diag([P[LY.P_IT], P[LY.P_IT], P[LY.P_IS]])),
         referencePosition=q0, referenceRotationMatrix=R0, initialVelocity=v0,
         initialAngularVelocity=wr0)
     mr = mbs.AddMarker(MarkerBodyRigid(bodyNumber=roller))

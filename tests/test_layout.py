@@ -83,7 +83,7 @@ def test_bearings_and_integrators_compared_by_name_only():
         if isinstance(node, ast.Subscript):
             s = node.slice
             return (isinstance(s, ast.Constant) and s.value in ("bearing", "integrator")) or \
-                (isinstance(s, ast.Name) and s.id in ("P_BEAR", "P_INTEG"))
+                (isinstance(s, ast.Name) and s.id in ("P_BEARING", "P_INTEGRATOR"))
         if isinstance(node, ast.Call) and getattr(node.func, "attr", "") == "get":
             return bool(node.args) and isinstance(node.args[0], ast.Constant) and \
                 node.args[0].value in ("bearing", "integrator")
@@ -99,3 +99,29 @@ def test_bearings_and_integrators_compared_by_name_only():
                             and not isinstance(s.value, bool) for s in sides):
                         bad.append(f"{p.relative_to(ROOT)}:{n.lineno}")
     assert not bad, bad
+
+
+def test_every_contact_parameter_is_copied_derived_or_placed():
+    """One name per parameter from the table to the kernel: each contact parameter is copied
+    into P's slot named after it (roller_setup.COPIED, FLAGS), read where its slot is derived
+    (kernel_params, needle_params: its T_ slot named in their source), or said to go elsewhere
+    (ELSEWHERE); none twice, none left out."""
+    import inspect
+    import sys
+    sys.path.insert(0, str(ROOT / "fmu_src"))
+    from tripod_model import layout as K, roller_setup as RS
+    copied = [RS.PARAM_NAMES[t] for _, t in RS.COPIED + RS.FLAGS]
+    for slot, t in RS.COPIED + RS.FLAGS:   # the slot named after its parameter
+        name = next(n for n in dir(K) if n.startswith("P_") and getattr(K, n) == slot)
+        assert name == "P_" + RS.PARAM_NAMES[t].upper(), (name, RS.PARAM_NAMES[t])
+    slots = {getattr(RS, n): n for n in dir(RS) if n.startswith("T_") and n != "T_LEN"}
+    assert all(n == "T_" + RS.PARAM_NAMES[t].upper() for t, n in slots.items()), slots
+    for names, fns in ((RS.DERIVED_FROM, (RS.kernel_params,)),
+                       (RS.NEEDLE_ROW, (RS.needle_params, RS.row_bore_radius,
+                                        RS.neighbour_distance))):
+        src = "".join(inspect.getsource(f) for f in fns)
+        for n in names:
+            assert slots[RS.PARAM_NAMES.index(n)] in src, n
+    every = copied + list(RS.DERIVED_FROM) + list(RS.NEEDLE_ROW) + list(RS.ELSEWHERE)
+    assert len(every) == len(set(every)) and set(every) == set(RS.PARAM_NAMES), \
+        sorted(set(RS.PARAM_NAMES) ^ set(every))

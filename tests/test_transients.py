@@ -339,8 +339,8 @@ def test_the_step_after_a_restart_takes_the_restarts_forces(params):
     kept = r._hs[LY.H_FACC:LY.H_FACC + nv]
     # each unknown's velocity change over the restart step, h gamma a, against the tolerance
     # (a rotation's at the roller radius)
-    per_tol = r._OP[LY.OP_H] * genalpha.GA_RESTART[2] / (genalpha.GA_NTOL * r.P[LY.P_VST]) * \
-        np.array([r.P[LY.P_R] if LY.V_ROT[i] > 0.0 else 1.0 for i in range(nv)])
+    per_tol = r._OP[LY.OP_H] * genalpha.GA_RESTART[2] / (genalpha.GA_NTOL * r.P[LY.P_VST_OP]) * \
+        np.array([r.P[LY.P_R_ROLLER] if LY.V_ROT[i] > 0.0 else 1.0 for i in range(nv)])
     assert np.all(np.abs(kept - Q[:nv] / M[:nv]) * per_tol <= 0.01) and np.all(kept != 0.0)
 
 

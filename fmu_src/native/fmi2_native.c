@@ -299,6 +299,12 @@ fmi2Status fmi2Reset(fmi2Component component)
 
 static const ModelVar *find(Inst *c, const char *fn, fmi2ValueReference vr, char type)
 {
+    /* (a table by value reference, generated: a master's getReal of every output each step
+       costs a look-up each, not a search) */
+    if (vr < (fmi2ValueReference)MODEL_N_BY_VR) {
+        int k = MODEL_BY_VR[vr];
+        if (k >= 0 && MODEL_VARS[k].type == type) return &MODEL_VARS[k];
+    }
     for (int k = 0; k < MODEL_N_VARS; ++k)
         if (MODEL_VARS[k].vr == vr && MODEL_VARS[k].type == type) return &MODEL_VARS[k];
     logf_(c, fmi2Error, "%s: no %s variable has value reference %u", fn,

@@ -31,6 +31,10 @@ extern const char MODEL_ID[];
 extern const char MODEL_GUID[];
 extern const ModelVar MODEL_VARS[];
 extern const int MODEL_N_VARS;
+/* MODEL_VARS' index of the variable with value reference vr < MODEL_N_BY_VR (-1: none, or
+   more than one: then searched) */
+extern const int MODEL_BY_VR[];
+extern const int MODEL_N_BY_VR;
 extern const int MODEL_CHECK_ORDER[];    /* the variables checked at initialisation, in order */
 extern const int MODEL_N_CHECK;
 extern const int MODEL_SIZES[A_COUNT];   /* doubles in each array */

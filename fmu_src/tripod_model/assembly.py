@@ -9,10 +9,11 @@ from . import ring
 from .needles import needle_forces
 from .contact import (groove_contact, line_kinematics, roller_motion, row_damping, row_load,
     row_rolling_resistance, row_sliding_friction, row_stiffness, spin_moment, trunnion_axial)
-from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_AXIAL,
-    P_A1, P_FRICN, P_INTEG, P_IS, P_IT, P_M, P_MU, P_QSUM, P_R, P_ROLLR, P_S, P_SPIN, P_VST, R_FN, R_FX, R_FY,
-    R_FZ, R_G, R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D,
-    Y_B2, Y_B2D, Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
+from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX,
+    P_AXIAL, P_A1, P_FRICTION_NEEDLE, P_INTEGRATOR, P_IS, P_IT, P_M_ROLLER, P_MU_GROOVE, P_QSUM,
+    P_R_ROLLER, P_ROLLING_RESISTANCE, P_S, P_SPIN_MOMENT, P_VST_OP, R_FN, R_FX, R_FY, R_FZ, R_G,
+    R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D, Y_B2, Y_B2D,
+    Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
 
 
 @njit
@@ -36,7 +37,7 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1, e2, cpl):
     g = L[L_QZDD]   # the frame origin Q accelerates along the groove (z) only
     pose = (o1, o2, o3, vo1, vo2, vo3, b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM],
             d_tr, L[L_VAX], L[L_SPIN])
-    needle_forces(Y, NW, P[P_VST], h, hk, cpl, pose, (e1x, ax), (g * e1z, g * e2z, g * az))
+    needle_forces(Y, NW, P[P_VST_OP], h, hk, cpl, pose, (e1x, ax), (g * e1z, g * e2z, g * az))
 
 
 @inline
@@ -78,13 +79,13 @@ def friction_jacobian(P, h, res, G, nv, A, secant):
     vt = res[R_SLIP]
     fn = res[R_FN]
     if vt > 1e-12:
-        iso = P[P_MU] * fn * res[R_G] / vt
+        iso = P[P_MU_GROOVE] * fn * res[R_G] / vt
         tx, ty, tz = res[R_VTX] / vt, res[R_VTY] / vt, res[R_VTZ] / vt
     else:
         iso = res[R_SLOPE]
         tx, ty, tz = 0.0, 0.0, 0.0
     aniso = 0.0 if secant else res[R_SLOPE] - iso
-    if P[P_INTEG] == INT_EXPLICIT:
+    if P[P_INTEGRATOR] == INT_EXPLICIT:
         iso = 0.0      # explicit (symplectic) Euler, for comparison: no friction Jacobian
         aniso = 0.0
     for i in range(nv):
@@ -101,8 +102,9 @@ def spin_moment_jacobian(P, h, res, wr, L, e1, e2, nv, A):
     rotational unknowns om, b1d, b2d (axes a, e1, e2; as many as nv holds): J = -s k k^T with
     k_i = n . axis_i and s its secant M_s / w_n [N m s] (the slope at w_n = 0), which, like
     the sliding friction's, cannot overshoot."""
-    fn, mu, vst = res[R_FN], P[P_MU], P[P_VST]
-    if P[P_SPIN] < 0.5 or mu <= 0.0 or fn <= 0.0 or vst <= 0.0 or P[P_INTEG] == INT_EXPLICIT:
+    fn, mu, vst = res[R_FN], P[P_MU_GROOVE], P[P_VST_OP]
+    if (P[P_SPIN_MOMENT] < 0.5 or mu <= 0.0 or fn <= 0.0 or vst <= 0.0
+            or P[P_INTEGRATOR] == INT_EXPLICIT):
         return
     nx, ny = res[R_NX], res[R_NY]
     wn = wr[0] * nx + wr[1] * ny
@@ -130,19 +132,19 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     slide, Eq. (12) rolling resistance on the spin, the row's stiffness across the load and in
     tilt, implicit like the friction.  Returns the row's radial load F_r [N] and stiffness
     [N/m] (row_load)."""
-    m = P[P_M]
+    m = P[P_M_ROLLER]
     ud, om = Y[Y_UD], Y[Y_OM]
     Fr, kr = row_load(P, Y[Y_E])
     q = P[P_QSUM] * abs(Fr)       # sum of the needle loads (> F_r: they fan out)
-    if P[P_FRICN] > 0.5 and q > 0.0:
+    if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
         f, hk = row_sliding_friction(P, q, ud, L[L_VAX], h)
         b[0] -= f
-        if P[P_INTEG] != INT_EXPLICIT:
+        if P[P_INTEGRATOR] != INT_EXPLICIT:
             A[0, 0] += hk
-    if P[P_ROLLR] > 0.5 and q > 0.0:
+    if P[P_ROLLING_RESISTANCE] > 0.5 and q > 0.0:
         mr, hk = row_rolling_resistance(P, q, om, L[L_SPIN], h)
         b[1] -= mr
-        if P[P_INTEG] != INT_EXPLICIT:
+        if P[P_INTEGRATOR] != INT_EXPLICIT:
             A[1, 1] += hk
     kw, kt1, kt2 = row_stiffness(P, kr)
     cw, c1, c2 = row_damping(P, kw, m), row_damping(P, kt1, It), row_damping(P, kt2, It)
@@ -166,7 +168,7 @@ def resolved_row_terms(Y, P, NW, theta, x, h, W, axes, kh, drag, cpl):
     drag1, drag2 = drag
     hk = 0.0 if cpl else h
     It = P[P_IT]
-    m = P[P_M]
+    m = P[P_M_ROLLER]
     b[3] -= drag1
     b[4] -= drag2
     b[5] -= hk * kh * Y[Y_ED]
@@ -242,11 +244,11 @@ def roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv, secant):
     if drive.x0_rate != 0.0:   # the offset's ramp after a load change moves the roller with it
         v = (v[0] + drive.x0_rate, v[1], v[2])
     groove_contact(c, v, wr, P, res)
-    slip_sensitivities(P[P_R], L, res, e1, e2, sixdof, resolved, G, b)
+    slip_sensitivities(P[P_R_ROLLER], L, res, e1, e2, sixdof, resolved, G, b)
     friction_jacobian(P, h, res, G, nv, A, secant)
     if secant:
         spin_moment_jacobian(P, h, res, wr, L, e1, e2, nv, A)
-    m = P[P_M]
+    m = P[P_M_ROLLER]
     A[0, 0] += m
     A[1, 1] += P[P_IS]
     # driving accelerations seen along the axis: c'' . a = Q''.a + u'' + u a''.a

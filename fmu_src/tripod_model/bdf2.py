@@ -10,8 +10,9 @@ from .contact import groove_stiffness_x, tilt_drag
 from .oppoint import JUMP_RELAX, JUMP_STEP, LOAD_RELAX
 from .steplib import extrapolated_step
 from .rowsolve import coupled_solve
-from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN,
-    N_N, N_RN, P_DF, P_IS, P_IT, P_M, P_NPASS, P_NTOL, P_R, P_TRAV, V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
+from .layout import (Drive, H_GA, H_PASSES, H_REJECTED, H_SUB, H_TAKEN, N_F, N_I1, N_I3, N_MN, N_N,
+    N_RN, P_DF, P_IS, P_IT, P_M_ROLLER, P_NEWTON_PASSES, P_NEWTON_TOL, P_R_ROLLER, P_TRAVERSE,
+    V_POS, V_ROT, V_VEL, Y_LEN, Y_X)
 
 # A step input (what the ideal bearing's generalized-alpha step takes as one: the slip's
 # amplitude moved by more than JUMP_STEP v_st, or the pressing load by more than
@@ -111,9 +112,9 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     g F(y_L) - M (v_L - a1 v_n + a2 v_{n-1}).  One contact evaluation a pass; second order with
     any tangent (the linearization error is O(e^2) with e = O(h^2)).
 
-    Up to P[P_NPASS] passes (newton_passes, default 2): each later one solves the same
+    Up to P[P_NEWTON_PASSES] passes (newton_passes, default 2): each later one solves the same
     equation again, linearized at the state the pass before reached (Newton), where that pass's
-    correction exceeded P[P_NTOL] (newton_tol) and unless its own is larger (not contracting:
+    correction exceeded P[P_NEWTON_TOL] (newton_tol) and unless its own is larger (not contracting:
     then that pass's state stays; counted in hs[H_REJECTED]).  One pass leaves, at large joint
     angles and high loads, a period-2 oscillation of the roller's velocities from substep to
     substep (the step's own, not the model's) and makes the row's single samples depend on
@@ -130,9 +131,9 @@ def bdf2_substep(Y, P, drive, h, hp, W, NW):
     _bdf2_predict(Y, Yp, YL, r, a1, a2, g, n)
     YL[Y_X] = Y[Y_X] + h * drive.w
     limit = math.inf
-    for k in range(max(1, int(P[P_NPASS]))):
+    for k in range(max(1, int(P[P_NEWTON_PASSES]))):
         if k > 0:
-            if limit <= P[P_NTOL]:   # the linearization's error, O(e^2), is small enough
+            if limit <= P[P_NEWTON_TOL]:   # the linearization's error, O(e^2), is small enough
                 break
             W.hs[H_PASSES] += 1.0
         e = _bdf2_pass(Y, Yp, YL, P, drive, g, (a1, a2), W, NW, n, limit)
@@ -153,7 +154,7 @@ def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
     where it exceeds ``limit``."""
     A, b = W.A, W.b
     a1, a2 = a
-    m = P[P_M]
+    m = P[P_M_ROLLER]
     It = P[P_IT]
     NP = NW.NP
     x = YL[Y_X]
@@ -170,7 +171,7 @@ def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
     for i in range(6):
         vi = V_VEL[i]
         b[i] = g * b[i] - mr[i] * (YL[vi] - a1 * Y[vi] + a2 * Yp[vi])
-    trav = P[P_TRAV] > 0.5
+    trav = P[P_TRAVERSE] > 0.5
     if not trav:
         hold_slide(A, b, 6)
     # the needles: the same rule on the ring (right-hand side h FN in ring_solve)
@@ -184,7 +185,7 @@ def _bdf2_pass(Y, Yp, YL, P, drive, g, a, W, NW, n, limit):
             AN[j, i, i] += mj[i]
     coupled_solve(A, b, NW, g, n, trav)
     # (one pass has no use for the size)
-    e = _correction_size(b, FN, n, P[P_R], NP[N_RN]) if P[P_NPASS] > 1.5 else 0.0
+    e = _correction_size(b, FN, n, P[P_R_ROLLER], NP[N_RN]) if P[P_NEWTON_PASSES] > 1.5 else 0.0
     if e > limit:
         return -1.0
     _bdf2_correct(YL, b, FN, g, n)

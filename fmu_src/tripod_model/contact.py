@@ -13,10 +13,11 @@ import math
 
 from reduced_model import friction
 from .jit import inline, njit
-from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ,
-    L_KTH, L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEAR, P_CLR,
-    P_FLANK, P_FRIC, P_HC, P_K, P_KN, P_KWR, P_LT, P_MU, P_MUN, P_MUR, P_PITCH, P_R, P_RB, P_RG,
-    P_ROLL, P_S, P_SPIN, P_VP, P_VST, P_YAW, P_ZROW, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
+from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
+    L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
+    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KWR, P_LT,
+    P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE, P_R_GROOVE, P_ROLL, P_S,
+    P_SPIN_MOMENT, P_VP, P_VST_OP, P_YAW, P_ROW_DAMPING, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
     R_MY, R_MZ, R_NX, R_NY, R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1D, Y_B2D,
     Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
 
@@ -119,7 +120,7 @@ def line_kinematics(x, w, theta, P, L):
     if vp != 0.0:
         L[L_QZD] += vp
     L[L_QZDD] = (qp - 2.0 * q0 + qm) * i2
-    if P[P_BEAR] != BEAR_IDEAL:   # the trunnion's own slide and spin matter only to the needles
+    if P[P_BEARING] != BEAR_IDEAL:   # the trunnion's own slide and spin matter only to the needles
         ax = P[P_AXIAL] > 0.5
         L[L_VAX] = (trunnion_axial(x + HX, theta, s, ax) - trunnion_axial(x - HX, theta, s, ax)) * i1
         yw = P[P_YAW] > 0.5
@@ -237,12 +238,12 @@ def groove_contact(c, v, wr, P, res):
     cx, cy, cz = c
     vx, vy, vz = v
     wx, wy, wz = wr
-    r = P[P_R]
+    r = P[P_R_ROLLER]
     dx = cx - flank_centre(P, cx)             # from the facing flank's arc centre
     rho = math.sqrt(dx * dx + cy * cy)
     nx = dx / rho
     ny = cy / rho
-    delta = rho + r - P[P_RG]                 # penetration, model.md
+    delta = rho + r - P[P_R_GROOVE]                 # penetration, model.md
     for i in range(R_LEN):
         res[i] = 0.0
     res[R_NX] = nx
@@ -253,8 +254,8 @@ def groove_contact(c, v, wr, P, res):
     if delta <= 0.0:
         return
     fn = hertz_normal_force(P[P_K], delta)
-    if P[P_HC] > 0.0:     # Hunt-Crossley: f_n (1 + 3/2 alpha d delta/dt), never pulling
-        fn = max(0.0, fn * (1.0 + 1.5 * P[P_HC] * (vx * nx + vy * ny)))
+    if P[P_CONTACT_DAMPING] > 0.0:   # Hunt-Crossley: f_n (1 + 3/2 alpha d delta/dt), never pulling
+        fn = max(0.0, fn * (1.0 + 1.5 * P[P_CONTACT_DAMPING] * (vx * nx + vy * ny)))
     # velocity of the roller material at the contact point p = c + r n
     px = vx + (wy * 0.0 - wz * r * ny)
     py = vy + (wz * r * nx - wx * 0.0)
@@ -264,8 +265,8 @@ def groove_contact(c, v, wr, P, res):
     ty = py - pn * ny
     tz = pz
     vt = math.sqrt(tx * tx + ty * ty + tz * tz)
-    mu = P[P_MU]
-    vst = P[P_VST]
+    mu = P[P_MU_GROOVE]
+    vst = P[P_VST_OP]
     fx = -fn * nx
     fy = -fn * ny
     fz = 0.0
@@ -274,7 +275,7 @@ def groove_contact(c, v, wr, P, res):
     mz = 0.0
     g = 0.0
     slope = 0.0
-    if P[P_FRIC] > 0.5 and mu > 0.0:
+    if P[P_FRICTION_GROOVE] > 0.5 and mu > 0.0:
         g, slope = tanh_friction(mu, fn, vt, vst)
         if vt > 0.0:
             ft = mu * fn * g / vt             # Eq. (11): |f_t| = mu(v) f_n, opposing the slip
@@ -285,7 +286,7 @@ def groove_contact(c, v, wr, P, res):
             mx += r * ny * (-ft * tz)
             my += -r * nx * (-ft * tz)
             mz += r * nx * (-ft * ty) - r * ny * (-ft * tx)
-    if P[P_SPIN] > 0.5 and mu > 0.0:
+    if P[P_SPIN_MOMENT] > 0.5 and mu > 0.0:
         ms = spin_moment(mu, fn, P[P_A1], wx * nx + wy * ny, vst)   # spin against the groove
         mx -= ms * nx
         my -= ms * ny
@@ -310,7 +311,7 @@ def row_load(P, e):
     stiffness [N/m] at the roller's radial offset e [m].  Eq. (17) summed over the loaded
     needles: |F_r| = K_row g^(10/9), g the radial approach beyond the row's clearance; it
     pushes the roller back onto the trunnion axis (+x in drive, e < 0; -x in coast)."""
-    g = abs(e) - P[P_CLR]
+    g = abs(e) - P[P_NEEDLE_CLEARANCE]
     if g <= 0.0:
         return 0.0, 0.0
     Fr = P[P_KN] * g ** (10.0 / 9.0)
@@ -322,8 +323,8 @@ def row_sliding_friction(P, q, ud, vax, h):
     """Lumped row: the needles' sliding friction on the roller's slide along the trunnion
     [N] (mu_needle, tanh law, on the slide rate ud less the trunnion's own vax [m/s]) under
     the needle loads q [N], and h [s] times its slope [N/m] (the implicit step's term)."""
-    g = tanh_clipped(3.0 * (ud - vax) / P[P_VST])
-    return P[P_MUN] * q * g, h * P[P_MUN] * q * 3.0 / P[P_VST] * (1.0 - g * g)
+    g = tanh_clipped(3.0 * (ud - vax) / P[P_VST_OP])
+    return P[P_MU_NEEDLE] * q * g, h * P[P_MU_NEEDLE] * q * 3.0 / P[P_VST_OP] * (1.0 - g * g)
 
 
 @inline
@@ -331,10 +332,10 @@ def row_rolling_resistance(P, q, om, spin, h):
     """Lumped row: Eq. (12)'s rolling force mu_r per needle load, acting on the bore (radius
     r_bore) against the roller's spin om relative to the trunnion's [rad/s]: its moment
     [N m] under the needle loads q [N], and h [s] times its slope [N m s/rad / s]."""
-    vr = (om - spin) * P[P_RB]
-    g = tanh_clipped(3.0 * vr / P[P_VST])
-    return (P[P_MUR] * q * P[P_RB] * g,
-            h * P[P_MUR] * q * P[P_RB] ** 2 * 3.0 / P[P_VST] * (1.0 - g * g))
+    vr = (om - spin) * P[P_R_BORE]
+    g = tanh_clipped(3.0 * vr / P[P_VST_OP])
+    return (P[P_MU_ROLLING] * q * P[P_R_BORE] * g,
+            h * P[P_MU_ROLLING] * q * P[P_R_BORE] ** 2 * 3.0 / P[P_VST_OP] * (1.0 - g * g))
 
 
 @inline
@@ -353,7 +354,7 @@ def groove_stiffness_x(P, res, c):
     n = 3/2) times n_x^2, the roller's centre at c [m]."""
     cx, cy = c[0], c[1]
     dx = cx - flank_centre(P, cx)
-    delta = math.sqrt(dx * dx + cy * cy) + P[P_R] - P[P_RG]
+    delta = math.sqrt(dx * dx + cy * cy) + P[P_R_ROLLER] - P[P_R_GROOVE]
     if delta > 0.0:
         return 1.5 * res[R_FN] / delta * res[R_NX] * res[R_NX]
     return 0.0
@@ -364,4 +365,4 @@ def row_damping(P, k, mass):
     """Damping [N s/m, N m s] of a mode of stiffness k [N/m, N m] and mass [kg, kg m^2] on the
     lumped row: 2 zeta sqrt(k mass), zeta = row_damping (the lumped form of the resolved row's
     needle-contact damping, docs/model.md)."""
-    return 2.0 * P[P_ZROW] * math.sqrt(k * mass)
+    return 2.0 * P[P_ROW_DAMPING] * math.sqrt(k * mass)

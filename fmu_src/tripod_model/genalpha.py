@@ -11,11 +11,12 @@ from .contact import (groove_contact, groove_stiffness_x, line_kinematics, rolle
     row_damping, row_load, row_rolling_resistance, row_sliding_friction, row_stiffness, tilt_drag)
 from .oppoint import JUMP_RELAX, JUMP_STEP, LOAD_RELAX
 from .steplib import adaptive_steps
-from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX,
-    L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEAR, P_DF, P_FRICN, P_HFREE,
-    P_IS, P_IT, P_M, P_QSUM, P_R, P_RINGA, P_ROLLR, P_TRAV, P_VST, RING_OPEN, RING_QUIET, R_FX,
-    R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A, W_A0, W_AT, W_D, W_M, W_R, W_RT,
-    W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD, Y_X)
+from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX, L_AAY,
+    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEARING, P_DF, P_FRICTION_NEEDLE, P_HFREE,
+    P_IS, P_IT, P_M_ROLLER, P_QSUM, P_R_ROLLER, P_RINGA, P_ROLLING_RESISTANCE, P_TRAVERSE,
+    P_VST_OP, RING_OPEN, RING_QUIET, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A,
+    W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD,
+    Y_W, Y_WD, Y_X)
 
 
 # generalized-alpha step (integrator 4, ideal and lumped bearing): Chung & Hulbert (1993)
@@ -73,13 +74,13 @@ def ga_forces(Y, P, drive, L, res, Q, M):
     state Y (whirl angle Y[Y_X]), the equations of steplib.substep: ideal bearing (2 unknowns:
     m u'' = F.a - m (Q''.a + u a''.a), I_s om' = M.a) or lumped (6: also the slide across the
     load w, the tilts b1, b2 and the radial offset e, with the row's forces).  Returns nv."""
-    lumped = P[P_BEAR] == BEAR_LUMPED
+    lumped = P[P_BEARING] == BEAR_LUMPED
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
     c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, lumped)
     groove_contact(c, v, wr, P, res)
     ax, ay, az = L[L_AX], L[L_AY], L[L_AZ]
     fx, fy, fz, mx, my, mz = res[R_FX], res[R_FY], res[R_FZ], res[R_MX], res[R_MY], res[R_MZ]
-    m = P[P_M]
+    m = P[P_M_ROLLER]
     u = Y[Y_U]
     Q[0] = fx * ax + fy * ay + fz * az - m * (L[L_QZDD] * az + u * (L[L_AAX] * ax + L[L_AAY] * ay + L[L_AAZ] * az))
     Q[1] = mx * ax + my * ay + mz * az
@@ -94,9 +95,9 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         e2x, e2y, e2z = e2
         Fr, kr = row_load(P, Y[Y_E])
         q = P[P_QSUM] * abs(Fr)
-        if P[P_FRICN] > 0.5 and q > 0.0:
+        if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
             Q[0] -= row_sliding_friction(P, q, Y[Y_UD], L[L_VAX], 0.0)[0]
-        if P[P_ROLLR] > 0.5 and q > 0.0:
+        if P[P_ROLLING_RESISTANCE] > 0.5 and q > 0.0:
             Q[1] -= row_rolling_resistance(P, q, Y[Y_OM], L[L_SPIN], 0.0)[0]
         kw, kt1, kt2 = row_stiffness(P, kr)
         kx = kr + groove_stiffness_x(P, res, c)     # radial: the row and the groove
@@ -111,7 +112,7 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         M[3] = It
         M[4] = It
         M[5] = m
-    if P[P_TRAV] < 0.5:
+    if P[P_TRAVERSE] < 0.5:
         Q[0] = 0.0
     return nv
 
@@ -123,7 +124,7 @@ def _ga_residual(Y, Yf, P, drive, h, GW, ra, rr, L, res, Q, co):
     coefficients (GA_STEP or GA_RESTART); the state at t_f into Yf, the forces into Q (the
     work arrays W.Y1, W.b; ga_step); L, res as in ga_forces."""
     am, af, ga, be = co
-    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
+    nv = 6 if P[P_BEARING] == BEAR_LUMPED else 2
     for i in range(nv):
         a0 = GW[W_A0, i]
         a1 = GW[ra, i]
@@ -138,7 +139,7 @@ def _ga_residual(Y, Yf, P, drive, h, GW, ra, rr, L, res, Q, co):
     ga_forces(Yf, P, drive, L, res, Q, GW[W_M])
     for i in range(nv):
         GW[rr, i] = GW[W_M, i] * ((1.0 - am) * GW[ra, i] + am * GW[W_A0, i]) - Q[i]
-    if P[P_TRAV] < 0.5:
+    if P[P_TRAVERSE] < 0.5:
         GW[rr, 0] = 0.0
 
 
@@ -146,7 +147,7 @@ def _ga_residual(Y, Yf, P, drive, h, GW, ra, rr, L, res, Q, co):
 def _ga_jacobian(Y, Yf, P, drive, h, GW, nv, L, res, Q, co):
     """GW[0:nv, 0:nv]: the residual's Jacobian in the accelerations, column j by a finite
     difference of 1e-4 v_st in unknown j's velocity."""
-    vs, r, ga = P[P_VST], P[P_R], co[2]
+    vs, r, ga = P[P_VST_OP], P[P_R_ROLLER], co[2]
     for j in range(nv):
         d = 1e-4 * vs / (ga * h) / (r if V_ROT[j] > 0.0 else 1.0)
         for i in range(nv):
@@ -255,15 +256,15 @@ def ga_step(Y, P, drive, h, W):
     access to a record's array costs a reference count: 9 % of this step's time, measured,
     when the helpers took the record)."""
     Yf, A, GW, hs, Q, L, res = W.Y1, W.A, W.GW, W.hs, W.b, W.L, W.res
-    vs, r = P[P_VST], P[P_R]
-    trav = P[P_TRAV] > 0.5
+    vs, r = P[P_VST_OP], P[P_R_ROLLER]
+    trav = P[P_TRAVERSE] > 0.5
     for i in range(Y.shape[0]):
         Yf[i] = Y[i]
     co = GA_RESTART if hs[H_GA] < 0.0 else GA_STEP
     # accelerations from the forces: at the first step, after a fallback, and for a regular
     # step after a restart step (the history belongs to the other coefficients; the slip is on
     # the new inputs' value by now): those the restart step left, or anew
-    nv = 6 if P[P_BEAR] == BEAR_LUMPED else 2
+    nv = 6 if P[P_BEARING] == BEAR_LUMPED else 2
     regular = co[1] == GA_STEP[1]
     if regular and hs[H_GA] == GA_AFTER_RESTART:
         for i in range(nv):
@@ -337,7 +338,7 @@ def inputs_jumped(P, hs, jump):
         return
     if hs[H_GA] == GA_AFTER_RESTART:   # the forces it kept were the old drive's
         hs[H_GA] = GA_AFTER_RESTART_AFRESH
-    lumped = P[P_BEAR] == BEAR_LUMPED
+    lumped = P[P_BEARING] == BEAR_LUMPED
     if P[P_DF] > LOAD_RELAX or jump > (JUMP_RELAX if lumped else JUMP_STEP):
         hs[H_GA] = GA_STEP_IN
     elif jump > JUMP_RELAX:

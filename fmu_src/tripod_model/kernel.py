@@ -29,11 +29,11 @@ from .bdf2 import bdf2_steps
 from .contact import groove_contact, line_kinematics, roller_motion
 from .steplib import adaptive_steps, extrapolated_step, substep
 from .genalpha import ga_steps
-from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAULT, INT_EXTRAPOLATED, O_CY, O_CZ,
-    O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEAR, P_INTEG, P_VP, R_FN, R_FX, R_FY,
-    R_FZ, R_PY, R_PZ, R_SLIP, Y_OM, Y_PL, Y_X)
-from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, OP_THETA,
-    OP_TQ, OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE)
+from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAULT,
+    INT_EXTRAPOLATED, O_CY, O_CZ, O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEARING,
+    P_INTEGRATOR, P_VP, R_FN, R_FX, R_FY, R_FZ, R_PY, R_PZ, R_SLIP, Y_OM, Y_PL, Y_X)
+from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, OP_THETA, OP_TQ,
+    OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE)
 
 
 # the operating point at OP's inputs (oppoint.derive), compiled with the callees it names;
@@ -42,9 +42,9 @@ _op = compiled_copies(oppoint, oppoint.FUNCTIONS)
 derive_op, copy_op = _op.derive, _op.copy_derived
 _housing = njit(housing_forces)
 # the needle-resolved row's static offset (roller_setup.py), compiled with its callees
-_pressing_offset = compiled_copies(roller_setup, ("needle_line_stiffness", "groove_offset", "lumped_offset",
-                                        "row_load", "needle_radial_offset", "radial_offset",
-                                        "pressing_offset")).pressing_offset
+_pressing_offset = compiled_copies(roller_setup, (
+    "needle_line_stiffness", "groove_offset", "lumped_offset", "row_load", "needle_radial_offset",
+    "radial_offset", "pressing_offset")).pressing_offset
 _fz_mod = njit(fz_mod)
 
 
@@ -53,9 +53,9 @@ def inputs_moved(P, hs, jump):
     """The inputs changed at this communication point (oppoint.derive's ``jump``): the default
     integrator takes it as its module says (genalpha.inputs_jumped, bdf2.inputs_jumped); the
     others are one-step methods that need nothing."""
-    if P[P_INTEG] != INT_DEFAULT:
+    if P[P_INTEGRATOR] != INT_DEFAULT:
         return
-    if P[P_BEAR] == BEAR_RESOLVED:
+    if P[P_BEARING] == BEAR_RESOLVED:
         bdf2.inputs_jumped(P, hs, jump)
     else:
         genalpha.inputs_jumped(P, hs, jump)
@@ -67,7 +67,7 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     outputs at the end.  W: the roller's work arrays (layout.Work); NW: the needle work arrays
     (layout.NeedleWork) with the resolved bearing, else None.
 
-    The integrator P[P_INTEG] names (layout.py): INT_EULER, INT_EXPLICIT: n plain
+    The integrator P[P_INTEGRATOR] names (layout.py): INT_EULER, INT_EXPLICIT: n plain
     substeps (steplib.substep); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h
     and two of h/2 (second order, L-stable: the scheme of LIMEX/SEULEX with two stages);
     INT_ADAPTIVE: the same with its substep chosen by its own error estimate
@@ -84,19 +84,19 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
         hs[K.H_FAIL], hs[K.H_FAIL_DONE], hs[K.H_FAIL_H] = K.FAIL_LONG, h * n, h
         return False
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
-    if P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED:
+    if P[P_INTEGRATOR] == INT_DEFAULT and P[P_BEARING] != BEAR_RESOLVED:
         if not ga_steps(Y, P, drive, h, n, W, NW):
             return False
         n = 0
-    elif P[P_INTEG] == INT_DEFAULT:   # the needle-resolved bearing: BDF2, roller and row in one system
+    elif P[P_INTEGRATOR] == INT_DEFAULT:   # the needle-resolved bearing: BDF2, roller and row in one system
         if NW is not None:    # (always, here; the test lets numba drop it from the others)
             bdf2_steps(Y, P, drive, h, n, W, NW)
         n = 0
-    elif P[P_INTEG] >= INT_ADAPTIVE:
+    elif P[P_INTEGRATOR] >= INT_ADAPTIVE:
         if not adaptive_steps(Y, P, drive, h * n, h, W, NW):
             return False
         n = 0
-    extrap = P[P_INTEG] == INT_EXTRAPOLATED
+    extrap = P[P_INTEGRATOR] == INT_EXTRAPOLATED
     for _ in range(n):
         if extrap:
             extrapolated_step(Y, P, drive, h, W, NW)
@@ -106,7 +106,7 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     # outputs at the end of the step (forces on the groove = minus those on the roller)
     L, res = W.L, W.res
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
-    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, P[P_BEAR] != BEAR_IDEAL)
+    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, P[P_BEARING] != BEAR_IDEAL)
     groove_contact(c, v, wr, P, res)
     if NW is not None:   # needle loads at the output instant (diagnostics)
         resolved_forces(Y, P, NW, drive.theta, Y[Y_X], 0.0, L, e1, e2, False)

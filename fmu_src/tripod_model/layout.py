@@ -8,23 +8,25 @@ from reduced_model import scene
 
 # --- parameter vector layout (float64 array P) ---
 # a new slot: its name before P_LEN (the numbering follows; *_ takes the unused rest)
-(P_S, P_R, P_RG, P_M, P_IS, P_K, P_A1, P_MU, P_VST, P_PITCH, P_YAW, P_ROLL, P_AXIAL,
- P_TRAV, P_FRIC, P_SPIN, P_BEAR, P_MUN, P_MUR, P_FRICN, P_ROLLR, P_KN, P_RB, P_QSUM,
- P_CLR, P_INTEG, P_KWR, P_LT, P_IT, P_TOL, P_HMAX, P_VST0, P_HSUB, P_VP, P_HC, P_ZROW, P_DF,
- P_FLANK, P_HFREE, P_RINGA, P_NPASS, P_NTOL, P_LEN, *_) = range(128)
-# P_VST0: the v_st parameter (0: automatic), P_HSUB: max_substep (0: automatic); P_VST, P_HMAX:
-# what the operating point derived from them (oppoint.py); P_VP: the plunge speed [m/s] of the
-# step (an input, there for the line kinematics); P_HC: contact_damping [s/m], Hunt-Crossley;
-# P_ZROW: row_damping [1]; P_DF: the pressing load's relative change at this communication
-# point (oppoint.derive; the lumped row's offset moves with it); P_FLANK: how far each flank's arc
-# centre sits off the track's mid-plane [m] (contact.flank_centre; 0: one cylinder); P_HFREE:
-# the generalized-alpha substep without the ring's bound [s] (0: none), P_RINGA: the slide's
-# acceleration below which the ring counts as quiet [m/s^2] (oppoint.derive, genalpha.ga_steps);
-# P_NPASS: newton_passes, the most linear solves of a BDF2 substep (bdf2.bdf2_substep); P_NTOL:
-# newton_tol [m/s], the correction below which a pass is the last
+(P_S, P_R_ROLLER, P_R_GROOVE, P_M_ROLLER, P_IS, P_K, P_A1, P_MU_GROOVE, P_VST_OP, P_PITCH,
+ P_YAW, P_ROLL, P_AXIAL, P_TRAVERSE, P_FRICTION_GROOVE, P_SPIN_MOMENT, P_BEARING, P_MU_NEEDLE,
+ P_MU_ROLLING, P_FRICTION_NEEDLE, P_ROLLING_RESISTANCE, P_KN, P_R_BORE, P_QSUM,
+ P_NEEDLE_CLEARANCE, P_INTEGRATOR, P_KWR, P_LT, P_IT, P_STEP_TOLERANCE, P_HMAX, P_V_ST,
+ P_MAX_SUBSTEP, P_VP, P_CONTACT_DAMPING, P_ROW_DAMPING, P_DF, P_FLANK, P_HFREE, P_RINGA,
+ P_NEWTON_PASSES, P_NEWTON_TOL, P_LEN, *_) = range(128)
+# The slots named after a parameter hold its value (roller_setup.COPIED, FLAGS); the others
+# what the set-up derives (roller_setup.kernel_params) or the operating point does: P_VST_OP,
+# P_HMAX the transition velocity and the largest adaptive substep the operating point derived
+# from v_st and max_substep (0: automatic; oppoint.py); P_VP: the plunge speed [m/s] of the
+# step (an input, there for the line kinematics); P_DF: the pressing load's relative change at
+# this communication point (oppoint.derive; the lumped row's offset moves with it); P_FLANK:
+# how far each flank's arc centre sits off the track's mid-plane [m] (contact.flank_centre; 0:
+# one cylinder); P_HFREE: the generalized-alpha substep without the ring's bound [s] (0: none),
+# P_RINGA: the slide's acceleration below which the ring counts as quiet [m/s^2]
+# (oppoint.derive, genalpha.ga_steps); P_STEP_TOLERANCE: step_tolerance or its automatic value
 # --- the bearings and integrators: the values of the parameters `bearing` and `integrator`
-# as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEAR],
-# P[P_INTEG] against these
+# as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEARING],
+# P[P_INTEGRATOR] against these
 BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED = (float(b) for b in (
     scene.BEARING_IDEAL, scene.BEARING_LUMPED, scene.BEARING_RESOLVED))
 INT_EULER = float(scene.INTEGRATOR_EULER)                # linearly implicit Euler

@@ -241,7 +241,7 @@ def refused(X, W, n):
 def step_resolved(T, X, W, n, nn, ns, ny, ys, OUT):
     """Each needle-resolved roller's step at its OP row's inputs (ContactModel._run), then the
     joint's outputs.  Returns kernel.step's codes."""
-    ramped = X[X_P + K.P_INTEG] == K.INT_DEFAULT   # (ContactModel.load_ramped)
+    ramped = X[X_P + K.P_INTEGRATOR] == K.INT_DEFAULT   # (ContactModel.load_ramped)
     for i in range(n):
         Y = X[X_Y + i * ys:X_Y + i * ys + ny]
         P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
@@ -314,11 +314,11 @@ def end(T, IN, X, OUT, W):
     W[W_NOTES] = 0.0
     hs = X[X_HS:X_HS + K.H_LEN]
     note(W, NOTE_SUMMARY, hs[K.H_TAKEN], X[X_TIME], 0.0, 0.0)
-    integ = X[X_P + K.P_INTEG]
+    integ = X[X_P + K.P_INTEGRATOR]
     if integ == K.INT_DEFAULT and T[T_BEARING] != K.BEAR_RESOLVED:
         note(W, NOTE_SUMMARY_GA, hs[K.H_FALLBACK], 0.0, 0.0, 0.0)
     elif integ == K.INT_DEFAULT:
-        if X[X_P + K.P_NPASS] > 1.0:
+        if X[X_P + K.P_NEWTON_PASSES] > 1.0:
             note(W, NOTE_SUMMARY_BDF, hs[K.H_PASSES], hs[K.H_REJECTED], 0.0, 0.0)
     elif integ == K.INT_ADAPTIVE:
         note(W, NOTE_SUMMARY_ADAPT, hs[K.H_REJECTED], 0.0, 0.0, 0.0)
@@ -362,7 +362,7 @@ def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
             return 3
     if not (0.0 <= P[K.P_DF] <= 2.0) or OP[K.OP_NOSTEP] != 0.0:
         return 3
-    if not (0.0 < P[K.P_VST] <= VST_HI):
+    if not (0.0 < P[K.P_VST_OP] <= VST_HI):
         return 4
     if not (0.0 <= hs[K.H_SUB] <= 1.0) or hs[K.H_TAKEN] < 0.0:
         return 4

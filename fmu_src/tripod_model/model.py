@@ -11,7 +11,8 @@ import numpy as np
 
 from reduced_model import scene as scene_mod
 
-from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide   # numba only when needed
+# (numba only when needed)
+from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
@@ -263,7 +264,7 @@ class ContactModel:
 
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
-        return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST]),
+        return {"Y": self.Y.copy(), "out": self.out.copy(), "vst": float(self.P[K.P_VST_OP]),
                 "hs": self._hs.copy(), "Y2": self._Y2.copy(),   # Y2: BDF2's previous state
                 "ND": None if self.NW is None else self.NW.ND.copy(),
                 # the inputs the state was stepped at: a restore followed by other inputs is a
@@ -278,7 +279,7 @@ class ContactModel:
             self.NW.ND[:] = st["ND"]
         self._hs[:] = st["hs"]
         self._Y2[:] = st["Y2"]
-        self.P[K.P_VST] = st["vst"]
+        self.P[K.P_VST_OP] = st["vst"]
         self._OP[K.OP_KEY:K.OP_KEY + 4] = st["inputs"][:4]
         self._OP[K.OP_KEY + 5] = st["inputs"][4]
         self._OP[K.OP_KEY + 4] = np.nan   # derive the operating point again at the next step

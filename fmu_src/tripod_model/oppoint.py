@@ -15,9 +15,10 @@ from reduced_model.scene import pressing_load
 from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 
 from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP, OP_H, OP_KEY,
-    OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, P_BEAR, P_CLR, P_DF, P_FRIC,
-    P_FRICN, P_HMAX, P_HSUB, P_INTEG, P_K, P_KN, P_M, P_MU, P_MUN, P_NPASS, P_PITCH,
-    P_FLANK, P_HFREE, P_QSUM, P_RINGA, P_R, P_RG, P_ROLL, P_S, P_TRAV, P_VP, P_VST, P_VST0)
+    OP_N, OP_THETA, OP_TQ, OP_VP, OP_W, OP_X0, P_BEARING, P_NEEDLE_CLEARANCE, P_DF,
+    P_FRICTION_GROOVE, P_FRICTION_NEEDLE, P_HMAX, P_MAX_SUBSTEP, P_INTEGRATOR, P_K, P_KN,
+    P_M_ROLLER, P_MU_GROOVE, P_MU_NEEDLE, P_NEWTON_PASSES, P_PITCH, P_FLANK, P_HFREE, P_QSUM,
+    P_RINGA, P_R_ROLLER, P_R_GROOVE, P_ROLL, P_S, P_TRAVERSE, P_VP, P_VST_OP, P_V_ST)
 
 
 # The fewest substeps a whirl cycle: about 2000, a resolution floor for the driven motion.
@@ -45,15 +46,15 @@ ROW_WHIRL_STEP = 5e-4
 
 def amplitudes(P, theta, omega):
     """(A, B) [m/s], Eqs. (19)-(20) with pitch and roll on."""
-    return amplitude_A(P[P_S], omega, theta, True), amplitude_B(P[P_R], omega, theta, True)
+    return amplitude_A(P[P_S], omega, theta, True), amplitude_B(P[P_R_ROLLER], omega, theta, True)
 
 
 def v_st(P, theta, omega, vp=0.0):
     """Transition velocity [m/s]: the parameter, or automatic sqrt(A^2+B^2+Vp^2)/4 (model.md;
     Vp the plunge's sliding at the plunge speed vp [m/s]) with its floor (friction.V_ST_FLOOR:
     a joint at rest or straight still needs one)."""
-    if P[P_VST0] > 0.0:
-        return P[P_VST0]
+    if P[P_V_ST] > 0.0:
+        return P[P_V_ST]
     A, B = amplitudes(P, theta, omega)
     return v_st_auto(A, B, amplitude_plunge(vp, theta, P[P_PITCH] > 0.5))
 
@@ -80,7 +81,8 @@ def _accuracy_bound(P, theta, w, vst, n_transition):
 def ga_substeps(P):
     """Whether the substep is the generalized-alpha step's (integrator 4 with the ideal or
     lumped bearing, max_substep automatic)."""
-    return P[P_HSUB] <= 0.0 and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] != BEAR_RESOLVED
+    return (P[P_MAX_SUBSTEP] <= 0.0 and P[P_INTEGRATOR] == INT_DEFAULT
+            and P[P_BEARING] != BEAR_RESOLVED)
 
 
 def ga_step_size(P, theta, omega, F, vst):
@@ -108,8 +110,8 @@ def ring_step(P, F):
     adds up over the ring, docs/integrators.md).  1e-4 s at F = 0 (no ring)."""
     F = abs(F)      # coast: the same ring
     if F > 0:
-        rho = P[P_RG] - P[P_R] + (F / P[P_K]) ** (2.0 / 3.0)
-        return min(0.5 / math.sqrt(F / (P[P_M] * rho)), 1e-4)
+        rho = P[P_R_GROOVE] - P[P_R_ROLLER] + (F / P[P_K]) ** (2.0 / 3.0)
+        return min(0.5 / math.sqrt(F / (P[P_M_ROLLER] * rho)), 1e-4)
     return 1e-4
 
 
@@ -129,25 +131,26 @@ def substep(P, theta, omega, F, vst, stiff):
     stiff = False: without the bounds that come from the stiff stick mode (the largest
     adaptive substep: the error estimate handles that mode).
     """
-    if P[P_HSUB] > 0:
-        return P[P_HSUB]
+    if P[P_MAX_SUBSTEP] > 0:
+        return P[P_MAX_SUBSTEP]
     if stiff and ga_substeps(P):
         return ga_step_size(P, theta, omega, F, vst)
     w, F = abs(omega), abs(F)      # reverse whirl and coast: the same bounds
     h = _accuracy_bound(P, theta, w, vst, 80.0 if stiff else 0.0)
-    if stiff and P[P_INTEG] == INT_DEFAULT and P[P_BEAR] == BEAR_RESOLVED:
+    if stiff and P[P_INTEGRATOR] == INT_DEFAULT and P[P_BEARING] == BEAR_RESOLVED:
         h = min(h, row_substep(P, F))
         if w > 0:
             h = min(h, ROW_WHIRL_STEP / w)
         return max(h, 1e-7)
-    if stiff and P[P_TRAV] > 0.5 and F > 0 and P[P_FRIC] > 0.5 and P[P_MU] > 0:
-        mu = P[P_MU]
-        if P[P_BEAR] == BEAR_RESOLVED and P[P_FRICN] > 0.5:
+    if (stiff and P[P_TRAVERSE] > 0.5 and F > 0 and P[P_FRICTION_GROOVE] > 0.5
+            and P[P_MU_GROOVE] > 0):
+        mu = P[P_MU_GROOVE]
+        if P[P_BEARING] == BEAR_RESOLVED and P[P_FRICTION_NEEDLE] > 0.5:
             # resolved needles hold the roller's slide with their own friction too: the
             # needle loads sum to QSUM x F_press (Eq. 17 over the row, about 1.3 F); with
             # only the groove's rate the bearing-2 order 3 was 3 % off, with both 0.6 %
-            mu += P[P_MUN] * P[P_QSUM]
-        rate = 3.0 * mu * F / (vst * P[P_M])
+            mu += P[P_MU_NEEDLE] * P[P_QSUM]
+        rate = 3.0 * mu * F / (vst * P[P_M_ROLLER])
         h = min(h, 1.5 / rate)
     return max(h, 1e-7)
 
@@ -167,7 +170,7 @@ def row_substep(P, F):
     Fe = max(abs(F), 100.0)
     g = (Fe / P[P_KN]) ** 0.9           # the row's approach beyond its clearance [m]
     kr = 10.0 / 9.0 * Fe / g
-    return (0.75 if P[P_NPASS] > 1.5 else 0.55) / math.sqrt(kr / P[P_M])
+    return (0.75 if P[P_NEWTON_PASSES] > 1.5 else 0.55) / math.sqrt(kr / P[P_M_ROLLER])
 
 
 def groove_offset(P, F):
@@ -176,7 +179,7 @@ def groove_offset(P, F):
     centre is P_FLANK off the mid-plane (contact.flank_centre).  F < 0 (coast) presses it on
     the other flank, at -x, running_clearance plus twice the approach away; F = 0 leaves it
     touching the drive flank."""
-    x = P[P_FLANK] + P[P_RG] - P[P_R] + (abs(F) / P[P_K]) ** (2.0 / 3.0)
+    x = P[P_FLANK] + P[P_R_GROOVE] - P[P_R_ROLLER] + (abs(F) / P[P_K]) ** (2.0 / 3.0)
     return -x if F < 0.0 else x
 
 
@@ -184,7 +187,7 @@ def lumped_offset(P, F):
     """Static x offset of the roller from the trunnion axis [m] under a radial load F [N],
     lumped bearing: the clearance plus the row's approach (|F|/K_row)^0.9, against the load
     (negative in drive, positive in coast)."""
-    e = P[P_CLR] + (abs(F) / P[P_KN]) ** 0.9
+    e = P[P_NEEDLE_CLEARANCE] + (abs(F) / P[P_KN]) ** 0.9
     return e if F < 0.0 else -e
 
 
@@ -228,7 +231,7 @@ def derive(P, OP):
     OP[OP_N] = n
     OP[OP_H] = dt / n
     x0 = groove_offset(P, F)
-    if P[P_BEAR] == BEAR_LUMPED:
+    if P[P_BEARING] == BEAR_LUMPED:
         x0 -= lumped_offset(P, F)
     OP[OP_X0] = x0
     if jump == 0.0:
@@ -236,13 +239,13 @@ def derive(P, OP):
         jump = abs(_rate_amplitude(P, theta, omega) - R0) / vst
         # and the plunge's sliding
         jump += amplitude_plunge(vp - OP[OP_KEY + 5], theta, P[P_PITCH] > 0.5) / vst
-    P[P_VST] = vst
+    P[P_VST_OP] = vst
     P[P_VP] = vp
     P[P_HMAX] = substep(P, theta, omega, F, vst, False)
     # the generalized-alpha step where the roller's ring is quiet (genalpha.ga_steps), and the
     # slide's acceleration below which it counts as quiet
     P[P_HFREE] = ga_free_step(P, theta, omega, vst) if ga_substeps(P) else 0.0
-    P[P_RINGA] = RING_QUIET_FORCE * abs(F) / P[P_M]
+    P[P_RINGA] = RING_QUIET_FORCE * abs(F) / P[P_M_ROLLER]
     OP[OP_KEY] = theta
     OP[OP_KEY + 1] = omega
     OP[OP_KEY + 2] = Fp
@@ -256,7 +259,7 @@ def derive(P, OP):
 # copy_derived (a joint's rollers, kernel.step: one derive a joint)
 OP_DERIVED = (OP_F, OP_N, OP_H, OP_X0, OP_KEY, OP_KEY + 1, OP_KEY + 2, OP_KEY + 3, OP_KEY + 4,
               OP_KEY + 5)
-P_DERIVED = (P_DF, P_VST, P_VP, P_HMAX, P_HFREE, P_RINGA)
+P_DERIVED = (P_DF, P_VST_OP, P_VP, P_HMAX, P_HFREE, P_RINGA)
 
 
 def copy_derived(P, OP, P_to, OP_to):

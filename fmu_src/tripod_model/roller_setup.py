@@ -24,19 +24,31 @@ def _slot(name):
 
 # P's slots copied from the table as they are, and the flags (1.0 or 0.0)
 COPIED = tuple((slot, _slot(name)) for slot, name in (
-    (K.P_S, "s"), (K.P_R, "r_roller"), (K.P_RG, "r_groove"), (K.P_M, "m_roller"),
-    (K.P_MU, "mu_groove"), (K.P_BEAR, "bearing"), (K.P_MUN, "mu_needle"),
-    (K.P_MUR, "mu_rolling"), (K.P_RB, "r_bore"), (K.P_CLR, "needle_clearance"),
-    (K.P_INTEG, "integrator"), (K.P_VST0, "v_st"), (K.P_HSUB, "max_substep"),
-    (K.P_NPASS, "newton_passes"), (K.P_NTOL, "newton_tol"), (K.P_HC, "contact_damping"),
-    (K.P_ZROW, "row_damping")))
+    (K.P_S, "s"), (K.P_R_ROLLER, "r_roller"), (K.P_R_GROOVE, "r_groove"),
+    (K.P_M_ROLLER, "m_roller"), (K.P_MU_GROOVE, "mu_groove"), (K.P_BEARING, "bearing"),
+    (K.P_MU_NEEDLE, "mu_needle"), (K.P_MU_ROLLING, "mu_rolling"), (K.P_R_BORE, "r_bore"),
+    (K.P_NEEDLE_CLEARANCE, "needle_clearance"), (K.P_INTEGRATOR, "integrator"),
+    (K.P_V_ST, "v_st"), (K.P_MAX_SUBSTEP, "max_substep"), (K.P_NEWTON_PASSES, "newton_passes"),
+    (K.P_NEWTON_TOL, "newton_tol"), (K.P_CONTACT_DAMPING, "contact_damping"),
+    (K.P_ROW_DAMPING, "row_damping")))
 FLAGS = tuple((slot, _slot(name)) for slot, name in (
     (K.P_PITCH, "pitch"), (K.P_YAW, "yaw"), (K.P_ROLL, "roll"), (K.P_AXIAL, "axial"),
-    (K.P_TRAV, "traverse"), (K.P_FRIC, "friction_groove"), (K.P_SPIN, "spin_moment"),
-    (K.P_FRICN, "friction_needle"), (K.P_ROLLR, "rolling_resistance")))
+    (K.P_TRAVERSE, "traverse"), (K.P_FRICTION_GROOVE, "friction_groove"),
+    (K.P_SPIN_MOMENT, "spin_moment"), (K.P_FRICTION_NEEDLE, "friction_needle"),
+    (K.P_ROLLING_RESISTANCE, "rolling_resistance")))
+# the parameters the set-up reads beside those (kernel_params; needle_params), and those the
+# roller's set-up does not read, with where they go
+DERIVED_FROM = ("E", "nu", "l_needle", "n_needles", "roller_width", "step_tolerance",
+                "running_clearance")
+NEEDLE_ROW = ("n_spheres", "d_needle", "r_trunnion", "needle_circ_clearance",
+              "needle_axial_clearance", "rho_needle")
+ELSEWHERE = {"n_rollers": "the joint (model.JointModel, lifecycle.py)",
+             "drive_by_angle": "the step (slavekit.omega_by_angle, lifecycle.step)",
+             "spin_inertia": "the analytic model only: the contact model's roller always has "
+                             "its spin inertia"}
 (T_S, T_R_ROLLER, T_R_GROOVE, T_R_BORE, T_M_ROLLER, T_E, T_NU, T_MU_GROOVE, T_BEARING,
  T_N_NEEDLES, T_N_SPHERES, T_L_NEEDLE, T_D_NEEDLE, T_R_TRUNNION, T_NEEDLE_CLEARANCE,
- T_CIRC_CLEARANCE, T_AXIAL_CLEARANCE, T_RHO_NEEDLE, T_ROLLER_WIDTH, T_MU_NEEDLE, T_MU_ROLLING,
+ T_NEEDLE_CIRC_CLEARANCE, T_NEEDLE_AXIAL_CLEARANCE, T_RHO_NEEDLE, T_ROLLER_WIDTH, T_MU_NEEDLE, T_MU_ROLLING,
  T_FRICTION_NEEDLE, T_ROLLING_RESISTANCE, T_STEP_TOLERANCE, T_RUNNING_CLEARANCE, T_TRAVERSE,
  T_FRICTION_GROOVE, T_N_ROLLERS, T_DRIVE_BY_ANGLE, T_AXIAL) = map(_slot, (
     "s", "r_roller", "r_groove", "r_bore", "m_roller", "E", "nu", "mu_groove", "bearing",
@@ -78,7 +90,8 @@ def kernel_params(T, P):
     P[K.P_LT] = l_n * l_n / 12.0             # tilt = radial x l^2 / 12
     P[K.P_IT] = m * (3.0 * (r * r + rb * rb) + T[T_ROLLER_WIDTH] * T[T_ROLLER_WIDTH]) / 12.0
     tol = T[T_STEP_TOLERANCE]
-    P[K.P_TOL] = tol if tol != 0.0 else (3e-3 if T[T_BEARING] == K.BEAR_RESOLVED else 1e-3)
+    P[K.P_STEP_TOLERANCE] = tol if tol != 0.0 else (
+        3e-3 if T[T_BEARING] == K.BEAR_RESOLVED else 1e-3)
     # each flank's arc centre off the track's mid-plane (0: one cylinder, the default)
     c = T[T_RUNNING_CLEARANCE]
     P[K.P_FLANK] = 0.5 * c - (T[T_R_GROOVE] - T[T_R_ROLLER]) if c > 0.0 else 0.0
@@ -98,7 +111,7 @@ def neighbour_distance(T):
     the chord of equal spacing less the play shared out."""
     n = T[T_N_NEEDLES]
     Rp = T[T_R_TRUNNION] + 0.5 * T[T_D_NEEDLE] + 0.5 * T[T_NEEDLE_CLEARANCE]
-    return min(T[T_D_NEEDLE], 2.0 * Rp * math.sin(math.pi / n) - T[T_CIRC_CLEARANCE] / n)
+    return min(T[T_D_NEEDLE], 2.0 * Rp * math.sin(math.pi / n) - T[T_NEEDLE_CIRC_CLEARANCE] / n)
 
 
 def needle_params(T, NP):
@@ -120,7 +133,7 @@ def needle_params(T, NP):
     NP[K.N_I3] = 0.5 * mn * (rn * rn)                        # about its axis
     NP[K.N_CS] = needle_line_stiffness(l_n) / ns   # Table 1: C = 8.15e4 l^(8/9) / N_s per sphere
     NP[K.N_DC] = neighbour_distance(T)
-    NP[K.N_ZAX] = T[T_AXIAL_CLEARANCE]
+    NP[K.N_ZAX] = T[T_NEEDLE_AXIAL_CLEARANCE]
     NP[K.N_HW] = 0.5 * T[T_ROLLER_WIDTH]
     NP[K.N_MU] = T[T_MU_NEEDLE]
     NP[K.N_MUR] = T[T_MU_ROLLING]
@@ -160,9 +173,9 @@ def radial_offset(P, T, F):
     """Static x offset of the roller from the trunnion axis [m] under a radial load F [N]:
     0 (ideal bearing), the lumped row's law, or the resolved row's (the same estimate starts
     it)."""
-    if P[K.P_BEAR] == K.BEAR_IDEAL:
+    if P[K.P_BEARING] == K.BEAR_IDEAL:
         return 0.0
-    if P[K.P_BEAR] == K.BEAR_LUMPED:
+    if P[K.P_BEARING] == K.BEAR_LUMPED:
         return lumped_offset(P, F)
     return needle_radial_offset(int(T[T_N_NEEDLES]), T[T_L_NEEDLE], T[T_NEEDLE_CLEARANCE], F)
 
@@ -210,7 +223,7 @@ def start_state(Y, P, T, phase, theta, omega, F):
     # dz/dt / r with z = s tan(phi), tan(phi) = T sin(x)
     c = math.cos(phase)
     sec2 = 1.0 + (T_ * math.sin(phase)) ** 2
-    Y[K.Y_OM] = P[K.P_S] * T_ * c * omega / P[K.P_R] / math.sqrt(sec2)
+    Y[K.Y_OM] = P[K.P_S] * T_ * c * omega / P[K.P_R_ROLLER] / math.sqrt(sec2)
     if F < 0:   # coast: the contact on the other side of the roller rolls it back
         Y[K.Y_OM] = -Y[K.Y_OM]
     Y[K.Y_E] = radial_offset(P, T, F)

@@ -15,8 +15,8 @@ from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row
 from .contact import groove_stiffness_x, row_damping, tilt_drag
 from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, FAIL_ESTIMATE, FAIL_FLOOR, FAIL_NONE,
     FAIL_TRIES, H_FAIL, H_FAIL_DONE, H_FAIL_H, H_REJECTED, H_SUB, H_TAKEN, H_USE_FLOOR,
-    H_USE_TRIES, P_BEAR, P_HMAX, P_IT,
-    P_M, P_R, P_TOL, P_TRAV, P_VST, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
+    H_USE_TRIES, P_BEARING, P_HMAX, P_IT, P_M_ROLLER, P_R_ROLLER, P_STEP_TOLERANCE, P_TRAVERSE,
+    P_VST_OP, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
 
 
 @njit
@@ -31,9 +31,9 @@ def substep(Y, P, drive, h, W, NW):
     W: the work arrays (layout.Work; L, res, G, A, b here).
     """
     L, res, A, b = W.L, W.res, W.A, W.b
-    m = P[P_M]
-    lumped = P[P_BEAR] == BEAR_LUMPED
-    resolved = P[P_BEAR] == BEAR_RESOLVED
+    m = P[P_M_ROLLER]
+    lumped = P[P_BEARING] == BEAR_LUMPED
+    resolved = P[P_BEARING] == BEAR_RESOLVED
     sixdof = lumped or resolved
     x = Y[Y_X] + h * drive.w
     Y[Y_X] = x
@@ -48,7 +48,7 @@ def substep(Y, P, drive, h, W, NW):
         Fr, kr = lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b)
     if resolved:
         resolved_row_terms(Y, P, NW, drive.theta, x, h, W, (e1, e2), kh, (drag1, drag2), False)
-    trav = P[P_TRAV] > 0.5
+    trav = P[P_TRAVERSE] > 0.5
     if not trav:
         hold_slide(A, b, nv)
     for i in range(nv):
@@ -92,12 +92,12 @@ def step_error(Y, Y1, P):
     """Scaled error estimate of one extrapolated step: the difference between the two half
     steps (Y) and the whole step (Y1) in the roller's velocities, against tol x v_st (slides)
     and tol x v_st / r (turns): what sets the friction's direction and so the thrust."""
-    vs = P[P_TOL] * P[P_VST]
-    vr = vs / P[P_R]
+    vs = P[P_STEP_TOLERANCE] * P[P_VST_OP]
+    vr = vs / P[P_R_ROLLER]
     e = abs(Y[Y_OM] - Y1[Y_OM]) / vr
-    if P[P_TRAV] > 0.5:
+    if P[P_TRAVERSE] > 0.5:
         e = max(e, abs(Y[Y_UD] - Y1[Y_UD]) / vs)
-    if P[P_BEAR] != BEAR_IDEAL:
+    if P[P_BEARING] != BEAR_IDEAL:
         e = max(e, abs(Y[Y_WD] - Y1[Y_WD]) / vs, abs(Y[Y_ED] - Y1[Y_ED]) / vs,
                 abs(Y[Y_B1D] - Y1[Y_B1D]) / vr, abs(Y[Y_B2D] - Y1[Y_B2D]) / vr)
     return e
