@@ -133,9 +133,40 @@ def _run(cmd, fmus, outfile, env, wine=False, theta_ulps=0, steps=None):
     return p, rows.reshape(steps, -1) if rows.size else rows
 
 
+# FMPy stepping an FMU as fmu_run.c does: the inputs offset + amplitude sin(rate t) at each
+# step's start t = k dt (libm's sin, as the C host's), every Real output after each step
+_FMPY_AS_THE_HOST = r'''
+import json, math, sys
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu, req = sys.argv[1], json.loads(sys.argv[2])
+md = read_model_description(fmu)
+s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu),
+              modelIdentifier=md.coSimulation.modelIdentifier, instanceName="a")
+s.instantiate()
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+for vr, v in req["ints"]:
+    s.setInteger([vr], [v])
+s.exitInitializationMode()
+ins = req["ins"]
+rows = []
+for k in range(req["steps"]):
+    t = k * req["dt"]
+    s.setReal([i[0] for i in ins], [o + a * math.sin(w * t) for _, o, a, w in ins])
+    s.doStep(t, req["dt"])
+    rows.append(s.getReal(req["outs"]))
+np.save(req["out"], np.array(rows))
+'''
+
+
 def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
-    """`env -i PATH=/usr/bin:/bin`: the host steps it, rolls a state back bit for bit through
-    serialise and deserialise, and no libpython is in its process; its outputs are FMPy's."""
+    """`env -i PATH=/usr/bin:/bin`: the host steps it under a master moving its inputs, rolls
+    a state back bit for bit through serialise and deserialise, and no libpython is in its
+    process; every output after every step is FMPy's run of the same FMU and master, bit for
+    bit."""
+    import json
     d = tmp_path / "fmu"
     d.mkdir()
     zipfile.ZipFile(fmus[0]).extractall(d)
@@ -146,6 +177,16 @@ def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
     assert "FAILED" not in p.stdout and "check rollback bit for bit ok" in p.stdout
     assert "python-in-process no" in p.stdout
     assert np.isfinite(rows).all() and np.abs(rows).max() > 0
+    md = read_model_description(str(fmus[0]))
+    spec, ints, _, _ = _case(fmus)
+    vr = {v.name: v.valueReference for v in md.modelVariables}
+    req = {"ins": [(v.valueReference, o, a, w) for v, o, a, w in _signals(md, spec)],
+           "outs": [v.valueReference for v in _outputs(md)], "dt": DT, "steps": len(rows),
+           "ints": [(vr[k], v) for k, v in ints.items()], "out": str(tmp_path / "fmpy.npy")}
+    q = subprocess.run([sys.executable, "-c", _FMPY_AS_THE_HOST, str(fmus[0]), json.dumps(req)],
+                       capture_output=True, text=True, timeout=600)
+    assert q.returncode == 0, q.stderr[-3000:]
+    assert np.array_equal(np.load(tmp_path / "fmpy.npy"), rows)
 
 
 def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):

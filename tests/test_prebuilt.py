@@ -51,19 +51,6 @@ def test_prebuilt_kernel_is_bitwise_the_numba_kernel(tmp_path, sv):
     assert np.isfinite(pre).all() and np.array_equal(pre, jit)
 
 
-def test_needle_resolved_bearing_still_compiles_with_numba(tmp_path):
-    # the prebuilt step has no needles: the resolved bearing says so and runs on numba
-    req = {"fmu": str(reference_fmu("TripodRoller")), "sv": {"bearing": 2, "n_needles": 12},
-           "out": str(tmp_path / "n.npy")}
-    code = _RUN.replace("stop_time=0.2", "stop_time=0.002")
-    p = subprocess.run([sys.executable, "-c", code, json.dumps(req)], capture_output=True,
-                       text=True, timeout=600)
-    assert p.returncode == 0, p.stderr[-3000:]
-    info = json.loads(p.stdout.strip().splitlines()[-1])
-    assert info["numba"] and info["kernel"] == ["numba"]
-    assert np.isfinite(np.load(tmp_path / "n.npy")).all()
-
-
 def test_the_build_rebuilds_the_prebuilt_kernel_from_the_sources_the_fmu_checks():
     # the FMU loads the library only when its content hash is today's sources' (the kernel's
     # package and the reduced model's modules it compiles): the build's freshness test is that
