@@ -2,7 +2,8 @@
 
 Two whirl cycles of the paper's scene at a 1e-4 s communication step; median of N runs for the
 ideal and the lumped bearing, with and without traverse; plus fresh `fmpy simulate` processes
-with the prebuilt kernel and with numba compiling it.
+of the FMU (compiled, no Python in its model) and of its reference (Python: with the prebuilt
+kernel, and with numba compiling it).
 Prints a Markdown table.  Usage: python benchmarks/fmu_speed.py [--runs N]
 """
 import argparse
@@ -12,7 +13,7 @@ import sys
 import time
 from pathlib import Path
 
-from harness.fmus import ensure_fmu
+from harness.fmus import ensure_fmu, reference_fmu
 
 CASES = [
     ("ideal bearing, traverse (default)", {}),
@@ -21,10 +22,11 @@ CASES = [
     ("lumped bearing, no traverse", {"bearing": 1, "traverse": False}),
 ]
 # rows of whole fresh processes, after the in-process CASES
-PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene (prebuilt kernel, no numba)",
-                "the same with numba compiling the kernel (TRIPOD_AOT=0), cache warm",
-                "numba, empty cache: first run (compiles)",
-                "numba, same cache: second run (FMPy extracts anew)")
+PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene: the FMU (compiled, no Python)",
+                "the same, its reference (Python, the prebuilt kernel, no numba)",
+                "the reference with numba compiling the kernel (TRIPOD_AOT=0), cache warm",
+                "the reference, numba, empty cache: first run (compiles)",
+                "the reference, numba, same cache: second run (FMPy extracts anew)")
 
 
 def main():
@@ -41,7 +43,9 @@ def main():
     res = time_runs(fmu, [{"sv": sv, "dt": 1e-4, "stop": 0.2} for _, sv in CASES],
                     runs=args.runs, read=outs)
     rows = [(name, r["wall"], min(r["walls"]), max(r["walls"])) for (name, _), r in zip(CASES, res)]
-    def fresh_run(env=None):
+    ref = str(reference_fmu("TripodRoller"))
+
+    def fresh_run(env=None, fmu=ref):
         t0 = time.perf_counter()
         subprocess.run([str(Path(sys.executable).parent / "fmpy"), "simulate", fmu,
                         "--output-interval", "1e-4", "--output-file", "/dev/null"],
@@ -50,6 +54,7 @@ def main():
 
     import os
     import tempfile
+    native = [fresh_run(fmu=fmu) for _ in range(args.runs)]
     fresh = [fresh_run() for _ in range(args.runs)]
     # numba instead of the prebuilt kernel (what the needle-resolved bearing, or a build
     # without the prebuilt library, pays): a warm cache, then an empty one, where the first
@@ -64,11 +69,9 @@ def main():
              f"{args.runs} runs each, median [min-max]", "",
              "| case | wall time in one process after warm-up |", "|---|---|"]
     lines += [f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |" for name, med, lo, hi in rows]
-    lines += [f"| {PROCESS_ROWS[0]} | {statistics.median(fresh):.2f} s "
-              f"[{min(fresh):.2f}-{max(fresh):.2f}] |",
-              f"| {PROCESS_ROWS[1]} | {statistics.median(jit):.2f} s "
-              f"[{min(jit):.2f}-{max(jit):.2f}] |",
-              f"| {PROCESS_ROWS[2]} | {cold:.2f} s |", f"| {PROCESS_ROWS[3]} | {warm:.2f} s |"]
+    lines += [f"| {PROCESS_ROWS[k]} | {statistics.median(x):.2f} s [{min(x):.2f}-{max(x):.2f}] |"
+              for k, x in enumerate((native, fresh, jit))]
+    lines += [f"| {PROCESS_ROWS[3]} | {cold:.2f} s |", f"| {PROCESS_ROWS[4]} | {warm:.2f} s |"]
     print("\n".join(lines))
     if args.md:
         Path(args.md).parent.mkdir(parents=True, exist_ok=True)

@@ -21,7 +21,7 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
                          SHAFT_ANGLE, STATE_PROBLEMS, T_LEN, TABLE_N, TABLE_ROWS, THETA, TORQUE,
                          VST_HI, W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
-                         W_T, W_X0, WHIRL_HI, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
+                         W_T, W_TKEY, W_X0, WHIRL_HI, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
                          X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
 from .kernel import (_roller, derive_op, inputs_moved, joint_into, outputs_into, resolved_drive,
@@ -125,6 +125,9 @@ def settled_table(T, W, theta, omega, F, vp):
     does."""
     if not uses_table(T, omega, F):
         return False
+    key = W[W_TKEY:W_TKEY + 6]
+    if key[4] != 0.0 and key[0] == theta and key[1] == omega and key[2] == F and key[3] == vp:
+        return key[5] != 0.0      # (the start's outputs derived it at the same inputs)
     PA = W[W_PA:W_PA + RE.P_LEN]
     for j in range(RE.P_LEN):
         PA[j] = T[ANALYTIC_SLOTS[j]]
@@ -133,7 +136,14 @@ def settled_table(T, W, theta, omega, F, vp):
     cycles, mismatch, g_max = traverse_table(
         O, W[W_D:W_D + D_COUNT * TABLE_ROWS], TABLE_N, W[W_T:W_T + 5 * TABLE_ROWS],
         W[W_SS:W_SS + TABLE_ROWS], W[W_PS:W_PS + TABLE_ROWS])
-    return mismatch <= SETTLED_TOL * O[RE.O_VST]
+    settled = mismatch <= SETTLED_TOL * O[RE.O_VST]
+    key[0] = theta
+    key[1] = omega
+    key[2] = F
+    key[3] = vp
+    key[4] = 1.0
+    key[5] = 1.0 if settled else 0.0
+    return settled
 
 
 def start(T, IN, X, W, F):
