@@ -7,7 +7,7 @@ and after omega +1 %.  Prints markdown tables:
 - the same model from a state moved by 1e-15 or 1e-12 (the roller's spin): how far rounding
   alone moves it, and the e-folding time of that difference in the state;
 - with one Newton pass a substep (newton_passes = 1, harness.transients.ONE_PASS, the default
-  until 2026-11-28), settled with it: how far rounding moves its single samples.
+  before the second pass), settled with it: how far rounding moves its single samples.
 
     python benchmarks/needle_chaos.py [--md FILE]       (about 1 min)
 """

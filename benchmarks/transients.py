@@ -125,7 +125,7 @@ def main(argv=None):
         for label, theta in RESOLVED_LAUNCH:
             kw = {"theta": theta, "torque": LAUNCH_TORQUE}
             rows.append(table_row(label, params, nr, f, settle(params, nr, f, **kw), **kw))
-        # with one Newton pass a substep, the default until 2026-11-28
+        # with one Newton pass a substep, the default before the second pass
         # (docs/integrators.md#needle-resolved-bearing)
         bases = {}
         for label, p, theta, torque, extra in RESOLVED_ONE_PASS:

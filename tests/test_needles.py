@@ -254,7 +254,7 @@ def test_the_row_converges_at_a_launch_load(F, tol):
     # orders 1 and 3 of Fz at the default substep (about 2.6 us) against a quarter of it.
     # BDF2 converges as h^2, so the default's own error is the difference (measured 0.01 % at
     # 15 kN; 0.2 % and 0.8 % at 45 kN); the bounds leave room for the row's chaos, which moves
-    # a cycle's orders by a few 0.1 % between realizations.  Until 2026-11-27 the step took the
+    # a cycle's orders by a few 0.1 % between realizations.  A step that took the
     # groove friction along the slip with its tangent, ~0 once saturated: above about 12 kN the
     # explicit friction impulse on the spin overshot the tanh's range and the spin flipped every
     # substep (Fz swinging +-700 N at 15 kN, orders off by 20-90 %, worse at a finer substep);
@@ -270,9 +270,9 @@ def test_the_row_converges_at_a_launch_load(F, tol):
 @pytest.mark.slow   # (about 20 s)
 def test_the_row_converges_at_40_hz():
     # One roller at 40 Hz, 8 deg and 300 N m's 4.5 kN, 46 needles: orders 1 and 3 of Fz (mean
-    # over cycles 2-3) at the default substep against half of it.  Until 2026-11-27 the
-    # default was the row's 2.9 us at any speed: BDF2's one linearization a substep, with the
-    # needles' friction by its secant, put order 1 4.5 % high at 40 Hz (3.6-5 % against half
+    # over cycles 2-3) at the default substep against half of it.  A default of the row's
+    # 2.9 us at any speed (BDF2's one linearization a substep, with the needles' friction by
+    # its secant) put order 1 4.5 % high at 40 Hz (3.6-5 % against half
     # the substep; oppoint.ROW_WHIRL_STEP).  The bound: the row's chaos moves these means by
     # up to 1 % between realizations and substeps (measured), doubled
     base = {"bearing": 2, "theta": math.radians(8.0), "omega": 2 * math.pi * 40.0}

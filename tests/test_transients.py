@@ -43,8 +43,8 @@ def resolved_10hz():
 @pytest.mark.parametrize("name,factor,bound", [("omega", 1.10, 1.0), ("torque", 1.10, 2.0)])
 def test_the_needle_resolved_bearing_takes_an_input_step(resolved_10hz, name, factor, bound):
     # the needle-resolved row, one roller settled at 10 Hz, read as its 1 ms running mean: that
-    # mean converges even where single samples do not (one pass a substep, the default until
-    # 2026-11-28: a 1e-15 change of the row's state moved single samples of Fz_joint by up to
+    # mean converges even where single samples do not (one pass a substep, the default before the
+    # second pass: a 1e-15 change of the row's state moved single samples of Fz_joint by up to
     # 2.3 % of order 3 within the 20 steps, references 10 to 160 times finer parted by up to
     # 1.7 %, their 1 ms means within 0.3 %: benchmarks/needle_chaos.py).  Against a reference
     # of h/20, the mean missed by 1.21-1.27 % (omega) with BDF2's history across the step at
@@ -188,8 +188,8 @@ def test_the_needle_resolved_bearing_takes_a_torque_step_at_a_launchs_load():
     # and that reference converged (within 1 % of the one at h/10).  Measured over six
     # realizations (settling whirl nudged by 0 to 1e-7; benchmarks.md): 0.29-0.72 %, the
     # reference moving 0.08-0.43 %; with the row's offset ramped over the load step
-    # (2026-11-29) 0.06 % on three (nudged by 0, 1e-9, 1e-7), the reference within 0.02 %.  The step input's substeps of h/4 (before 2026-11-27)
-    # missed by 1.41 % (bdf2.BDF_FINE_SPLIT)
+    # 0.06 % on three (nudged by 0, 1e-9, 1e-7), the reference within 0.02 %.  The step
+    # input's substeps of h/4 (the split before BDF_FINE_SPLIT) missed by 1.41 % (bdf2.BDF_FINE_SPLIT)
     base = T.settle({"bearing": 2}, 1, 10, torque=3000.0)
     dev, moved = T.checked_case({"bearing": 2}, 1, 10, "torque", 1.10, base, torque=3000.0)
     assert moved < 1.0
@@ -251,7 +251,7 @@ def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
 
 def test_a_load_step_leaves_the_needle_row_deterministic():
     # torque -10 % at 300 N m on the realization (settling whirl nudged by 1e-9) where the
-    # offset's jump at once (until 2026-11-29) missed the reference of h/20 by 1.63 % of order
+    # offset's jump at once (before the ramp) missed the reference of h/20 by 1.63 % of order
     # 3, that reference 1.47 % from h/10: the jump drove the roller into the groove at infinite
     # speed and the row answered chaotically.  With the offset ramped over the step: single
     # samples within the issue's 1 %, the reference converged (within 1 % of h/10), and a
