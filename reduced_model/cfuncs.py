@@ -4,6 +4,39 @@ driveline/mounts.py): writing their outputs only when every one is finite, and, 
 (fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH)."""
 import math
 
+NOTE_ARGS = 4   # the numbers a note carries (the native layer words four)
+
+
+def leave_note(W, at, most, code, a0, a1, a2, a3):
+    """Leave a note (code, four numbers) for the FMU's log in W's notes at ``at`` (a count, then
+    the notes); beyond ``most`` notes it is dropped."""
+    n = int(W[at])
+    if n >= most:
+        return
+    k = at + 1 + n * (1 + NOTE_ARGS)
+    W[k] = code
+    W[k + 1] = a0
+    W[k + 2] = a1
+    W[k + 3] = a2
+    W[k + 4] = a3
+    W[at] = n + 1
+
+
+def native_layout(by_name, params, inputs, outputs, check_order, sizes, notes_at, most, text,
+                  state_problems) -> dict:
+    """What fmu_src/native_fmu.py needs of a model over these arrays: where each variable lives
+    (params, inputs, outputs: the names in P's, IN's and OUT's order), the parameter table
+    (by_name), the order the variables are checked in at initialisation, the arrays' sizes
+    (P, IN, X, OUT, W) and the notes' place and wording (text: (level, printf format) a code;
+    state_problems: why a state is refused, a code)."""
+    arrays = {n: ("IN_P", i) for i, n in enumerate(params)}
+    arrays.update({n: ("IN_IN", i) for i, n in enumerate(inputs)})
+    arrays.update({n: ("IN_OUT", i) for i, n in enumerate(outputs)})
+    return {"by_name": by_name, "arrays": arrays, "check_order": list(check_order),
+            "sizes": dict(zip(("P", "IN", "X", "OUT", "W"), sizes), TH=2),
+            "notes": {"at": notes_at, "args": NOTE_ARGS, "max": most, "text": text,
+                      "state_problems": state_problems}}
+
 
 def finite_into(vals, OUT):
     """vals into OUT when every one is finite.  Returns 1, or 2 (a non-finite value; OUT

@@ -24,7 +24,7 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
-from .cfuncs import finite_into
+from .cfuncs import NOTE_ARGS, finite_into, leave_note
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
@@ -71,7 +71,6 @@ X_LEN = X_TABLE_PS + TABLE_ROWS
 
 # --- the work W: the table's derivation, then the notes ---------------------------------------
 W_NOTES = D_COUNT * TABLE_ROWS
-NOTE_ARGS = 4
 MAX_NOTES = 16
 W_LEN = W_NOTES + 1 + MAX_NOTES * (1 + NOTE_ARGS)
 
@@ -177,16 +176,7 @@ def notes_text(W):
 
 def note(W, code, a0, a1, a2, a3):
     """Leave a note (code, four numbers) for the FMU's log; beyond MAX_NOTES it is dropped."""
-    n = int(W[W_NOTES])
-    if n >= MAX_NOTES:
-        return
-    at = W_NOTES + 1 + n * (1 + NOTE_ARGS)
-    W[at] = code
-    W[at + 1] = a0
-    W[at + 2] = a1
-    W[at + 3] = a2
-    W[at + 4] = a3
-    W[W_NOTES] = n + 1
+    leave_note(W, W_NOTES, MAX_NOTES, code, a0, a1, a2, a3)
 
 
 # --- the checked range ------------------------------------------------------------------------
@@ -525,7 +515,7 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
 # callees first
-COMPILED = ("finite_into", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside",
+COMPILED = ("finite_into", "leave_note", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside",
             "note_outside", "note_run_outside", "mirrored", "take_inputs", "prepare", "roller_row",
             "outputs", "check_scene", "init", "step", "end", "state_problem")
 
@@ -568,11 +558,8 @@ def native_layout() -> dict:
     sizes, the order the variables are checked in at initialisation (the table's, as
     scene.validate checks them) and the notes' wording: for the FMU whose binary runs this
     module compiled (fmu_src/native_fmu.py)."""
-    arrays = {n: ("IN_P", i) for i, n in enumerate(PARAM_NAMES)}
-    arrays.update({n: ("IN_IN", i) for i, n in enumerate(INPUT_NAMES)})
-    arrays.update({n: ("IN_OUT", i) for i, n in enumerate(OUTPUT_NAMES)})
-    return {"by_name": BY_NAME, "arrays": arrays,
-            "check_order": [p.name for p in params_for("analytic")],
-            "sizes": {"P": P_LEN, "IN": IN_LEN, "X": X_LEN, "OUT": OUT_LEN, "W": W_LEN, "TH": 2},
-            "notes": {"at": W_NOTES, "args": NOTE_ARGS, "max": MAX_NOTES, "text": NOTE_TEXT,
-                      "state_problems": STATE_PROBLEMS}}
+    from .cfuncs import native_layout as layout
+    return layout(BY_NAME, PARAM_NAMES, INPUT_NAMES, OUTPUT_NAMES,
+                  [p.name for p in params_for("analytic")],
+                  (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN), W_NOTES, MAX_NOTES, NOTE_TEXT,
+                  STATE_PROBLEMS)

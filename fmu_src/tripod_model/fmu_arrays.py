@@ -18,6 +18,7 @@ Views are made at run time (_at): a joint of ideal or lumped rollers as rows of 
 import math
 
 from reduced_model import equations as RE
+from reduced_model.cfuncs import NOTE_ARGS, leave_note
 from reduced_model.scene import BY_NAME, RELATIONS, TOO_LONG, params_for
 from reduced_model.table import D_COUNT
 from . import layout as K
@@ -81,7 +82,6 @@ W_PS = W_SS + TABLE_ROWS
 W_TKEY = W_PS + TABLE_ROWS                  # the inputs the table is for, set, settled
 W_NW = W_TKEY + 6                           # R_MAX needle works of NW_LEN
 W_NOTES = W_NW + R_MAX * NW_LEN
-NOTE_ARGS = 4
 MAX_NOTES = 8
 W_LEN = W_NOTES + 1 + MAX_NOTES * (1 + NOTE_ARGS)
 
@@ -113,16 +113,7 @@ NOTE_ADAPT = 12                      # + the index of hs[H_FAIL] in FAILS
 
 def note(W, code, a0, a1, a2, a3):
     """Leave a note (code, four numbers) for the FMU's log; beyond MAX_NOTES it is dropped."""
-    n = int(W[W_NOTES])
-    if n >= MAX_NOTES:
-        return
-    at = W_NOTES + 1 + n * (1 + NOTE_ARGS)
-    W[at] = code
-    W[at + 1] = a0
-    W[at + 2] = a1
-    W[at + 3] = a2
-    W[at + 4] = a3
-    W[W_NOTES] = n + 1
+    leave_note(W, W_NOTES, MAX_NOTES, code, a0, a1, a2, a3)
 
 
 # --- views ------------------------------------------------------------------------------------
@@ -258,4 +249,4 @@ def compiled_at():
 
 
 # what lifecycle.py compiles of this module, callees first
-COMPILED = ("note", "shape_of", "op_row", "work", "needle_work")
+COMPILED = ("leave_note", "note", "shape_of", "op_row", "work", "needle_work")

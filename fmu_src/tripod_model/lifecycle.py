@@ -15,7 +15,7 @@ from reduced_model.table import D_COUNT, SETTLED_TOL, traverse_table
 from . import layout as K
 from .contact import trunnion_axial
 from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAMES, MAX_NOTES,
-                         NOTE_ADAPT, NOTE_ARGS, NOTE_BORE, NOTE_CLEARANCE, NOTE_GROOVE,
+                         NOTE_ADAPT, NOTE_BORE, NOTE_CLEARANCE, NOTE_GROOVE,
                          NOTE_INFO, NOTE_INFO_OP, NOTE_ROLLERS, NOTE_STEPS, NOTE_SUMMARY,
                          NOTE_SUMMARY_ADAPT, NOTE_SUMMARY_BDF, NOTE_SUMMARY_GA, NOTE_TEXT,
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
@@ -480,11 +480,8 @@ def native_layout() -> dict:
     sizes, the order the variables are checked in at initialisation (the table's, as
     scene.validate checks them) and the notes' wording: for the FMU whose binary runs this
     module compiled (fmu_src/native_fmu.py)."""
-    arrays = {n: ("IN_P", i) for i, n in enumerate(PARAM_NAMES)}
-    arrays.update({n: ("IN_IN", i) for i, n in enumerate(INPUT_NAMES)})
-    arrays.update({n: ("IN_OUT", i) for i, n in enumerate(K.OUTPUT_NAMES)})
-    return {"by_name": BY_NAME, "arrays": arrays,
-            "check_order": [p.name for p in params_for("contact")],
-            "sizes": {"P": T_LEN, "IN": IN_LEN, "X": X_LEN, "OUT": OUT_LEN, "W": W_LEN, "TH": 2},
-            "notes": {"at": W_NOTES, "args": NOTE_ARGS, "max": MAX_NOTES, "text": NOTE_TEXT,
-                      "state_problems": STATE_PROBLEMS}}
+    from reduced_model.cfuncs import native_layout as layout
+    return layout(BY_NAME, PARAM_NAMES, INPUT_NAMES, K.OUTPUT_NAMES,
+                  [p.name for p in params_for("contact")],
+                  (T_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN), W_NOTES, MAX_NOTES, NOTE_TEXT,
+                  STATE_PROBLEMS)
