@@ -38,6 +38,17 @@ def native_layout(by_name, params, inputs, outputs, check_order, sizes, notes_at
                       "state_problems": state_problems}}
 
 
+def compile_over(g, names, jit):
+    """g's functions ``names`` as jit copies whose globals are g, so that they call each other
+    compiled (g updated in place and returned); the modules they come from stay plain Python."""
+    import types
+    for name in names:
+        f = g[name]
+        g[name] = jit(types.FunctionType(f.__code__, g, f.__name__, f.__defaults__,
+                                         f.__closure__))
+    return g
+
+
 def finite_into(vals, OUT):
     """vals into OUT when every one is finite.  Returns 1, or 2 (a non-finite value; OUT
     untouched)."""

@@ -24,7 +24,7 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
-from .cfuncs import NOTE_ARGS, finite_into, leave_note
+from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
@@ -515,9 +515,9 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
 # callees first
-COMPILED = ("finite_into", "leave_note", "note", "inertia_ratio", "hertz_ratio", "checked_value", "inside",
-            "note_outside", "note_run_outside", "mirrored", "take_inputs", "prepare", "roller_row",
-            "outputs", "check_scene", "init", "step", "end", "state_problem")
+COMPILED = ("finite_into", "leave_note", "note", "inertia_ratio", "hertz_ratio", "checked_value",
+            "inside", "note_outside", "note_run_outside", "mirrored", "take_inputs", "prepare",
+            "roller_row", "outputs", "check_scene", "init", "step", "end", "state_problem")
 
 
 def compiled_namespace():
@@ -539,11 +539,7 @@ def compiled_namespace():
     g["hertz_point"] = jit(types.FunctionType(hertz_point.__code__, h, "hertz_point"))
     for f in (spin_moment, housing_forces, fz_mod, pressing_load, same_step, same_value):
         g[f.__name__] = jit(f)
-    for name in equations.COMPILED + table.COMPILED + COMPILED:
-        f = g[name]
-        g[name] = jit(types.FunctionType(f.__code__, g, f.__name__, f.__defaults__,
-                                         f.__closure__))
-    return g
+    return compile_over(g, equations.COMPILED + table.COMPILED + COMPILED, jit)
 
 
 def c_functions():

@@ -433,13 +433,12 @@ def compiled_namespace():
     """This module's and roller_setup's COMPILED functions as numba njit copies calling each
     other, with the reduced model's (the traverse table: reduced_model.kernel's compiled
     namespace) and the kernel's; the modules themselves stay plain Python."""
-    import types
-
     import numba as nb
 
+    from reduced_model.cfuncs import compile_over
     from reduced_model.kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import fmu_arrays, hertz, oppoint, roller_setup
+    from . import fmu_arrays, hertz, kernel, oppoint, roller_setup
 
     def jit(f):
         return nb.njit(f)
@@ -452,20 +451,9 @@ def compiled_namespace():
     for f in (spin_inertia, hertz.needle_line_stiffness, oppoint.groove_offset,
               oppoint.lumped_offset):
         g[f.__name__] = jit(f)
-    for name in ("v_st", "substep"):
-        g[name] = getattr(oppoint_compiled(), name)
+    g["v_st"], g["substep"] = kernel._op.v_st, kernel._op.substep   # (the kernel's copies)
     g["_at"] = fmu_arrays.compiled_at()
-    for name in roller_setup.COMPILED + fmu_arrays.COMPILED + COMPILED:
-        f = g[name]
-        g[name] = jit(types.FunctionType(f.__code__, g, f.__name__, f.__defaults__,
-                                         f.__closure__))
-    return g
-
-
-def oppoint_compiled():
-    """oppoint's functions as the kernel compiles them (kernel._op)."""
-    from . import kernel
-    return kernel._op
+    return compile_over(g, roller_setup.COMPILED + fmu_arrays.COMPILED + COMPILED, jit)
 
 
 def c_functions():

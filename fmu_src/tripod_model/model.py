@@ -237,7 +237,7 @@ class ContactModel:
         n = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
         x0, rate = OP[K.OP_X0], 0.0
         if self.NW is not None:
-            x0, rate = _resolved_drive(self.P, self.T, OP, F_was, n, self.load_ramped,
+            x0, rate = kernel.resolved_drive(self.P, self.T, OP, F_was, n, self.load_ramped,
                                        self._x0c)
         if not kernel.run_substeps(self.Y, self.P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate),
                                    OP[K.OP_H], n, self.out, self._W, self.NW):
@@ -293,17 +293,6 @@ class ContactModel:
                 "dFx": Fx - F_press, "contact_y": o[K.O_CY], "contact_z": o[K.O_CZ],
                 "slip_speed": o[K.O_SLIP], "roller_spin": o[K.O_SPIN], "whirl_angle": o[K.O_X],
                 "plunge": o[K.O_PL]}
-
-
-_RESOLVED = []
-
-
-def _resolved_drive(P, T, OP, F_was, n, ramped, cache):
-    """kernel.resolved_drive compiled (numba: the resolved bearing's kernel needs it anyway)."""
-    if not _RESOLVED:
-        from . import kernel
-        _RESOLVED.append(kernel.resolved_drive)
-    return _RESOLVED[0](P, T, OP, F_was, n, ramped, cache)
 
 
 def _probe(ctx):
