@@ -162,17 +162,19 @@ np.save(req["out"], np.array(rows))
 
 
 def test_a_c_host_with_no_python_runs_it(fmus, tmp_path):
-    """`env -i PATH=/usr/bin:/bin`: the host steps it under a master moving its inputs, rolls
-    a state back bit for bit through serialise and deserialise, and no libpython is in its
-    process; every output after every step is FMPy's run of the same FMU and master, bit for
-    bit."""
+    """No Python reachable (an environment of one variable, PATH, naming an empty folder: no
+    python on it, no TRIPOD_THRUST_PYTHON, no virtualenv): the host steps it under a master
+    moving its inputs, rolls a state back bit for bit through serialise and deserialise, and no
+    libpython is in its process; every output after every step is FMPy's run of the same FMU
+    and master, bit for bit."""
     import json
     d = tmp_path / "fmu"
     d.mkdir()
     zipfile.ZipFile(fmus[0]).extractall(d)
     host = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    (tmp_path / "empty").mkdir()
     p, rows = _run([str(host), str(d / f"binaries/linux64/{_model_id(fmus[0])}.so")], fmus,
-                   tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"})
+                   tmp_path / "out.bin", {"PATH": str(tmp_path / "empty")})
     assert p.returncode == 0, p.stdout + p.stderr
     assert "FAILED" not in p.stdout and "check rollback bit for bit ok" in p.stdout
     assert "python-in-process no" in p.stdout
