@@ -59,6 +59,7 @@ _C = frozenset({"contact"})
 BEARING_IDEAL, BEARING_LUMPED, BEARING_RESOLVED = 0, 1, 2
 (INTEGRATOR_EULER, INTEGRATOR_EXTRAPOLATED, INTEGRATOR_EXPLICIT, INTEGRATOR_ADAPTIVE,
  INTEGRATOR_DEFAULT) = range(5)
+SPIDER_PRESCRIBED, SPIDER_FREE = range(2)
 
 PARAMS: tuple[Param, ...] = (
     # --- scene: the paper's test conditions (section 3.1) ---
@@ -186,6 +187,18 @@ PARAMS: tuple[Param, ...] = (
           "mid-plane; 0 = from the geometry, 2 (r_groove - r_roller) (one cylinder, the "
           "paper's groove); below that the roller would touch both flanks (refused)",
           models=_C),
+    # --- the whole joint (docs/model.md, "The floating spider") ---
+    Param("spider", SPIDER_PRESCRIBED, "1", SPIDER_PRESCRIBED, SPIDER_FREE,
+          "0 prescribed: each trunnion moves on Eqs. (1)-(8) and each roller is pressed by "
+          "torque / (3 s) (the paper's); 1 free: the spider's centre and twist come from the "
+          "three rollers' forces and the input torque (n_rollers = 3, bearing 0 or 1)",
+          kind="int", models=_C),
+    Param("spider_mass", 0.32, "kg", 0.0, 100.0,
+          "spider = 1: mass moving with the spider's centre across the shaft (the spider with "
+          "its trunnions, and any share of the intermediate shaft)", lo_open=True, models=_C),
+    Param("spider_inertia", 8.5e-5, "kg.m2", 0.0, 10.0,
+          "spider = 1: moment of inertia of the spider about the shaft axis", lo_open=True,
+          models=_C),
 )
 
 BY_NAME = {p.name: p for p in PARAMS}
@@ -224,10 +237,18 @@ OUTPUTS = (
      "F_press"),
     ("plunge", "m", "the spider's travel along the housing axis: the integral of plunge_speed "
      "as held over each communication step, 0 at the start"),
+    ("spider_x", "m", "the spider centre's position along the housing's X (spider = 0: Eq. "
+     "(5)'s orbit, e (cos 2x, sin 2x) at roller 1's whirl angle x; 1: from the forces)"),
+    ("spider_y", "m", "the spider centre's position along the housing's Y"),
+    ("F_roller_1", "N", "pressing load roller 1's trunnion carries (spider = 0: F_roller; 1: "
+     "from the spider's balance)"),
+    ("F_roller_2", "N", "pressing load roller 2's trunnion carries (0 with n_rollers = 1)"),
+    ("F_roller_3", "N", "pressing load roller 3's trunnion carries (0 with n_rollers = 1)"),
 )
 # the outputs the contact model has and the analytic model does not (no contact point there)
 CONTACT_ONLY_OUTPUTS = ("contact_y", "contact_z", "roller_spin", "contact_y_2", "contact_z_2",
-                        "contact_y_3", "contact_z_3")
+                        "contact_y_3", "contact_z_3",
+                        "spider_x", "spider_y", "F_roller_1", "F_roller_2", "F_roller_3")
 
 
 # Integer outputs: name, description, the FMU that has it.
@@ -406,6 +427,8 @@ RELATIONS = {
                          "geometry) or [%g, 0.01] m)",
     "n_rollers": "n_rollers = %.0f is not allowed; allowed: 1 or 3",
     "bore": "r_bore = %g m must be below r_roller = %g m (range (0, r_roller) m)",
+    "spider": "spider = 1 (free) needs n_rollers = 3 and bearing 0 or 1 (the needle-resolved "
+              "row is not coupled to a floating spider); got n_rollers = %.0f, bearing = %.0f",
 }
 
 
@@ -435,4 +458,7 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
         check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(RELATIONS["bore"] % (scene["r_bore"], scene["r_roller"]))
+    if scene.get("spider", SPIDER_PRESCRIBED) == SPIDER_FREE and (
+            scene["n_rollers"] != 3 or scene["bearing"] == BEARING_RESOLVED):
+        raise ValueError(RELATIONS["spider"] % (scene["n_rollers"], scene["bearing"]))
     return scene

@@ -105,10 +105,12 @@ NOTE_TEXT = (
     (ERROR, RELATIONS["running_clearance"]),
     (ERROR, RELATIONS["n_rollers"]),
     (ERROR, RELATIONS["bore"]),
+    (ERROR, RELATIONS["spider"]),
 ) + tuple((ERROR, "roller %.0f: " + adapt_refusal(WHY[f])) for f in FAILS)
 (NOTE_INFO, NOTE_INFO_OP, NOTE_SUMMARY, NOTE_SUMMARY_GA, NOTE_SUMMARY_BDF, NOTE_SUMMARY_ADAPT,
- NOTE_STEPS, NOTE_TOO_LONG, NOTE_GROOVE, NOTE_CLEARANCE, NOTE_ROLLERS, NOTE_BORE) = range(12)
-NOTE_ADAPT = 12                      # + the index of hs[H_FAIL] in FAILS
+ NOTE_STEPS, NOTE_TOO_LONG, NOTE_GROOVE, NOTE_CLEARANCE, NOTE_ROLLERS, NOTE_BORE,
+ NOTE_SPIDER) = range(13)
+NOTE_ADAPT = 13                      # + the index of hs[H_FAIL] in FAILS
 
 
 def note(W, code, a0, a1, a2, a3):
@@ -224,7 +226,9 @@ STATE_PROBLEMS = ("", "its flags or counts are none the model writes",
                   "needles",
                   "a roller's speeds are beyond the scene's (ten times what its inputs drive)",
                   "a roller's radial offset or tilt on its needle row is beyond the row's "
-                  "thickness")
+                  "thickness",
+                  "the free spider's pose is beyond the groove radius or its speeds beyond the "
+                  "scene's (ten times what its inputs drive)")
 
 
 def compiled_at():

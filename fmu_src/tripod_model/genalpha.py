@@ -77,6 +77,8 @@ def ga_forces(Y, P, drive, L, res, Q, M):
     lumped = P[P_BEARING] == BEAR_LUMPED
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
     c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, lumped)
+    if drive.x0_rate != 0.0:   # a floating spider moves the trunnion (spider.py)
+        v = (v[0] + drive.x0_rate, v[1], v[2])
     groove_contact(c, v, wr, P, res)
     ax, ay, az = L[L_AX], L[L_AY], L[L_AZ]
     fx, fy, fz, mx, my, mz = res[R_FX], res[R_FY], res[R_FZ], res[R_MX], res[R_MY], res[R_MZ]

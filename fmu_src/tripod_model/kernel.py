@@ -20,7 +20,7 @@ import math
 from reduced_model.housing import housing_forces
 from reduced_model.thrust import fz_mod
 from . import layout as K
-from . import oppoint, roller_setup
+from . import oppoint, roller_setup, spider
 from .jit import c_function, carray, compiled_copies, njit
 from .assembly import resolved_forces
 from .budget import MAX_SUBSTEPS
@@ -33,7 +33,9 @@ from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAU
     INT_EXTRAPOLATED, O_CY, O_CZ, O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEARING,
     P_INTEGRATOR, P_VP, R_FN, R_FX, R_FY, R_FZ, R_PY, R_PZ, R_SLIP, Y_OM, Y_PL, Y_X)
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, OP_THETA, OP_TQ,
-    OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE)
+    OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE,
+    OUT_SPIDER_X)
+from reduced_model.scene import SPIDER_FREE
 
 
 # the operating point at OP's inputs (oppoint.derive), compiled with the callees it names;
@@ -63,9 +65,19 @@ def inputs_moved(P, hs, jump):
 
 @njit
 def run_substeps(Y, P, drive, h, n, out, W, NW):
-    """Advance Y by n substeps of h [s] at the held inputs drive (layout.Drive); write the
-    outputs at the end.  W: the roller's work arrays (layout.Work); NW: the needle work arrays
-    (layout.NeedleWork) with the resolved bearing, else None.
+    """Advance Y by n substeps of h [s] at the held inputs drive (layout.Drive) (advance);
+    write the outputs at the end (roller_outputs).  Returns advance's verdict."""
+    if not advance(Y, P, drive, h, n, W, NW):
+        return False
+    roller_outputs(Y, P, drive, out, W, NW)
+    return True
+
+
+@njit
+def advance(Y, P, drive, h, n, W, NW):
+    """Advance Y by n substeps of h [s] at the held inputs drive (layout.Drive).  W: the
+    roller's work arrays (layout.Work); NW: the needle work arrays (layout.NeedleWork) with the
+    resolved bearing, else None.
 
     The integrator P[P_INTEGRATOR] names (layout.py): INT_EULER, INT_EXPLICIT: n plain
     substeps (steplib.substep); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h
@@ -74,9 +86,9 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     (steplib.adaptive_steps); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
     (genalpha.ga_steps), BDF2 with the needle-resolved one (bdf2.bdf2_steps).
 
-    Returns False, the outputs not written, where the step is longer than MAX_SUBSTEPS substeps
-    (refused before it starts) or the adaptive substeps ran out of their budget
-    (steplib.adaptive_steps); hs[H_FAIL] says which (budget.py).
+    Returns False where the step is longer than MAX_SUBSTEPS substeps (refused before it
+    starts) or the adaptive substeps ran out of their budget (steplib.adaptive_steps);
+    hs[H_FAIL] says which (budget.py).
     """
     hs = W.hs
     hs[K.H_FAIL] = K.FAIL_NONE
@@ -103,7 +115,13 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
         else:
             substep(Y, P, drive, h, W, NW)
         hs[H_TAKEN] += 1.0   # substeps taken, as the adaptive ones count theirs
-    # outputs at the end of the step (forces on the groove = minus those on the roller)
+    return True
+
+
+@njit
+def roller_outputs(Y, P, drive, out, W, NW):
+    """The output vector out (layout's O_ slots) at the state Y: forces on the groove (minus
+    those on the roller), contact point, slip, spin, whirl angle, plunge."""
     L, res = W.L, W.res
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
     c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, P[P_BEARING] != BEAR_IDEAL)
@@ -120,7 +138,6 @@ def run_substeps(Y, P, drive, h, n, out, W, NW):
     out[O_FN] = res[R_FN]
     out[O_X] = Y[Y_X]
     out[O_PL] = Y[Y_PL]
-    return True
 
 
 @njit
@@ -220,11 +237,34 @@ def step_roller(Y, P, OP, W, out, dst):
 
 
 @njit
+def spider_into(out, n, theta, s, F, head, free, dst):
+    """The spider's outputs: its centre in the housing frame (Eq. (5)'s orbit at roller 1's
+    whirl angle and theta [rad], s [m]; a free spider's pose off it in the header row head) and
+    the pressing load each trunnion carries [N] (prescribed: F where a roller is; free: the
+    spider's balance).  Returns whether all are finite (nothing is written otherwise)."""
+    X, Y = spider.orbit(s, theta, out[0, K.O_X])
+    F1, F2, F3 = F, (F if n > 1 else 0.0), (F if n > 2 else 0.0)
+    if free:
+        X += head[K.OP_SP_QX]
+        Y += head[K.OP_SP_QY]
+        F1, F2, F3 = head[K.OP_SP_F1], head[K.OP_SP_F2], head[K.OP_SP_F3]
+    vals = (X, Y, F1, F2, F3)
+    for v in vals:
+        if not math.isfinite(v):
+            return False
+    for i in range(len(vals)):
+        dst[OUT_SPIDER_X + i] = vals[i]
+    return True
+
+
+@njit
 def step_joint(n, Y, P, OP, Wn, out, dst):
     """A joint of n rollers in one call (kernel.step's n > 0): OP a header row, whose inputs
     every roller takes, over the rollers' own rows; every other array the rollers' arrays as
     rows (Wn: their layout.Work, each array one row a roller).  The outputs are roller 1's and
     the joint's (JointModel.step).  Returns step's codes."""
+    if P[0, K.P_SPIDER] == SPIDER_FREE:
+        return step_free_spider(n, Y, P, OP, Wn, out, dst)
     head = OP[0]
     total = 0.0   # left to right, as JointModel.step
     jump = -1.0
@@ -245,6 +285,8 @@ def step_joint(n, Y, P, OP, Wn, out, dst):
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
         return 2
     if not joint_into(out, n, P[0, K.P_S], OP[1, OP_F], dst):
+        return 2
+    if not spider_into(out, n, OP[1, OP_THETA], P[0, K.P_S], OP[1, OP_F], head, False, dst):
         return 2
     dst[OUT_FZ_JOINT] = total
     dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
@@ -279,8 +321,11 @@ def step(args):
             return rc
         # (the same output array seen as one row: no reshape, whose helper the prebuilt
         # library does not carry)
-        return 1 if joint_into(carray(pout, (1, K.O_LEN)), 1, P1[K.P_S],
-                               head[OP_F], dst) else 2
+        one = carray(pout, (1, K.O_LEN))
+        if not joint_into(one, 1, P1[K.P_S], head[OP_F], dst):
+            return 2
+        return 1 if spider_into(one, 1, head[OP_THETA], P1[K.P_S], head[OP_F], head, False,
+                                dst) else 2
     Wn = K.Work(carray(pL, (n, K.L_LEN)), carray(pres, (n, K.R_LEN)),
                 carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN)), carray(pG, (n, K.NV, 3)),
                 carray(pA, (n, K.NV, K.NV)), carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN)),
@@ -303,3 +348,8 @@ def c_step():
 def c_functions():
     """{"step": the step as a C function}, what fmu_src/aot.py compiles ahead of time."""
     return {"step": c_step()}
+
+
+# the free spider's joint step (spider = 1), which step_joint hands a joint to: imported last,
+# as it steps the rollers with this module's functions
+from .free_spider import step_free_spider  # noqa: E402

@@ -13,7 +13,8 @@ from reduced_model import scene
  P_MU_ROLLING, P_FRICTION_NEEDLE, P_ROLLING_RESISTANCE, P_KN, P_R_BORE, P_QSUM,
  P_NEEDLE_CLEARANCE, P_INTEGRATOR, P_KWR, P_LT, P_IT, P_STEP_TOLERANCE, P_HMAX, P_V_ST,
  P_MAX_SUBSTEP, P_VP, P_CONTACT_DAMPING, P_ROW_DAMPING, P_DF, P_FLANK, P_HFREE, P_RINGA,
- P_NEWTON_PASSES, P_NEWTON_TOL, P_LEN, *_) = range(128)
+ P_NEWTON_PASSES, P_NEWTON_TOL, P_SPIDER, P_SPIDER_MASS, P_SPIDER_INERTIA, P_LEN,
+ *_) = range(128)
 # The slots named after a parameter hold its value (roller_setup.COPIED, FLAGS); the others
 # what the set-up derives (roller_setup.kernel_params) or the operating point does: P_VST_OP,
 # P_HMAX the transition velocity and the largest adaptive substep the operating point derived
@@ -110,16 +111,24 @@ N_F = 11   # floats per needle in the state vector
 (OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_VP,
  OP_KEY) = range(12)
 OP_NROLL = OP_KEY + 6
-OP_LEN = OP_NROLL + 1
+# a joint's header row, spider = free (spider.py): the spider's coordinates q = (dX, dY [m],
+# psi [rad]) off its kinematic pose (Eq. 5's orbit, untwisted) and their rates, whether they
+# are set (OP_SP_SET), the pressing loads the trunnions carried at the step's end [N] and the
+# forces on the spider then (the rollers' and the torque's, generalized: N, N, N m)
+(OP_SP_QX, OP_SP_QY, OP_SP_PSI, OP_SP_VX, OP_SP_VY, OP_SP_VPSI, OP_SP_SET, OP_SP_F1, OP_SP_F2,
+ OP_SP_F3, OP_SP_GX, OP_SP_GY, OP_SP_GPSI) = range(OP_NROLL + 1, OP_NROLL + 14)
+OP_LEN = OP_SP_GPSI + 1
 OUTPUT_NAMES = ("Fx", "Fy", "Fz", "Fz_mod", "dFx", "contact_y", "contact_z", "slip_speed",
                 "roller_spin", "Fz_joint", "Fz_2", "Fz_3", "whirl_angle",
                 "Fx_2", "Fy_2", "contact_y_2", "contact_z_2",
                 "Fx_3", "Fy_3", "contact_y_3", "contact_z_3",
-                "F_housing_x", "F_housing_y", "T_housing", "F_roller", "plunge")
+                "F_housing_x", "F_housing_y", "T_housing", "F_roller", "plunge",
+                "spider_x", "spider_y", "F_roller_1", "F_roller_2", "F_roller_3")
 N_OUT = len(OUTPUT_NAMES)
 OUT_FZ_JOINT, OUT_FZ_2, OUT_FZ_3 = (OUTPUT_NAMES.index(n) for n in ("Fz_joint", "Fz_2", "Fz_3"))
 OUT_FX_2 = OUTPUT_NAMES.index("Fx_2")   # the joint's outputs from here on (kernel.joint_into)
 OUT_PLUNGE = OUTPUT_NAMES.index("plunge")
+OUT_SPIDER_X = OUTPUT_NAMES.index("spider_x")   # then spider_y, F_roller_1..3 (kernel.spider_into)
 
 # --- records passed through the kernel (numba takes namedtuples as typed records) ---
 # the step's driving inputs: joint angle theta [rad], whirl rate w [rad/s], the trunnion

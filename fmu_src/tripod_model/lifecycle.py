@@ -15,7 +15,7 @@ from reduced_model.table import D_COUNT, SETTLED_TOL, traverse_table
 from . import layout as K
 from .contact import trunnion_axial
 from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAMES, MAX_NOTES,
-                         NOTE_ADAPT, NOTE_BORE, NOTE_CLEARANCE, NOTE_GROOVE,
+                         NOTE_ADAPT, NOTE_BORE, NOTE_CLEARANCE, NOTE_GROOVE, NOTE_SPIDER,
                          NOTE_INFO, NOTE_INFO_OP, NOTE_ROLLERS, NOTE_STEPS, NOTE_SUMMARY,
                          NOTE_SUMMARY_ADAPT, NOTE_SUMMARY_BDF, NOTE_SUMMARY_GA, NOTE_TEXT,
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
@@ -25,14 +25,16 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
 from .kernel import (_roller, derive_op, inputs_moved, joint_into, outputs_into, resolved_drive,
-                     run_substeps, step_joint, step_roller)
+                     run_substeps, spider_into, step_joint, step_roller)
 from .oppoint import P_DERIVED, OP_DERIVED, substep, v_st
 from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE, T_L_NEEDLE,
-                           T_N_ROLLERS, T_R_BORE, T_R_GROOVE, T_R_ROLLER, T_RUNNING_CLEARANCE,
+                           T_N_ROLLERS, T_SPIDER, T_R_BORE, T_R_GROOVE, T_R_ROLLER, T_RUNNING_CLEARANCE,
                            T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
                            place_on_cycle, pressing_offset, start_needles, start_state,
                            uses_table)
 from .state_check import SPEED_MARGIN
+from .spider import spider_bounds
+from reduced_model.scene import SPIDER_FREE
 
 
 # --- set-up and start -------------------------------------------------------------------------
@@ -51,6 +53,10 @@ def check_scene(T, W):
         return False
     if T[T_R_BORE] >= T[T_R_ROLLER]:
         note(W, NOTE_BORE, T[T_R_BORE], T[T_R_ROLLER], 0.0, 0.0)
+        return False
+    if T[T_SPIDER] == SPIDER_FREE and (T[T_N_ROLLERS] != 3.0
+                                       or T[T_BEARING] == K.BEAR_RESOLVED):
+        note(W, NOTE_SPIDER, T[T_N_ROLLERS], T[T_BEARING], 0.0, 0.0)
         return False
     return True
 
@@ -173,15 +179,17 @@ def start(T, IN, X, W, F):
         hs[K.H_RING] = K.RING_OPEN  # the roller's ring resolved from the start
 
 
-def joint_outputs(out, n, s, F, OUT):
+def joint_outputs(out, n, s, F, theta, OUT):
     """The FMU's outputs from the rollers' output vectors out (n rows) at the pressing load F
-    [N] per roller (model._joint_outputs).  Returns 1, or 2 (a non-finite output)."""
+    [N] per roller and the joint angle theta [rad] (model._joint_outputs).  Returns 1, or 2 (a
+    non-finite output)."""
     total = 0.0   # left to right, as model._joint_outputs
     for i in range(n):
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], F, OUT):
         return 2
-    if not joint_into(out, n, s, F, OUT):
+    if not joint_into(out, n, s, F, OUT) or not spider_into(out, n, theta, s, F, out[0], False,
+                                                           OUT):
         return 2
     OUT[K.OUT_FZ_JOINT] = total
     OUT[K.OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
@@ -217,7 +225,7 @@ def init(T, IN, X, OUT, W):
             probe(ctx + (needle_work(X, W, i, nn, ns), cache))
         else:
             probe(ctx + (None, cache))
-    rc = joint_outputs(_at(X, X_OUTV, (n, K.O_LEN)), n, T[T_S], F, OUT)
+    rc = joint_outputs(_at(X, X_OUTV, (n, K.O_LEN)), n, T[T_S], F, IN[THETA], OUT)
     setup(T, X, W)
     return rc
 
@@ -268,7 +276,7 @@ def step_resolved(T, X, W, n, nn, ns, ny, ys, OUT):
                             needle_work(X, W, i, nn, ns)):
             return 3
     return joint_outputs(_at(X, X_OUTV, (n, K.O_LEN)), n, T[T_S], X[X_OP + K.OP_LEN + K.OP_F],
-                         OUT)
+                         X[X_OP + K.OP_LEN + K.OP_THETA], OUT)
 
 
 def step(T, IN, X, OUT, W, t, h):
@@ -299,8 +307,11 @@ def step(T, IN, X, OUT, W, t, h):
         if n == 1:
             rc = step_roller(X[X_Y:X_Y + K.Y_LEN], X[X_P:X_P + K.P_LEN], X[X_OP:X_OP + K.OP_LEN],
                              work(X, W, 0, K.Y_LEN, K.Y_LEN), X[X_OUTV:X_OUTV + K.O_LEN], OUT)
-            if rc == 1 and not joint_into(_at(X, X_OUTV, (1, K.O_LEN)), 1, X[X_P + K.P_S],
-                                          X[X_OP + K.OP_F], OUT):
+            one = _at(X, X_OUTV, (1, K.O_LEN))
+            if rc == 1 and not (joint_into(one, 1, X[X_P + K.P_S], X[X_OP + K.OP_F], OUT)
+                                and spider_into(one, 1, X[X_OP + K.OP_THETA], X[X_P + K.P_S],
+                                                X[X_OP + K.OP_F], X[X_OP:X_OP + K.OP_LEN],
+                                                False, OUT)):
                 rc = 2
         else:
             Wn = K.Work(_at(W, W_L, (n, K.L_LEN)), _at(W, W_RES, (n, K.R_LEN)),
@@ -420,7 +431,21 @@ def state_problem(T, IN, X, W):
         code = roller_problem(T, IN, X, W, i, n, resolved, ny, ys)
         if code != 0:
             return code
+    if T[T_SPIDER] == SPIDER_FREE:
+        return spider_problem(T, IN, X)
     return 0
+
+
+def spider_problem(T, IN, X):
+    """0 when a free spider's state (OP's header row) is one it can step
+    (state_check.check_spider_state's bounds), else a code of STATE_PROBLEMS."""
+    head = X[X_OP:X_OP + K.OP_LEN]
+    if head[K.OP_SP_SET] != 0.0 and head[K.OP_SP_SET] != 1.0:
+        return 1
+    kin = T[T_S] * abs(IN[OMEGA])
+    return spider_bounds(head[K.OP_SP_QX], head[K.OP_SP_QY], head[K.OP_SP_PSI],
+                         head[K.OP_SP_VX], head[K.OP_SP_VY], head[K.OP_SP_VPSI], T[T_S],
+                         T[T_R_GROOVE], kin)
 
 
 # what the FMU's binary compiles of this module (c_functions), callees first

@@ -12,7 +12,7 @@ import numpy as np
 from reduced_model import scene as scene_mod
 
 # (numba only when needed)
-from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide
+from . import layout as K, native, needle_setup, oppoint, roller_setup, spider, start_slide
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces
@@ -312,11 +312,12 @@ def fast_argv(arrays):
     return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
 
 
-def _joint_outputs(outs, s, F):
+def _joint_outputs(outs, s, F, theta):
     """Roller 1's outputs plus the joint's: Fz_joint (the housing thrust, the sum of the
     rollers' Fz [N]), the other rollers' forces and contact points (0 where absent), the joint's
     force and torque on the housing (reduced_model/housing.py, at the contact radius s +
-    contact_y [m]) and the pressing load per roller F [N]."""
+    contact_y [m]), the pressing load per roller F [N], the spider's centre on Eq. (5)'s orbit
+    at the joint angle theta [rad] (kernel.spider_into) and each trunnion's load."""
     o = dict(outs[0])
     total = 0.0   # left to right, as kernel.step (sum() compensates from Python 3.12 on)
     for x in outs:
@@ -333,6 +334,9 @@ def _joint_outputs(outs, s, F):
         o1["Fx"], o1["Fy"], s + o1["contact_y"], r2["Fx"], r2["Fy"], s + r2["contact_y"],
         r3["Fx"], r3["Fy"], s + r3["contact_y"])
     o["F_roller"] = F
+    o["spider_x"], o["spider_y"] = spider.orbit(s, theta, o1["whirl_angle"])
+    for i in range(3):
+        o[f"F_roller_{i + 1}"] = F if i < len(outs) else 0.0
     return o
 
 
@@ -352,6 +356,9 @@ class JointModel:
                         for i in range(p["n_rollers"])]
         self._stacks = (self._stack() if len(self.rollers) > 1 and p["bearing"] != K.BEAR_RESOLVED
                         else None)
+        self.free = p["spider"] == scene_mod.SPIDER_FREE   # (validate: three rollers then)
+        self._dst = np.zeros(K.N_OUT)    # the free spider's outputs (kernel.step's OUT)
+        self._argv = None
 
     def _stack(self):
         """The rollers' arrays as rows of one array each (kernel.step steps them as a joint in
@@ -392,8 +399,11 @@ class JointModel:
 
     def step(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """Advance every roller by dt [s]; returns roller 1's outputs plus the joint's."""
+        if self.free:
+            return self._step_free(dt, theta, omega, F_press, torque, plunge_speed)
         out = _joint_outputs([r.step(dt, theta, omega, F_press, torque, plunge_speed)
-                              for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
+                              for r in self.rollers], self.p["s"], self.pressing(F_press, torque),
+                             theta)
         if self._stacks is not None:   # the inputs and step a joint's kernel.step takes next
             head, op = self._stacks["_OP"][0], self.rollers[0]._OP
             for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
@@ -403,7 +413,41 @@ class JointModel:
     def initial_outputs(self, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """The outputs of step() at the start state, without a step (the FMU's start time)."""
         return _joint_outputs([r.initial_outputs(theta, omega, F_press, torque, plunge_speed)
-                               for r in self.rollers], self.p["s"], self.pressing(F_press, torque))
+                               for r in self.rollers], self.p["s"], self.pressing(F_press, torque),
+                              theta)
+
+    def _step_free(self, dt, theta, omega, F_press, torque, plunge_speed):
+        """A step of the rollers on a floating spider (kernel.step_free_spider, through the
+        prebuilt kernel where there is one): all three rollers and the spider in one call."""
+        F = self.pressing(F_press, torque)
+        for r in self.rollers:
+            if not r._started:
+                r.start(theta, omega, F, plunge_speed)
+            r.set_inputs(dt, theta, omega, F_press, torque, plunge_speed)
+        head, op = self._stacks["_OP"][0], self.rollers[0]._OP
+        for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
+            head[j] = op[j]
+        taken = [r._hs[K.H_TAKEN] for r in self.rollers]
+        fn = native.step_function()
+        if fn is not None:
+            if self._argv is None:
+                arrays = self.fast_arrays()
+                self._argv = fast_argv(arrays[:3] + (self._dst,) + arrays[3:])
+            rc = fn(self._argv.ctypes.data)
+        else:
+            from . import kernel
+            st = self._stacks
+            rc = kernel.step_joint(3, st["Y"], st["P"], st["_OP"], K.Work(
+                st["_L"], st["_res"], st["_Y1"], st["_Y2"], st["_G"], st["_A"], st["_b"],
+                st["_hs"], st["_GW"]), st["out"], self._dst)
+        if rc == 3:
+            raise StepRefused(self.refusal())
+        if rc != 1:
+            raise FloatingPointError("the free spider's step gave a non-finite output")
+        for r, t in zip(self.rollers, taken):
+            r.substeps += int(r._hs[K.H_TAKEN] - t)
+            r.time += dt
+        return dict(zip(K.OUTPUT_NAMES, self._dst.tolist()))
 
     def refusal(self) -> str:
         """Why the last step ran out of its budget, and in which roller (budget.refusal)."""
@@ -413,11 +457,17 @@ class JointModel:
         return "no roller ran out of its budget"
 
     def get_state(self) -> list:
-        return [r.get_state() for r in self.rollers]
+        """The rollers' states; a free spider's (its OP_SP_* slots) with roller 1's."""
+        states = [r.get_state() for r in self.rollers]
+        if self.free:
+            states[0]["spider"] = self._stacks["_OP"][0, K.OP_SP_QX:K.OP_LEN].copy()
+        return states
 
     def set_state(self, st: list) -> None:
         for r, s in zip(self.rollers, st):
             r.set_state(s)
+        if self.free:
+            self._stacks["_OP"][0, K.OP_SP_QX:K.OP_LEN] = st[0]["spider"]
 
     def summary(self) -> str:
         """One line for the FMU log at the end: the integration steps roller 1 took."""

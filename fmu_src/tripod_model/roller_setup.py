@@ -30,7 +30,8 @@ COPIED = tuple((slot, _slot(name)) for slot, name in (
     (K.P_NEEDLE_CLEARANCE, "needle_clearance"), (K.P_INTEGRATOR, "integrator"),
     (K.P_V_ST, "v_st"), (K.P_MAX_SUBSTEP, "max_substep"), (K.P_NEWTON_PASSES, "newton_passes"),
     (K.P_NEWTON_TOL, "newton_tol"), (K.P_CONTACT_DAMPING, "contact_damping"),
-    (K.P_ROW_DAMPING, "row_damping")))
+    (K.P_ROW_DAMPING, "row_damping"), (K.P_SPIDER, "spider"), (K.P_SPIDER_MASS, "spider_mass"),
+    (K.P_SPIDER_INERTIA, "spider_inertia")))
 FLAGS = tuple((slot, _slot(name)) for slot, name in (
     (K.P_PITCH, "pitch"), (K.P_YAW, "yaw"), (K.P_ROLL, "roll"), (K.P_AXIAL, "axial"),
     (K.P_TRAVERSE, "traverse"), (K.P_FRICTION_GROOVE, "friction_groove"),
@@ -50,12 +51,12 @@ ELSEWHERE = {"n_rollers": "the joint (model.JointModel, lifecycle.py)",
  T_N_NEEDLES, T_N_SPHERES, T_L_NEEDLE, T_D_NEEDLE, T_R_TRUNNION, T_NEEDLE_CLEARANCE,
  T_NEEDLE_CIRC_CLEARANCE, T_NEEDLE_AXIAL_CLEARANCE, T_RHO_NEEDLE, T_ROLLER_WIDTH, T_MU_NEEDLE, T_MU_ROLLING,
  T_FRICTION_NEEDLE, T_ROLLING_RESISTANCE, T_STEP_TOLERANCE, T_RUNNING_CLEARANCE, T_TRAVERSE,
- T_FRICTION_GROOVE, T_N_ROLLERS, T_DRIVE_BY_ANGLE, T_AXIAL) = map(_slot, (
+ T_FRICTION_GROOVE, T_N_ROLLERS, T_DRIVE_BY_ANGLE, T_AXIAL, T_SPIDER) = map(_slot, (
     "s", "r_roller", "r_groove", "r_bore", "m_roller", "E", "nu", "mu_groove", "bearing",
     "n_needles", "n_spheres", "l_needle", "d_needle", "r_trunnion", "needle_clearance",
     "needle_circ_clearance", "needle_axial_clearance", "rho_needle", "roller_width", "mu_needle",
     "mu_rolling", "friction_needle", "rolling_resistance", "step_tolerance", "running_clearance",
-    "traverse", "friction_groove", "n_rollers", "drive_by_angle", "axial"))
+    "traverse", "friction_groove", "n_rollers", "drive_by_angle", "axial", "spider"))
 
 
 def kernel_params(T, P):

@@ -93,9 +93,27 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
             _within(n + label, Y[i], v / rb, "rad/s", "the scene's speeds")
 
 
+def check_spider_state(sp, p: dict, omega: float) -> None:
+    """Raise BadState if a free spider's state (JointModel.get_state: OP_SP_* on) cannot be
+    stepped: spider.spider_bounds's bounds at the whirl rate omega [rad/s] it is to step at."""
+    from .spider import spider_bounds
+    _finite("the spider's state", sp)
+    if sp[K.OP_SP_SET - K.OP_SP_QX] not in (0.0, 1.0):
+        raise BadState("the spider's set flag is none the model writes")
+    q = [float(sp[j - K.OP_SP_QX]) for j in (K.OP_SP_QX, K.OP_SP_QY, K.OP_SP_PSI, K.OP_SP_VX,
+                                              K.OP_SP_VY, K.OP_SP_VPSI)]
+    if spider_bounds(*q, p["s"], p["r_groove"], p["s"] * abs(omega)):
+        raise BadState(f"the spider's pose (dX, dY, psi) = ({q[0]:.4g} m, {q[1]:.4g} m, "
+                       f"{q[2]:.4g} rad) or its speeds ({q[3]:.4g} m/s, {q[4]:.4g} m/s, "
+                       f"{q[5]:.4g} rad/s) are beyond +-{p['r_groove']:.4g} m, "
+                       f"+-{p['r_groove'] / p['s']:.4g} rad or ten times the scene's speeds")
+
+
 def check_joint_state(states: list, p: dict, theta: float, omega: float, vp: float) -> None:
     """check_roller_state for each roller of a JointModel state (JointModel.get_state), the
-    reason prefixed with the roller's number."""
+    reason prefixed with the roller's number; a free spider's (check_spider_state)."""
+    if states and "spider" in states[0]:
+        check_spider_state(states[0]["spider"], p, omega)
     for i, st in enumerate(states):
         try:
             check_roller_state(st, p, theta, omega, vp)
