@@ -41,7 +41,9 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
          "TripodRoller-lumped-three": (CONTACT_INPUTS, {"bearing": 1, "n_rollers": 3},
                                        ("mu_groove", 0.07), 0.5),
          "TripodRoller-resolved": (CONTACT_INPUTS, {"bearing": 2, "n_needles": 12},
-                                   ("mu_groove", 0.07), 0.03)}
+                                   ("mu_groove", 0.07), 0.03),
+         "TripodRoller-free-spider": (CONTACT_INPUTS, {"spider": 1, "n_rollers": 3},
+                                      ("mu_groove", 0.07), 0.5)}
 
 
 @pytest.fixture(scope="module", params=sorted(CASES))

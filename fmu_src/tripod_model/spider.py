@@ -85,8 +85,12 @@ def trunnion_force(Y, P, x0, rate, drive, W):
         fz = res[K.R_FZ] - P[K.P_M_ROLLER] * L[K.L_QZDD]
         return fx, -(fx * ax + fz * az) / ay, fz, groove_stiffness_x(P, res, c)
     Fr, kr = row_load(P, Y[K.Y_E])
+    # the radial damping the roller's step puts between it and the trunnion (kernel's lumped
+    # radial step: the row's and the groove's stiffness together)
+    m = P[K.P_M_ROLLER]
+    Fr -= row_damping(P, kr + groove_stiffness_x(P, res, c), m) * Y[K.Y_ED]
     kw = row_stiffness(P, kr)[0]
-    Fw = -kw * Y[K.Y_W] - row_damping(P, kw, P[K.P_M_ROLLER]) * Y[K.Y_WD]
+    Fw = -kw * Y[K.Y_W] - row_damping(P, kw, m) * Y[K.Y_WD]
     fa = 0.0
     q = P[K.P_QSUM] * abs(Fr)
     if P[K.P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
