@@ -6,12 +6,15 @@ numba compiles the step in a fresh process (an empty cache, so the LLVM module i
 generic x86-64 CPU, so the library runs on any machine the FMU goes to), llvmlite emits it as
 position-independent object code, and the C compiler links it with native/aot_stubs.c (the
 symbols of numba's error path) and libm.  About 20 s.  For win64 the same IR is retargeted to
-x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).
+x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).  The compiled objects are kept by
+the content of their sources (AOT_CACHE, cache_key).
 """
 from __future__ import annotations
 
+import hashlib
 import json
 import os
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -19,6 +22,13 @@ from pathlib import Path
 
 FMU_SRC = Path(__file__).resolve().parent
 STUBS = FMU_SRC / "native" / "aot_stubs.c"
+# compiled objects kept by the content of what compiles them (cache_key): a fresh clone of the
+# same sources on this machine reuses them, as numba's own cache (tripod_model/jit.py) does;
+# TRIPOD_AOT_CACHE names another folder, or "off"
+AOT_CACHE = os.environ.get("TRIPOD_AOT_CACHE") or str(
+    Path.home() / ".cache" / "tripod-thrust" / "aot")
+# the packages a compiled model imports (the emitting process's path: the project and fmu_src)
+SOURCES = (FMU_SRC, FMU_SRC.parent / "reduced_model", FMU_SRC.parent / "driveline")
 
 # per target: the LLVM triple numba's IR is retargeted to (None: the host's), the C compiler
 # that links it, the library's name and the libraries it may import
@@ -56,11 +66,38 @@ json.dump(symbols, open(f"{out}/symbols.json", "w"))
 """
 
 
+def cache_key(spec: str, targets, sources=SOURCES) -> str:
+    """What decides the objects compile_functions emits: the spec and targets, the emitting
+    script, Python's, numba's and llvmlite's versions, and every .py file under ``sources``
+    (path and content)."""
+    from importlib.metadata import version
+    h = hashlib.sha256()
+    for part in (spec, json.dumps(list(targets)), _EMIT_FUNCTIONS, sys.version,
+                 version("numba"), version("llvmlite"),
+                 json.dumps({t: TARGETS[t]["triple"] for t in targets})):
+        h.update(part.encode() + b"\0")
+    for top in sources:
+        for f in sorted(Path(top).rglob("*.py")):
+            h.update(f"{Path(top).name}/{f.relative_to(top)}".encode() + b"\0" + f.read_bytes())
+    return h.hexdigest()[:32]
+
+
+def _symbols(dest: Path, targets) -> dict:
+    symbols = json.loads((dest / "symbols.json").read_text())
+    return {t: {name: (dest / t / f"{name}.o", sym) for name, sym in symbols.items()}
+            for t in targets}
+
+
 def compile_functions(spec: str, dest: Path, targets=("linux64",)) -> dict:
     """Objects dest/TARGET/NAME.o of the C functions module:factory returns (numba cfuncs,
     compiled once in a fresh process for a generic x86-64 CPU, emitted for each target);
-    returns {TARGET: {NAME: (object path, its symbol)}}."""
+    returns {TARGET: {NAME: (object path, its symbol)}}.  Taken from AOT_CACHE when the same
+    sources compiled them before (cache_key)."""
     dest.mkdir(parents=True, exist_ok=True)
+    cached = None if AOT_CACHE == "off" else Path(AOT_CACHE) / cache_key(spec, targets)
+    if cached is not None and (cached / "symbols.json").exists():
+        shutil.copytree(cached, dest, dirs_exist_ok=True)
+        return _symbols(dest, targets)
     with tempfile.TemporaryDirectory() as tmp:
         # empty caches (the LLVM module is then at hand), a generic x86-64 CPU, SVML off (its
         # __svml_* functions exist in no Windows C runtime)
@@ -73,9 +110,24 @@ def compile_functions(spec: str, dest: Path, targets=("linux64",)) -> dict:
                            timeout=1800)
     if p.returncode != 0:
         raise RuntimeError(f"compiling {spec} failed:\n{p.stderr[-3000:]}")
-    symbols = json.loads((dest / "symbols.json").read_text())
-    return {t: {name: (dest / t / f"{name}.o", sym) for name, sym in symbols.items()}
-            for t in targets}
+    if cached is not None:
+        _keep(dest, cached)
+    return _symbols(dest, targets)
+
+
+def _keep(dest: Path, cached: Path) -> None:
+    """dest's objects kept at cached, whole or not at all (a rename within the cache's folder;
+    nothing where another build kept them first or the folder is not writable)."""
+    try:
+        cached.parent.mkdir(parents=True, exist_ok=True)
+        part = Path(tempfile.mkdtemp(dir=cached.parent))
+    except OSError:
+        return
+    try:
+        shutil.copytree(dest, part, dirs_exist_ok=True)
+        os.rename(part, cached)
+    except OSError:
+        shutil.rmtree(part, ignore_errors=True)
 
 
 def compiler(target: str) -> str:

@@ -205,6 +205,8 @@ STEP_COST_CASES = {
         ("TripodRollerAnalytic", dict(MASTER_START, n_rollers=3), MASTER_INPUTS),
     "the whole joint (n_rollers = 3) under that master: contact FMU":
         ("TripodRoller", dict(MASTER_START, n_rollers=3), MASTER_INPUTS),
+    "the whole joint on a floating spider (spider = 1) under that master: contact FMU":
+        ("TripodRoller", dict(MASTER_START, n_rollers=3, spider=1), MASTER_INPUTS),
     "the same in coast (torque -66 N m) under that master: analytic FMU":
         ("TripodRollerAnalytic", dict(MASTER_START, n_rollers=3, torque=-66.0), MASTER_INPUTS),
     # a launch against the paper's scene, both three rollers at fixed inputs, from the start

@@ -15,6 +15,7 @@ from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
 from .runs import default_dt, run_fmu, run_settled, settle_line
+from .spider import format_spider, spider_comparison
 
 # Tolerances and their physical reason (docs/validation.md, "compare's tolerances").
 TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
@@ -111,7 +112,19 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
                    {"analytic": ra, "contact": rc, "omega": omega},
                    regime=rep["regime"], outside=outside, diff27=diff27,
                    phase_lag=None if verification else -diff27["order3"]["phase_deg"],
-                   settled=rc["settle"]["settled"])
+                   settled=rc["settle"]["settled"],
+                   spider=_spider_block(contact_sc, rc, dt, max_cycles, rel_tol))
+
+
+def _spider_block(contact_sc, rc, dt, max_cycles, rel_tol):
+    """spider = 1: the prescribed joint on the same scene, run until periodic, and the free
+    one against it (harness.spider.spider_comparison); else None."""
+    if contact_sc["spider"] != scene_mod.SPIDER_FREE:
+        return None
+    rp = run_settled(ensure_fmu("TripodRoller"), dict(contact_sc, spider=0),
+                     abs(contact_sc["omega"]), ["Fz_mod", "Fz_2", "Fz_3"], dt, max_cycles,
+                     rel_tol)
+    return spider_comparison(contact_sc, rc, rp)
 
 
 def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
@@ -129,7 +142,8 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
     return _result(contact_sc, "analytic_fmu",
                    {**fmu, "closed_form": None, "traverse": None, "fmu": fmu}, oc, oa,
                    _tolerance(contact_sc), {"analytic": ra, "contact": rc, "omega": w},
-                   settled=rc["settle"]["settled"] and ra["settle"]["settled"])
+                   settled=rc["settle"]["settled"] and ra["settle"]["settled"],
+                   spider=_spider_block(contact_sc, rc, dt, max_cycles, rel_tol))
 
 
 def _orders(o):
@@ -138,7 +152,7 @@ def _orders(o):
 
 
 def _result(scene, against, analytic, oc, ref, tol, runs, *, settled, regime=None, outside=(),
-            diff27=None, phase_lag=None) -> dict:
+            diff27=None, phase_lag=None, spider=None) -> dict:
     """compare's JSON-ready result (docs/using-the-fmus.md), one shape for every quadrant:
     the contact FMU's orders oc judged against the orders ref within tol (``against`` names
     them; ``analytic`` holds them and their sources); runs: {"analytic", "contact": the runs,
@@ -157,6 +171,7 @@ def _result(scene, against, analytic, oc, ref, tol, runs, *, settled, regime=Non
         "cycles": st["cycles"], "settled": settled, "cycle_change": st["worst"],
         "pass": bool(ok and settled),
         "wall_s": {"analytic": float(ra["wall_s"]), "contact": float(rc["wall_s"])},
+        "spider": spider,
         "_runs": {**runs, "settle": st},
     }
 
@@ -233,6 +248,8 @@ def format_table(r: dict) -> str:
         d27 = r["difference_eqs_18_27"]["order3"]
         lines.append(f"against Eqs. (18)-(27) (reported, not judged): order 3 "
                      f"{100 * d27['amplitude_rel']:+.1f} %, lagging by {r['phase_lag_deg']:.1f} deg")
+    if r.get("spider"):
+        lines += ["", format_spider(r["spider"])]
     lines += ["", f"wall time: analytic FMU {r['wall_s']['analytic']:.2f} s, contact FMU "
               f"{r['wall_s']['contact']:.2f} s (FMPy in a subprocess)",
               f"verdict: {'PASS' if r['pass'] else 'FAIL'}"

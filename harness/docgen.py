@@ -167,14 +167,20 @@ def _contact_damping() -> str:
 
 
 # slow: checked by the tests that rerun them (tests/test_traverse.py, tests/test_coast.py,
-# tests/test_contact_model.py)
+# tests/test_contact_model.py, tests/test_spider.py)
 def _size_grid() -> str:
     from harness.validation import size_markdown, size_rows
     return size_markdown(size_rows())
 
 
+def _spider_grid() -> str:
+    from harness.validation import spider_markdown, spider_rows
+    return spider_markdown(spider_rows())
+
+
 SLOW_EXACT = {"traverse grid": _traverse_grid, "size grid": _size_grid,
-              "quadrant grid": _quadrant_grid, "contact damping": _contact_damping}
+              "quadrant grid": _quadrant_grid, "contact damping": _contact_damping,
+              "spider grid": _spider_grid}
 
 
 # --- measured blocks: the rows today's code would measure ----------------------------------

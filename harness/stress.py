@@ -95,6 +95,20 @@ def cases(quick=False):
         "20 deg", {"n_rollers": 3, "theta": 20 * DEG, "running_clearance": 1e-3},
         {"time": [0.0, 0.05, 0.25, 0.3], "torque": [3000.0, 3000.0, -3000.0, -3000.0]}, 0.3,
         1e-4, True)
+    # the floating spider (spider = 1): a launch and a torque reversal, both bearings it takes
+    add("free spider: launch 3000 N m, 25 deg", {"torque": 3000.0, "theta": 25 * DEG,
+                                                 "n_rollers": 3, "spider": 1}, None, 0.2, 1e-4,
+        True)
+    add("free spider: launch 3000 N m, 25 deg, lumped bearing",
+        {"torque": 3000.0, "theta": 25 * DEG, "n_rollers": 3, "spider": 1, "bearing": 1}, None,
+        0.2, 1e-4, True)
+    add("free spider: torque reversal 300 -> -300 N m over 0.2 s", {"n_rollers": 3, "spider": 1},
+        {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.3, 1e-4,
+        True)
+    add("free spider: torque reversal 300 -> -300 N m over 0.2 s, lumped bearing",
+        {"n_rollers": 3, "spider": 1, "bearing": 1},
+        {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}, 0.3, 1e-4,
+        True)
     for vp in (0.1, 0.5):
         add(f"plunge {vp:g} m/s", {"plunge_speed": vp}, None, 0.2, 1e-4, True)
     for mu in (0.0, 0.3):

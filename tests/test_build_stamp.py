@@ -30,3 +30,23 @@ def test_the_built_fmus_carry_their_sources_hash():
     for name in ("TripodRoller", "TripodRollerAnalytic"):
         b.build(name)
         assert b._stamp(name).read_text().strip() == b.sources_hash(name)
+
+
+def test_kept_objects_are_found_by_the_content_of_their_sources(tmp_path):
+    """aot.compile_functions keeps what it compiles by aot.cache_key: the same sources give the
+    same key, any byte of any source another key (a fresh clone reuses the objects; an edit
+    compiles again), and so do another spec or target."""
+    b = builder()
+    aot = b.build_module("aot")
+    pkg = tmp_path / "pkg"
+    pkg.mkdir()
+    (pkg / "a.py").write_text("x = 1\n")
+    (pkg / "b.py").write_text("y = 2\n")
+    key = aot.cache_key("m:f", ("linux64",), sources=(pkg,))
+    assert key == aot.cache_key("m:f", ("linux64",), sources=(pkg,))
+    assert key != aot.cache_key("m:g", ("linux64",), sources=(pkg,))
+    assert key != aot.cache_key("m:f", ("linux64", "win64"), sources=(pkg,))
+    (pkg / "b.py").write_text("y = 3\n")
+    assert key != aot.cache_key("m:f", ("linux64",), sources=(pkg,))
+    # and the project's own: every package a compiled model imports
+    assert {p.name for p in aot.SOURCES} == {"fmu_src", "reduced_model", "driveline"}

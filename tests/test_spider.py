@@ -213,3 +213,60 @@ def test_a_torque_reversal_and_a_launch_stay_finite_and_bounded():
     e = e_of(math.radians(25))
     off = np.hypot(r["spider_x"] - e * np.cos(2 * x), r["spider_y"] - e * np.sin(2 * x))
     assert np.max(off) < 2 * (0.0192 - 0.019) + 1e-4
+
+
+def test_compare_sets_the_free_spider_beside_the_prescribed_one():
+    """`tripod-thrust compare --set spider=1 --set n_rollers=3 --json`: the built FMUs, the free
+    joint against the prescribed one and against the analytic FMU."""
+    import json
+    import subprocess
+    import sys
+    p = subprocess.run([sys.executable, "-m", "harness.cli", "compare", "--set", "spider=1",
+                        "--set", "n_rollers=3", "--json"], capture_output=True, text=True,
+                       timeout=900)
+    assert p.returncode == 0, p.stderr[-2000:]
+    r = json.loads(p.stdout)
+    sp = r["spider"]
+    assert r["scene"]["spider"] == 1 and r["pass"] is True
+    # the paper's scene: order 3 of the joint's thrust, free within 15 % of prescribed
+    # (measured -9.5 %, docs/validation.md); the orbit at 2x within 1 % of Eq. (5)'s e
+    assert abs(sp["order3_rel"]) < 0.15
+    assert sp["superposition_holds"] == (abs(sp["order3_rel"]) <= 0.05)
+    assert sp["orbit"]["amplitude"] / sp["orbit"]["e"] == pytest.approx(1.0, abs=0.01)
+    assert abs(sp["orbit"]["phase_deg"]) < 1.0
+    assert -0.05 < sp["loads"]["low_rel"] < 0.0 < sp["loads"]["high_rel"] < 0.05
+    txt = subprocess.run([sys.executable, "-m", "harness.cli", "compare", "--set", "spider=1",
+                          "--set", "n_rollers=3"], capture_output=True, text=True, timeout=900)
+    assert "free spider against the prescribed one" in txt.stdout
+
+
+def _spider_table_rows(rows):
+    from harness import validation
+    return [validation.spider_markdown([r]).splitlines()[2] for r in rows]
+
+
+def test_the_spider_grid_table_holds_the_paper_scene_as_rerun():
+    """docs/validation.md's spider grid, its paper's rows rerun: the rows as written; at the
+    paper's scene, order 1 cancelled in both joints, the orbit at 2x within 0.1 % of Eq. (5)'s
+    e, and the free spider holding roller 1's mean pressing force within 0.5 % of the load
+    where the prescribed joint's drifts above it with the traverse."""
+    from harness import validation
+    rows = validation.spider_rows({"paper (section 3.1)": {}})
+    doc = (validation.ROOT / "docs" / "validation.md").read_text()
+    for line in _spider_table_rows(rows):
+        assert line in doc, "docs/validation.md is stale: make docs"
+    for r in rows:
+        for joint in ("free", "prescribed"):
+            o = r["Fz_joint"][joint]
+            assert o["order1"]["amplitude"] < 1e-3 * o["order3"]["amplitude"]
+        assert r["orbit"]["amplitude"] / r["orbit"]["e"] == pytest.approx(1.0, abs=1e-3)
+    ideal = rows[0]
+    assert abs(ideal["fx_rel"]["free"]) < 0.005 < ideal["fx_rel"]["prescribed"]
+
+
+@pytest.mark.slow
+def test_the_spider_grid_table_is_current():
+    """The whole spider grid rerun (about 3 minutes): docs/validation.md's table as written."""
+    from harness import validation
+    doc = (validation.ROOT / "docs" / "validation.md").read_text()
+    assert validation.spider_markdown(validation.spider_rows()) in doc

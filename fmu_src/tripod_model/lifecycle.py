@@ -451,7 +451,8 @@ def spider_problem(T, IN, X):
 # what the FMU's binary compiles of this module (c_functions), callees first
 COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
-            "step_resolved", "step", "end", "within", "roller_problem", "state_problem")
+            "step_resolved", "step", "end", "within", "roller_problem", "spider_problem",
+            "state_problem")
 
 
 def compiled_namespace():
