@@ -457,6 +457,8 @@ def spider_markdown(rows) -> str:
             f"{ob['amplitude'] / ob['e']:.4f}, {1e6 * ob['off_circle']:.1f} |")
     for b in SPIDER_BEARINGS:
         rb = [r for r in rows if r["bearing"] == b]
+        if not rb:
+            continue
         a = np.abs([r["order3_rel"] for r in rb])
         out.append("")
         out.append(f"Bearing {b}: superposition (the prescribed joint's order 3 of Fz_joint) "
