@@ -32,3 +32,12 @@ def housing_forces(fx1, fy1, r1, fx2, fy2, r2, fx3, fy3, r3):
         Y += -fx[i] * _C[i] + fy[i] * _S[i]
         T += r[i] * fx[i]
     return X, Y, T
+
+
+def spider_orbit(s, theta, x):
+    """The spider centre on Eq. (5)'s orbit in the housing frame [m]: e (cos 2x, sin 2x), e =
+    s (1 - cos theta) / (2 cos theta), x roller 1's whirl angle [rad] (the rollers' prescribed
+    lines of Eqs. (1)-(8) meet there: docs/model.md, "The floating spider")."""
+    c = math.cos(theta)
+    e = s * (1.0 - c) / (2.0 * c)
+    return e * math.cos(2.0 * x), e * math.sin(2.0 * x)

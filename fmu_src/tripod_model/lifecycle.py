@@ -32,8 +32,7 @@ from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE,
                            T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
                            place_on_cycle, pressing_offset, start_needles, start_state,
                            uses_table)
-from .state_check import SPEED_MARGIN
-from .spider import spider_bounds
+from .state_check import SPEED_MARGIN, spider_bounds
 from reduced_model.scene import SPIDER_FREE
 
 
@@ -437,22 +436,21 @@ def state_problem(T, IN, X, W):
 
 
 def spider_problem(T, IN, X):
-    """0 when a free spider's state (OP's header row) is one it can step
-    (state_check.check_spider_state's bounds), else a code of STATE_PROBLEMS."""
-    head = X[X_OP:X_OP + K.OP_LEN]
-    if head[K.OP_SP_SET] != 0.0 and head[K.OP_SP_SET] != 1.0:
+    """0 when a free spider's state (OP's header row) can be stepped (state_check's
+    spider_bounds), else a code of STATE_PROBLEMS."""
+    h = X[X_OP:X_OP + K.OP_LEN]
+    if h[K.OP_SP_SET] != 0.0 and h[K.OP_SP_SET] != 1.0:
         return 1
-    kin = T[T_S] * abs(IN[OMEGA])
-    return spider_bounds(head[K.OP_SP_QX], head[K.OP_SP_QY], head[K.OP_SP_PSI],
-                         head[K.OP_SP_VX], head[K.OP_SP_VY], head[K.OP_SP_VPSI], T[T_S],
-                         T[T_R_GROOVE], kin)
+    return spider_bounds(h[K.OP_SP_QX], h[K.OP_SP_QY], h[K.OP_SP_PSI], h[K.OP_SP_VX],
+                         h[K.OP_SP_VY], h[K.OP_SP_VPSI], T[T_S], T[T_R_GROOVE],
+                         T[T_S] * abs(IN[OMEGA]))
 
 
 # what the FMU's binary compiles of this module (c_functions), callees first
 COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
-            "step_resolved", "step", "end", "within", "roller_problem", "spider_problem",
-            "state_problem")
+            "step_resolved", "step", "end", "within", "roller_problem", "spider_bounds",
+            "spider_problem", "state_problem")
 
 
 def compiled_namespace():

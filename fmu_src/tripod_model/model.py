@@ -12,10 +12,10 @@ import numpy as np
 from reduced_model import scene as scene_mod
 
 # (numba only when needed)
-from . import layout as K, native, needle_setup, oppoint, roller_setup, spider, start_slide
+from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
-from reduced_model.housing import housing_forces
+from reduced_model.housing import housing_forces, spider_orbit
 from reduced_model.thrust import fz_mod
 from reduced_model.scene import StepRefused, same_step
 from .budget import refusal
@@ -334,7 +334,7 @@ def _joint_outputs(outs, s, F, theta):
         o1["Fx"], o1["Fy"], s + o1["contact_y"], r2["Fx"], r2["Fy"], s + r2["contact_y"],
         r3["Fx"], r3["Fy"], s + r3["contact_y"])
     o["F_roller"] = F
-    o["spider_x"], o["spider_y"] = spider.orbit(s, theta, o1["whirl_angle"])
+    o["spider_x"], o["spider_y"] = spider_orbit(s, theta, o1["whirl_angle"])
     for i in range(3):
         o[f"F_roller_{i + 1}"] = F if i < len(outs) else 0.0
     return o

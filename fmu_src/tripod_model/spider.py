@@ -23,22 +23,15 @@ import math
 from . import layout as K
 from .contact import groove_contact, groove_stiffness_x, line_kinematics, roller_motion, row_load
 from .contact import row_damping, row_sliding_friction, row_stiffness
+from reduced_model.housing import spider_orbit
 from .jit import inline, njit
-
-SPEED_MARGIN = 10.0   # (state_check.SPEED_MARGIN's)
 
 _C3 = (1.0, math.cos(2.0 * math.pi / 3.0), math.cos(4.0 * math.pi / 3.0))
 _S3 = (0.0, math.sin(2.0 * math.pi / 3.0), math.sin(4.0 * math.pi / 3.0))
 
 
-@njit
-def orbit(s, theta, x):
-    """The spider centre on Eq. (5)'s orbit in the housing frame [m]: e (cos 2x, sin 2x), e =
-    s (1 - cos theta) / (2 cos theta), x roller 1's whirl angle [rad] (the rollers' prescribed
-    lines of Eqs. (1)-(8) meet there: docs/model.md)."""
-    c = math.cos(theta)
-    e = s * (1.0 - c) / (2.0 * c)
-    return e * math.cos(2.0 * x), e * math.sin(2.0 * x)
+# Eq. (5)'s orbit (reduced_model/housing.py: plain Python, for the model without numba)
+orbit = njit(spider_orbit)
 
 
 @inline
@@ -152,17 +145,3 @@ def spider_update(q, v, F, A, h, T, P0, theta, w, x):
     q[1] += h * v[1]
     q[2] += h * v[2]
 
-
-@njit
-def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
-    """0 when a free spider's coordinates (OP_SP_*) can be stepped, 9 otherwise (fmu_arrays.
-    STATE_PROBLEMS): its centre within r_groove [m] of its kinematic pose (beyond, a trunnion
-    would pass through its groove's flank), its twist within r_groove / s [rad], its speeds
-    within SPEED_MARGIN times max(kin, 1 m/s), kin = s |omega| [m/s] (the twist's over s).  Runs
-    reach micrometres and the clearance's twist (about 1e-2 rad)."""
-    vb = SPEED_MARGIN * max(kin, 1.0)
-    if not (abs(qx) <= r_groove and abs(qy) <= r_groove and abs(psi) <= r_groove / s):
-        return 9
-    if not (abs(vx) <= vb and abs(vy) <= vb and abs(vpsi) <= vb / s):
-        return 9
-    return 0

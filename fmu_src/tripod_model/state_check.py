@@ -93,10 +93,24 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
             _within(n + label, Y[i], v / rb, "rad/s", "the scene's speeds")
 
 
+def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
+    """0 when a free spider's coordinates (layout.OP_SP_*) can be stepped, 9 otherwise
+    (fmu_arrays.STATE_PROBLEMS): its centre within r_groove [m] of its kinematic pose (beyond,
+    a trunnion would pass through its groove's flank), its twist within r_groove / s [rad], its
+    speeds within SPEED_MARGIN times max(kin, 1 m/s), kin = s |omega| [m/s] (the twist's over
+    s).  Runs reach micrometres and the clearance's twist (about 1e-2 rad).  Scalar: the
+    compiled FMU's state check (lifecycle.spider_problem) compiles it."""
+    vb = SPEED_MARGIN * max(kin, 1.0)
+    if not (abs(qx) <= r_groove and abs(qy) <= r_groove and abs(psi) <= r_groove / s):
+        return 9
+    if not (abs(vx) <= vb and abs(vy) <= vb and abs(vpsi) <= vb / s):
+        return 9
+    return 0
+
+
 def check_spider_state(sp, p: dict, omega: float) -> None:
     """Raise BadState if a free spider's state (JointModel.get_state: OP_SP_* on) cannot be
-    stepped: spider.spider_bounds's bounds at the whirl rate omega [rad/s] it is to step at."""
-    from .spider import spider_bounds
+    stepped: spider_bounds at the whirl rate omega [rad/s] it is to step at."""
     _finite("the spider's state", sp)
     if sp[K.OP_SP_SET - K.OP_SP_QX] not in (0.0, 1.0):
         raise BadState("the spider's set flag is none the model writes")
