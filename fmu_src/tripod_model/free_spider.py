@@ -10,12 +10,14 @@ import math
 from . import layout as K
 from . import spider
 from .budget import MAX_SUBSTEPS
-from .contact import line_kinematics
+from .contact import line_kinematics, row_load
 from .jit import njit
 from .kernel import (advance, copy_op, derive_op, inputs_moved, joint_into, outputs_into,
                      roller_outputs, spider_into)
 from .layout import (BEAR_IDEAL, OP_DT, OP_F, OP_FP, OP_H, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W,
                      OP_X0, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, Y_X)
+
+SECANT_PASSES = 4   # the spider's step again with a stiffer row, at most (_spider_substep)
 
 
 @njit
@@ -107,8 +109,31 @@ def _spider_substep(n, Y, P, Wn, q, v, h, T, theta, w, head):
                                               q[2] + h * v[2]), v, theta, w, head)
     A = (Mg[0] + h * h * Kg[0], Mg[1] + h * h * Kg[1], Mg[2] + h * h * Kg[2],
          Mg[3] + h * h * Kg[3], Mg[4] + h * h * Kg[4], Mg[5] + h * h * Kg[5])
+    q0, q1, q2 = q[0], q[1], q[2]
     spider.spider_update(q, v, Fg, A, h, T, P[0], theta, w, Y[0, Y_X])
     if P[0, K.P_BEARING] == K.BEAR_LUMPED:
+        # a row the step pushes out of its clearance is stiffer than its tangent said: the
+        # step again with each row's secant over its move, until none stiffens (an impact
+        # across the running clearance, a torque reversal's)
+        ku = (row_load(P[0], Y[0, K.Y_E])[1], row_load(P[1], Y[1, K.Y_E])[1],
+              row_load(P[2], Y[2, K.Y_E])[1])
+        for _ in range(SECANT_PASSES):
+            stiffer = False
+            for i in range(n):
+                g = g0 if i == 0 else g1 if i == 1 else g2
+                de = -h * (g[0] * (v[0] - v0) + g[1] * (v[1] - v1) + g[2] * (v[2] - v2))
+                e = Y[i, K.Y_E]
+                if de != 0.0:
+                    ks = abs(row_load(P[i], e + de)[0] - row_load(P[i], e)[0]) / abs(de)
+                    if ks > 2.0 * ku[i]:
+                        A = spider.add_outer(A, h * h * (ks - ku[i]), g)
+                        ku = (ks if i == 0 else ku[0], ks if i == 1 else ku[1],
+                              ks if i == 2 else ku[2])
+                        stiffer = True
+            if not stiffer:
+                break
+            q[0], q[1], q[2], v[0], v[1], v[2] = q0, q1, q2, v0, v1, v2
+            spider.spider_update(q, v, Fg, A, h, T, P[0], theta, w, Y[0, Y_X])
         dv = (v[0] - v0, v[1] - v1, v[2] - v2)
         for i in range(n):
             g = g0 if i == 0 else g1 if i == 1 else g2
