@@ -15,7 +15,7 @@ import sys
 import numpy as np
 import pytest
 
-from harness.fmus import ROOT, ensure_fmu
+from harness.fmus import ensure_fmu
 
 _RUN = r'''
 import json, sys
@@ -162,7 +162,6 @@ def test_the_flanks_sit_the_running_clearance_apart(c):
     the Hertz approach (f_n / K)^(2/3) past it: its distance from the arc centre is r_groove
     plus that, to rounding (1e-12 m).  The pressing load in use is carried either way
     (Fx's mean +-F within the traverse's 10 %)."""
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model import hertz, layout
     from tripod_model.model import ContactModel
     Rg, r = 0.0192, 0.019

@@ -1,15 +1,12 @@
 """In-process checks of the contact model package (fast; the FMU tests run the built copy)."""
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
-from tripod_model import hertz  # noqa: E402
-from tripod_model.model import ContactModel  # noqa: E402
-from tripod_model.simulate import simulate  # noqa: E402
+from tripod_model import hertz
+from tripod_model.model import ContactModel
+from tripod_model.simulate import simulate
 
 
 def test_hertz_against_model_md_orders():

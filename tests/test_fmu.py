@@ -4,7 +4,6 @@ References come from the reduced model (Eqs. 18-27 with the spin-inertia term), 
 no physics code with the contact model (only the parameter table and the v_st convention).
 """
 import math
-import re
 import zipfile
 from functools import lru_cache
 from xml.etree import ElementTree as ET
@@ -130,8 +129,6 @@ def test_physical_scene_traverse(fmu):
 
 
 def test_convergence_substep_halving(fmu):
-    import sys
-    sys.path.insert(0, str(fmu.parents[1] / "fmu_src"))
     from tripod_model.model import ContactModel
     m = ContactModel({})
     p = m.p

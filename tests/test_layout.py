@@ -107,8 +107,6 @@ def test_every_contact_parameter_is_copied_derived_or_placed():
     (kernel_params, needle_params: its T_ slot named in their source), or said to go elsewhere
     (ELSEWHERE); none twice, none left out."""
     import inspect
-    import sys
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model import layout as K, roller_setup as RS
     copied = [RS.PARAM_NAMES[t] for _, t in RS.COPIED + RS.FLAGS]
     for slot, t in RS.COPIED + RS.FLAGS:   # the slot named after its parameter

@@ -13,7 +13,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from fmpy import extract, read_model_description, simulate_fmu
+from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
 from harness.fmus import builder, ensure_fmu
@@ -399,7 +399,6 @@ def test_a_crafted_contact_state_is_refused_or_meets_the_budget(slide, outcome, 
     0.022 m) refused when set, naming the bound; at 3 mm (inside the 6 mm bound, runs reach
     0.1 mm) taken, and its next step refused once the adaptive substeps have tried their
     budget, with one line saying so (budget.py)."""
-    sys.path.insert(0, str(ROOT / "fmu_src"))
     from tripod_model import layout as K, lifecycle as LC
     at = LC.T_LEN + LC.IN_LEN + LC.X_Y + K.Y_U   # (the state's arrays: P, IN, X, ...)
     p = subprocess.run([sys.executable, "-c", _CRAFTED, str(ensure_fmu("TripodRoller")),

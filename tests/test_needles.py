@@ -8,16 +8,13 @@ geometry of the row (no needle leaves the annulus or its axial stops), where the
 the method: the default substep against a quarter of it.
 """
 import math
-import sys
-from pathlib import Path
 
 import numpy as np
 import pytest
 from rounding import solve_error
 
-sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
-from tripod_model import contact, hertz, rowsolve, layout as LY, needles as NDL, ring  # noqa: E402
-from tripod_model.model import ContactModel  # noqa: E402
+from tripod_model import contact, hertz, rowsolve, layout as LY, needles as NDL, ring
+from tripod_model.model import ContactModel
 
 SCENE = {"bearing": 2, "n_needles": 12}
 

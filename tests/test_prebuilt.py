@@ -56,10 +56,7 @@ def test_the_build_rebuilds_the_prebuilt_kernel_from_the_sources_the_fmu_checks(
     # package and the reduced model's modules it compiles): the build's freshness test is that
     # same hash (a change to reduced_model/scene.py once left a library the FMU then ignored,
     # stepping with numba instead)
-    import sys
-    from harness.fmus import ROOT
-    sys.path.insert(0, str(ROOT / "fmu_src"))
-    import build
+    from harness.fmus import builder
     from tripod_model import native
-    _, meta = build.prebuilt_kernel()
+    _, meta = builder().prebuilt_kernel()
     assert json.loads(meta.read_text())["hash"] == native.source_hash()

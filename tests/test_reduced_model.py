@@ -188,8 +188,6 @@ def test_transition_velocity_floor_at_standstill():
     deforms elastically before it slides (Mindlin's 3 mu P (2 - nu) / (8 G a) at 1 kN, G and
     the contact ellipse computed here from E, nu and the Hertz point; within a factor 2:
     measured 0.88 um of creep against 0.50 um)."""
-    import sys
-    from pathlib import Path
     from reduced_model.friction import V_ST_FLOOR
     from reduced_model.hertz import hertz_point
     from reduced_model.thrust import transition_velocity
@@ -198,7 +196,6 @@ def test_transition_velocity_floor_at_standstill():
     straight = sc.validate({"theta": 0.0}, "analytic")
     assert transition_velocity(straight) == V_ST_FLOOR
     assert transition_velocity(sc.validate({}, "analytic")) > 1000 * V_ST_FLOOR  # not active
-    sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "fmu_src"))
     from tripod_model.model import JointModel
     roller = JointModel(sc.validate({"omega": 0.0}, "contact")).rollers[0]
     assert roller.v_st(rest["theta"], 0.0) == V_ST_FLOOR

@@ -1,18 +1,16 @@
 """The contact model's start on the settled cycle (tripod_model/start_slide.py, roller_setup.py;
 docs/integrators.md, "The start")."""
 import math
-import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
-sys.path.insert(0, str(ROOT / "fmu_src"))
 
-from tripod_model import layout as K, roller_setup, start_slide  # noqa: E402
-from tripod_model.model import ContactModel, JointModel  # noqa: E402
-from reduced_model import scene as S  # noqa: E402
+from tripod_model import layout as K, roller_setup, start_slide
+from tripod_model.model import ContactModel, JointModel
+from reduced_model import scene as S
 
 LAUNCH = {"n_rollers": 3, "torque": 3000.0, "theta": math.radians(25.0)}
 
