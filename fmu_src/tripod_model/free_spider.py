@@ -12,10 +12,10 @@ from . import spider
 from .budget import MAX_SUBSTEPS
 from .contact import line_kinematics, row_load
 from .jit import njit
-from .kernel import (advance, copy_op, derive_op, inputs_moved, joint_into, outputs_into,
+from .kernel import (advance, inputs_moved, joint_into, joint_operating_points, outputs_into,
                      roller_outputs, spider_into)
-from .layout import (BEAR_IDEAL, OP_DT, OP_F, OP_FP, OP_H, OP_N, OP_THETA, OP_TQ, OP_VP, OP_W,
-                     OP_X0, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, Y_X)
+from .layout import (BEAR_IDEAL, OP_F, OP_H, OP_N, OP_THETA, OP_TQ, OP_W, OP_X0, OUT_FZ_2,
+                     OUT_FZ_3, OUT_FZ_JOINT, Y_X)
 
 SECANT_PASSES = 4   # the spider's step again with a stiffer row, at most (_spider_substep)
 
@@ -177,15 +177,8 @@ def step_free_spider(n, Y, P, OP, Wn, out, dst):
     gives, then the spider on their forces and the input torque (_spider_substep).  The
     spider's state is in OP's header row (OP_SP_*).  Returns step's codes."""
     head = OP[0]
-    jump = -1.0
+    jump = joint_operating_points(n, P, OP)
     for i in range(n):
-        row = OP[i + 1]
-        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
-            row[j] = head[j]
-        if i == 0:
-            jump = derive_op(P[0], row)
-        else:
-            copy_op(P[0], OP[1], P[i], row)
         inputs_moved(P[i], Wn.hs[i], jump)
     theta, w, F = OP[1, OP_THETA], OP[1, OP_W], OP[1, OP_F]
     T = head[OP_TQ] if head[OP_TQ] != 0.0 else 3.0 * P[0, K.P_S] * F   # the torque that presses by F

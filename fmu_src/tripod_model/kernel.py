@@ -21,7 +21,7 @@ from reduced_model.housing import housing_forces
 from reduced_model.thrust import fz_mod
 from . import layout as K
 from . import oppoint, roller_setup, spider
-from .jit import c_function, carray, compiled_copies, njit
+from .jit import c_function, carray, compiled_copies, inline, njit
 from .assembly import resolved_forces
 from .budget import MAX_SUBSTEPS
 from . import bdf2, genalpha
@@ -168,6 +168,18 @@ def resolved_drive(P, T, OP, F_was, n, ramped, cache):
 # --- the step as a C function (the native layer's) ---
 
 
+@inline
+def _put(dst, base, vals):
+    """vals into dst from base on where every one is finite; whether they were (nothing is
+    written otherwise)."""
+    for v in vals:
+        if not math.isfinite(v):
+            return False
+    for i in range(len(vals)):
+        dst[base + i] = vals[i]
+    return True
+
+
 @njit
 def outputs_into(o, F_press, dst):
     """The FMU's outputs (OUTPUT_NAMES) of one roller from the kernel's output vector o, as
@@ -205,13 +217,7 @@ def joint_into(out, n, s, F, dst):
     cz3 = out[2, K.O_CZ] if three else 0.0
     X, Y, T = _housing(out[0, K.O_FX], out[0, K.O_FY], s + out[0, K.O_CY], fx2, fy2, s + cy2,
                        fx3, fy3, s + cy3)
-    vals = (fx2, fy2, cy2, cz2, fx3, fy3, cy3, cz3, X, Y, T, F)
-    for v in vals:
-        if not math.isfinite(v):
-            return False
-    for i in range(len(vals)):
-        dst[OUT_FX_2 + i] = vals[i]
-    return True
+    return _put(dst, OUT_FX_2, (fx2, fy2, cy2, cz2, fx3, fy3, cy3, cz3, X, Y, T, F))
 
 
 @njit
@@ -248,13 +254,25 @@ def spider_into(out, n, theta, s, F, head, free, dst):
         X += head[K.OP_SP_QX]
         Y += head[K.OP_SP_QY]
         F1, F2, F3 = head[K.OP_SP_F1], head[K.OP_SP_F2], head[K.OP_SP_F3]
-    vals = (X, Y, F1, F2, F3)
-    for v in vals:
-        if not math.isfinite(v):
-            return False
-    for i in range(len(vals)):
-        dst[OUT_SPIDER_X + i] = vals[i]
-    return True
+    return _put(dst, OUT_SPIDER_X, (X, Y, F1, F2, F3))
+
+
+@njit
+def joint_operating_points(n, P, OP):
+    """Each roller's OP row (under the header row) takes the header's inputs and its operating
+    point: the first derived (oppoint.derive), the others copied (the rollers share their
+    parameters, JointModel: one derive serves them all).  Returns derive's jump."""
+    head = OP[0]
+    jump = -1.0
+    for i in range(n):
+        row = OP[i + 1]
+        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
+            row[j] = head[j]
+        if i == 0:
+            jump = derive_op(P[0], row)
+        else:
+            copy_op(P[0], OP[1], P[i], row)
+    return jump
 
 
 @njit
@@ -265,21 +283,12 @@ def step_joint(n, Y, P, OP, Wn, out, dst):
     the joint's (JointModel.step).  Returns step's codes."""
     if P[0, K.P_SPIDER] == SPIDER_FREE:
         return step_free_spider(n, Y, P, OP, Wn, out, dst)
-    head = OP[0]
+    jump = joint_operating_points(n, P, OP)
     total = 0.0   # left to right, as JointModel.step
-    jump = -1.0
     for i in range(n):
-        row = OP[i + 1]
-        for j in (OP_THETA, OP_W, OP_FP, OP_TQ, OP_DT, OP_VP):
-            row[j] = head[j]
-        # the rollers share their parameters (JointModel): one derive serves them all
-        if i == 0:
-            jump = derive_op(P[0], row)
-        else:
-            copy_op(P[0], OP[1], P[i], row)
-        if not _roller(Y[i], P[i], row, K.Work(Wn.L[i], Wn.res[i], Wn.Y1[i], Wn.Y2[i], Wn.G[i],
-                                                Wn.A[i], Wn.b[i], Wn.hs[i], Wn.GW[i]),
-                       out[i], jump):
+        if not _roller(Y[i], P[i], OP[i + 1], K.Work(Wn.L[i], Wn.res[i], Wn.Y1[i], Wn.Y2[i],
+                                                      Wn.G[i], Wn.A[i], Wn.b[i], Wn.hs[i],
+                                                      Wn.GW[i]), out[i], jump):
             return 3
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], OP[1, OP_F], dst):
