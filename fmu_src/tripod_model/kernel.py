@@ -295,7 +295,7 @@ def step_joint(n, Y, P, OP, Wn, out, dst):
         return 2
     if not joint_into(out, n, P[0, K.P_S], OP[1, OP_F], dst):
         return 2
-    if not spider_into(out, n, OP[1, OP_THETA], P[0, K.P_S], OP[1, OP_F], head, False, dst):
+    if not spider_into(out, n, OP[1, OP_THETA], P[0, K.P_S], OP[1, OP_F], OP[0], False, dst):
         return 2
     dst[OUT_FZ_JOINT] = total
     dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
