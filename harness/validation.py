@@ -65,25 +65,34 @@ def grid() -> dict:
     return out
 
 
-def contact_orders(overrides: dict, per_cycle: int = 2000, max_cycles: int = 3 * MAX_CYCLES):
-    """Orders 1 and 3 of the contact model's Fz_mod over its last whole cycle once periodic:
-    ({k: (amplitude N, phase deg)}, cycles used, settled)."""
+def run_periodic(sc: dict, signal: str, per_cycle: int, max_cycles: int):
+    """The contact model (JointModel) on a validated scene, whole whirl cycles of per_cycle
+    steps until ``signal`` is periodic (reduced_model.steady), at most max_cycles: (its outputs
+    by name as arrays with "time" [s], cycles used, settled)."""
     from tripod_model.model import JointModel
-    sc = scene_mod.validate(dict(overrides, bearing=0, traverse=True), "contact")
     th, w, F, vp = sc["theta"], sc["omega"], sc["F_press"], sc["plunge_speed"]
     m = JointModel(sc)
     dt = 2 * math.pi / w / per_cycle
-    y = []
+    rows = []
     ok = False
     for c in range(1, max_cycles + 1):
-        y += [m.step(dt, th, w, F, 0.0, vp)["Fz_mod"] for _ in range(per_cycle)]
+        rows += [m.step(dt, th, w, F, 0.0, vp) for _ in range(per_cycle)]
         if c >= MIN_CYCLES:
-            t = dt * np.arange(1, len(y) + 1)
-            ok = settled(cycle_change(t, np.array(y), w * t), REL_TOL)
+            t = dt * np.arange(1, len(rows) + 1)
+            ok = settled(cycle_change(t, np.array([r[signal] for r in rows]), w * t), REL_TOL)
             if ok:
                 break
-    t = dt * np.arange(1, len(y) + 1)
-    return last_cycle_orders(t, np.array(y), w * t, (1, 3)), c, ok
+    out = {k: np.array([r[k] for r in rows]) for k in rows[0]}
+    out["time"] = dt * np.arange(1, len(rows) + 1)
+    return out, c, ok
+
+
+def contact_orders(overrides: dict, per_cycle: int = 2000, max_cycles: int = 3 * MAX_CYCLES):
+    """Orders 1 and 3 of the contact model's Fz_mod over its last whole cycle once periodic:
+    ({k: (amplitude N, phase deg)}, cycles used, settled)."""
+    sc = scene_mod.validate(dict(overrides, bearing=0, traverse=True), "contact")
+    r, c, ok = run_periodic(sc, "Fz_mod", per_cycle, max_cycles)
+    return last_cycle_orders(r["time"], r["Fz_mod"], sc["omega"] * r["time"], (1, 3)), c, ok
 
 
 def grid_rows(scenes: dict | None = None) -> list[dict]:
@@ -394,25 +403,10 @@ def spider_scenes() -> dict:
 
 
 def joint_run(overrides: dict, per_cycle: int = 1000, max_cycles: int = 3 * MAX_CYCLES) -> dict:
-    """A three-roller joint in process (JointModel) until Fz_joint is periodic: its outputs by
-    name (arrays) with "time" [s], and "settled"."""
-    from tripod_model.model import JointModel
+    """A three-roller joint in process until Fz_joint is periodic (run_periodic): its outputs
+    by name (arrays) with "time" [s], and "settled"."""
     sc = scene_mod.validate(dict(overrides, n_rollers=3), "contact")
-    th, w, F = sc["theta"], sc["omega"], sc["F_press"]
-    m = JointModel(sc)
-    dt = 2 * math.pi / w / per_cycle
-    rows = []
-    ok = False
-    for c in range(1, max_cycles + 1):
-        rows += [m.step(dt, th, w, F) for _ in range(per_cycle)]
-        if c >= MIN_CYCLES:
-            t = dt * np.arange(1, len(rows) + 1)
-            ok = settled(cycle_change(t, np.array([r["Fz_joint"] for r in rows]), w * t),
-                         REL_TOL)
-            if ok:
-                break
-    out = {k: np.array([r[k] for r in rows]) for k in rows[0]}
-    out["time"] = dt * np.arange(1, len(rows) + 1)
+    out, _, ok = run_periodic(sc, "Fz_joint", per_cycle, max_cycles)
     out["settled"] = ok
     return out
 

@@ -232,7 +232,13 @@ def test_compare_sets_the_free_spider_beside_the_prescribed_one():
     # (measured -9.5 %, docs/validation.md); the orbit at 2x within 1 % of Eq. (5)'s e, turned
     # by no more than the twist's shift off the circle allows (4.8 um of e = 0.17 mm: 1.6 deg)
     assert abs(sp["order3_rel"]) < 0.15
-    assert sp["superposition_holds"] == (abs(sp["order3_rel"]) <= 0.05)
+    # order 3 follows the load (the friction's thrust is mu times the pressing force): the
+    # prescribed joint's pressing force drifted up with the traverse, the free one's did not,
+    # so free / prescribed is the inverse of that drift, within 2 points (the rest: the
+    # levers' spread and the contact point's traverse, which the load moves too)
+    drift = sp["fx_rel"]["prescribed"]
+    assert drift > 0.05 and abs(sp["fx_rel"]["free"]) < 0.005
+    assert sp["order3_rel"] == pytest.approx(1 / (1 + drift) - 1, abs=0.02)
     ob = sp["orbit"]
     assert ob["amplitude"] / ob["e"] == pytest.approx(1.0, abs=0.01)
     assert abs(math.radians(ob["phase_deg"])) <= 1.1 * ob["off_circle"] / ob["e"]

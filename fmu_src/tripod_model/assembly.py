@@ -240,9 +240,7 @@ def roller_system(Y, P, drive, x, h, W, sixdof, resolved, nv, secant):
     the roller's centre [m] and the row axes e1, e2."""
     L, res, G, A, b = W.L, W.res, W.G, W.A, W.b
     line_kinematics(x, drive.w, drive.theta, P, L)
-    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, sixdof)
-    if drive.x0_rate != 0.0:   # the offset's ramp after a load change moves the roller with it
-        v = (v[0] + drive.x0_rate, v[1], v[2])
+    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, drive.x0_rate, L, sixdof)
     groove_contact(c, v, wr, P, res)
     slip_sensitivities(P[P_R_ROLLER], L, res, e1, e2, sixdof, resolved, G, b)
     friction_jacobian(P, h, res, G, nv, A, secant)

@@ -131,11 +131,12 @@ def line_kinematics(x, w, theta, P, L):
 
 
 @njit
-def roller_motion(Y, x0, L, lumped):
-    """Roller centre c [m], its velocity v [m/s] and angular velocity w [rad/s] from the state
-    and the trunnion line L, plus the row axes e1 (pressing direction normal to the trunnion
-    axis) and e2 = a x e1 (zero with the ideal bearing, whose extra freedoms are locked); each
-    an (x, y, z) tuple.
+def roller_motion(Y, x0, x0_rate, L, lumped):
+    """Roller centre c [m], its velocity v [m/s] and angular velocity w [rad/s] from the state,
+    the trunnion line L and its pressing offset x0 [m] moving at x0_rate [m/s] (a load's ramp,
+    a floating spider), plus the row axes e1 (pressing direction normal to the trunnion axis)
+    and e2 = a x e1 (zero with the ideal bearing, whose extra freedoms are locked); each an
+    (x, y, z) tuple.
 
     c = Q + u a + e x_hat + w_o e2; w = a x da/dt + om a + b1' e1 + b2' e2.
     """
@@ -153,6 +154,8 @@ def roller_motion(Y, x0, L, lumped):
     cy = u * ay + wo * e2y
     cz = L[L_QZ] + u * az + wo * e2z
     vx = ud * ax + u * adx + Y[Y_ED] + wod * e2x
+    if x0_rate != 0.0:
+        vx += x0_rate
     vy = ud * ay + u * ady + wod * e2y
     vz = L[L_QZD] + ud * az + u * adz + wod * e2z
     wx = ay * adz - az * ady + om * ax + b1d * e1x + b2d * e2x

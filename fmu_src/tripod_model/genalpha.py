@@ -76,9 +76,7 @@ def ga_forces(Y, P, drive, L, res, Q, M):
     load w, the tilts b1, b2 and the radial offset e, with the row's forces).  Returns nv."""
     lumped = P[P_BEARING] == BEAR_LUMPED
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
-    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, lumped)
-    if drive.x0_rate != 0.0:   # a floating spider moves the trunnion (spider.py)
-        v = (v[0] + drive.x0_rate, v[1], v[2])
+    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, drive.x0_rate, L, lumped)
     groove_contact(c, v, wr, P, res)
     ax, ay, az = L[L_AX], L[L_AY], L[L_AZ]
     fx, fy, fz, mx, my, mz = res[R_FX], res[R_FY], res[R_FZ], res[R_MX], res[R_MY], res[R_MZ]

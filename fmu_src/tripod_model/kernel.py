@@ -124,7 +124,8 @@ def roller_outputs(Y, P, drive, out, W, NW):
     those on the roller), contact point, slip, spin, whirl angle, plunge."""
     L, res = W.L, W.res
     line_kinematics(Y[Y_X], drive.w, drive.theta, P, L)
-    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, L, P[P_BEARING] != BEAR_IDEAL)
+    # (the outputs' slip at the offset's place: its ramp's rate left out, as it always was)
+    c, v, wr, e1, e2 = roller_motion(Y, drive.x0, 0.0, L, P[P_BEARING] != BEAR_IDEAL)
     groove_contact(c, v, wr, P, res)
     if NW is not None:   # needle loads at the output instant (diagnostics)
         resolved_forces(Y, P, NW, drive.theta, Y[Y_X], 0.0, L, e1, e2, False)

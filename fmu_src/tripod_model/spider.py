@@ -69,8 +69,7 @@ def trunnion_force(Y, P, x0, rate, drive, W):
     L, res = W.L, W.res
     lumped = P[K.P_BEARING] == K.BEAR_LUMPED
     line_kinematics(Y[K.Y_X], drive.w, drive.theta, P, L)
-    c, v, wr, e1, e2 = roller_motion(Y, x0, L, lumped)
-    v = (v[0] + rate, v[1], v[2])
+    c, v, wr, e1, e2 = roller_motion(Y, x0, rate, L, lumped)
     groove_contact(c, v, wr, P, res)
     ax, ay, az = L[K.L_AX], L[K.L_AY], L[K.L_AZ]
     if not lumped:
