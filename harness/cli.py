@@ -88,6 +88,8 @@ def overrides_from(args, model: str = "contact") -> dict:
         if not math.isfinite(args.whirl_hz):
             raise ValueError("whirl-hz: not a finite number; allowed range [0, 1591.5] Hz")
         out["omega"] = 2.0 * math.pi * args.whirl_hz
+    if getattr(args, "bearing", None) is not None:
+        out["bearing"] = args.bearing
     return out
 
 
@@ -312,6 +314,10 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("compare", "run the analytic and the contact FMU on a scene and compare orders 1 and 3")
     _scene_args(p, "contact")
     p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE")
+    p.add_argument("--bearing", type=int, choices=(0, 1, 2), default=None,
+                   help="the contact FMU's needle bearing, the contact model the analytic FMU is "
+                        "judged against: 0 ideal, 1 lumped row, 2 every needle resolved (the "
+                        "paper's full model; about 4 s a whirl cycle); the same as --set bearing=N")
     p.add_argument("--max-cycles", type=int, default=None,
                    help="cap on whirl cycles, count; the run stops earlier once orders 1 and 3 change by "
                         "less than 0.1 %% from one cycle to the next (default 40)")

@@ -58,6 +58,18 @@ def _tolerance(contact: dict) -> dict:
     return TOL_PHYSICAL if contact["bearing"] == scene_mod.BEARING_IDEAL else TOL_BEARING
 
 
+BEARING_NAMES = {scene_mod.BEARING_IDEAL: "ideal bearing",
+                 scene_mod.BEARING_LUMPED: "lumped needle row",
+                 scene_mod.BEARING_RESOLVED: "needle-resolved row (the paper's full model)"}
+
+
+def contact_model_name(scene: dict) -> str:
+    """Which contact model a scene runs (the reference every report names): the contact FMU
+    with its bearing, e.g. "contact FMU, lumped needle row (bearing = 1)"."""
+    b = int(scene["bearing"])
+    return f"contact FMU, {BEARING_NAMES[b]} (bearing = {b})"
+
+
 def _o(a, p):
     return {"amplitude": float(a), "phase_deg": float(p)}
 
@@ -165,7 +177,8 @@ def _result(scene, against, analytic, oc, ref, tol, runs, *, settled, regime=Non
     return {
         "scene": scene, "quadrant": quadrant(scene),
         "kind": "verification" if is_verification(scene) else "physical",
-        "against": against, "regime": regime, "outside_checked": list(outside),
+        "against": against, "contact_model": contact_model_name(scene),
+        "regime": regime, "outside_checked": list(outside),
         "analytic": analytic,
         "contact": _orders(oc),
         "difference": diff, "difference_eqs_18_27": diff27, "tolerance": tol,
@@ -230,6 +243,7 @@ def format_table(r: dict) -> str:
           ["the scene is inside the range the traverse model was checked against the contact "
            "model in (docs/validation.md)"] if r.get("against") == "traverse" else []),
         "",
+        f"contact model: {r['contact_model']}",
         f"Fz_mod, last whole whirl cycle; order k = a sin(k w t + p); judged against the {ref_name}",
         f"{'':8s}{'analytic FMU':>22s}{'Eqs. 18-27':>22s}{'traverse model':>22s}{'contact FMU':>22s}"
         f"{'difference':>20s}{'tolerance':>20s}",

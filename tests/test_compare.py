@@ -29,6 +29,7 @@ def test_compare_json_keys_and_plots(tmp_path):
     # the paper's scene settles within a few cycles; judged against the traverse model
     assert r["settled"] and 3 <= r["cycles"] <= 10 and r["cycle_change"]["complex_rel"] < 1e-3
     assert r["against"] == "traverse" and r["regime"] == "traverse"
+    assert r["contact_model"] == "contact FMU, ideal bearing (bearing = 0)"
     for part in ("analytic", "contact"):
         for o in ("order1", "order3"):
             assert set(r[part][o]) >= {"amplitude", "phase_deg"}
@@ -40,6 +41,20 @@ def test_compare_json_keys_and_plots(tmp_path):
     assert len(pngs) == 5
     for f in pngs:
         assert f.stat().st_size > 10_000 and f.read_bytes()[:4] == b"\x89PNG"
+
+
+def test_compare_names_the_contact_model_it_judged_against():
+    """--bearing picks the contact FMU's bearing (as --set bearing=N does) and every report
+    names it: the JSON's contact_model, the table's line."""
+    p = cli("compare", "--bearing", "1", "--json", "--max-cycles", "3")
+    assert p.returncode in (0, 1), p.stderr
+    r = json.loads(p.stdout)
+    assert r["scene"]["bearing"] == 1
+    assert r["contact_model"] == "contact FMU, lumped needle row (bearing = 1)"
+    p = cli("compare", "--bearing", "1", "--max-cycles", "3")
+    assert "contact model: contact FMU, lumped needle row (bearing = 1)" in p.stdout
+    p = cli("compare", "--bearing", "3")
+    assert p.returncode == 2 and "--bearing" in p.stderr
 
 
 def test_compare_takes_coast_and_reverse_by_the_models_symmetry():
