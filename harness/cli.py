@@ -300,8 +300,35 @@ def cmd_build(args) -> int:
     return 0
 
 
+class _Parser(argparse.ArgumentParser):
+    """argparse with its errors in one line, exit status 2 (no usage block above them)."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: error: {' '.join(message.split())}\n")
+
+
+def _unknown_options(ap, args, extra) -> str:
+    """One line for options the subcommand does not have, each with its nearest valid one."""
+    import difflib
+    sub = next(a for a in ap._actions if isinstance(a, argparse._SubParsersAction))
+    p = sub.choices[args.command]
+    valid = [o for a in p._actions for o in a.option_strings if o.startswith("--")]
+    words = []
+    for x in extra:
+        if not x.startswith("-"):
+            words.append(repr(x))
+            continue
+        name = x.split("=", 1)[0]
+        near = ([o for o in valid if o.startswith(name)]   # an abbreviation: what it abbreviates
+                or difflib.get_close_matches(name, valid, n=1, cutoff=0.5))
+        words.append(f"{x} (did you mean {near[0]}?)" if near else x)
+    return (f"{p.prog}: error: unrecognized arguments: {', '.join(words)}; "
+            f"`{p.prog} --help` lists its options")
+
+
 def build_parser() -> argparse.ArgumentParser:
-    ap = argparse.ArgumentParser(prog="tripod-thrust", formatter_class=_Help,
+    # allow_abbrev=False: an option is spelled whole or refused (--theta is not --theta-deg)
+    ap = _Parser(prog="tripod-thrust", formatter_class=_Help, allow_abbrev=False,
                                  description="Thrust force of tripod constant-velocity joints.",
                                  epilog="`tripod-thrust COMMAND --help` lists a command's "
                                         "options with units and defaults.")
@@ -309,7 +336,8 @@ def build_parser() -> argparse.ArgumentParser:
     sub = ap.add_subparsers(dest="command", required=True)
 
     def add(name, help):
-        return sub.add_parser(name, help=help, description=help, formatter_class=_Help)
+        return sub.add_parser(name, help=help, description=help, formatter_class=_Help,
+                              allow_abbrev=False)
 
     p = add("compare", "run the analytic and the contact FMU on a scene and compare orders 1 and 3")
     _scene_args(p, "contact")
@@ -422,7 +450,10 @@ def build_parser() -> argparse.ArgumentParser:
 
 def main(argv=None) -> int:
     ap = build_parser()
-    args = ap.parse_args(argv)
+    args, extra = ap.parse_known_args(argv)
+    if extra:
+        print(_unknown_options(ap, args, extra), file=sys.stderr)
+        return 2
     try:
         return args.func(args)
     except (ValueError, CliError, FmuRunError) as e:   # bad input, or an FMU run that failed

@@ -113,3 +113,17 @@ def test_bad_bench_run_count_one_line(tmp_path):
     lines = p.stderr.strip().splitlines()
     assert p.returncode == 2 and lines == ["tripod-thrust bench: error: --runs = 0: allowed "
                                            "range [1, 1000]"]
+
+
+@pytest.mark.parametrize("args, needle", [
+    # argparse would take --theta as an abbreviation of --theta-deg and run at 0.14 deg
+    (["analytic", "--theta", "0.14"], "--theta (did you mean --theta-deg?)"),
+    (["compare", "--speed-hz", "15"], "tripod-thrust compare: error: unrecognized arguments"),
+    (["compare", "--bearing", "7"], "tripod-thrust compare: error: argument --bearing"),
+])
+def test_option_spelled_whole_or_refused_in_one_line(args, needle):
+    p = subprocess.run([sys.executable, "-m", "harness.cli", *args], capture_output=True,
+                       text=True, timeout=120)
+    assert p.returncode == 2 and p.stdout == ""
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0], p.stderr
