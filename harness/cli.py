@@ -58,6 +58,8 @@ JOINT_HELP = ("a joint file (TOML or JSON; joints/ holds the paper's, a small ca
 def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.epilog = _param_epilog(model)
     p.add_argument("--joint", metavar="FILE", help=JOINT_HELP)
+    p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE; "
+                                                        "over the joint file's, under --set")
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
                    help="set a parameter in SI units (repeatable; names, units, defaults and "
                         "ranges below)")
@@ -341,7 +343,6 @@ def build_parser() -> argparse.ArgumentParser:
 
     p = add("compare", "run the analytic and the contact FMU on a scene and compare orders 1 and 3")
     _scene_args(p, "contact")
-    p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE")
     p.add_argument("--bearing", type=int, choices=(0, 1, 2), default=None,
                    help="the contact FMU's needle bearing, the contact model the analytic FMU is "
                         "judged against: 0 ideal, 1 lumped row, 2 every needle resolved (the "

@@ -127,3 +127,14 @@ def test_option_spelled_whole_or_refused_in_one_line(args, needle):
     assert p.returncode == 2 and p.stdout == ""
     lines = p.stderr.strip().splitlines()
     assert len(lines) == 1 and needle in lines[0], p.stderr
+
+
+def test_scene_file_taken_wherever_help_offers_it(tmp_path):
+    """--joint's help says --scene overrides it: every command with --joint takes --scene, and
+    its values reach the scene (here the joint angle, in SI)."""
+    f = tmp_path / "scene.toml"
+    f.write_text("theta = 0.15\n")
+    p = subprocess.run([sys.executable, "-m", "harness.cli", "analytic", "--scene", str(f),
+                        "--json"], capture_output=True, text=True, timeout=120)
+    assert p.returncode == 0, p.stderr
+    assert json.loads(p.stdout)["scene"]["theta"] == 0.15
