@@ -299,3 +299,26 @@ def test_the_second_newton_pass_is_made_where_the_first_moved_far():
     assert passes(newton_passes=1)[0] == 0
     some, taken = passes()
     assert 0 < some < taken
+
+
+def test_rolling_resistance_is_eq12_at_each_race():
+    """Eq. (12) and Fig. 9: mu_r = F / P, F the force that rolls a needle between two plates
+    under P; the moment F D that F puts on the needle is resisted at its two contacts,
+    M_r = mu_r P D / 2 at each.  A needle sphere turning far faster than v_st / r_n (the tanh
+    saturated) on the trunnion and in the bore: each contact's moment is mu_r f D / 2, both
+    together F D with F = mu_r f (exact but for the saturated tanh, 1 - 1e-16)."""
+    from tripod_model.needle_laws import bore_law, trunnion_law
+    rn, mur, vst = 0.8e-3, 0.002, 1e-3
+    c = (rn, 5e7, 1e-4, 0.05, mur, vst, 1e-6, 1.0)
+    w3 = 100.0                  # 3 rn w3 / vst = 240: tanh is 1 to rounding
+    x = 0.0113                  # sphere centre off the axis [m]
+    body = (x, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, w3)
+    t = trunnion_law((x, 0.0, 0.0), x, 1e-6, body, c, 1.0, 0.0, 0.0)
+    b = bore_law((x, 0.0, 0.0), (x, 0.0, 0.0), x, 1e-6, body,
+                 (0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0), c, 1.0)
+    f_t, m_t, f_b, m_b = t[11], t[12], b[17], b[18]
+    assert f_t > 0 and f_t == f_b
+    D = 2 * rn
+    assert m_t == pytest.approx(mur * f_t * D / 2, rel=1e-12)
+    assert m_b == pytest.approx(mur * f_b * D / 2, rel=1e-12)
+    assert m_t + m_b == pytest.approx(mur * f_t * D, rel=1e-12)

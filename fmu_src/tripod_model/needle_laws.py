@@ -169,8 +169,9 @@ def point_velocity(v1, v2, v3, w1, w2, w3, r1, r2, r3):
 def trunnion_law(S, rho, delta, body, c, fric, om_tr, dd_tr):
     """A needle sphere (centre S = P, approach delta; the needle body = (p, v, w) flat: at p
     moving v, w) on the trunnion, convex cylinder about e3 turning at om_tr and sliding at dd_tr: Table 1 normal force with
-    contact damping (needle_normal), tanh friction (needle_friction), Eq. (12) rolling resistance (half of
-    mu_r P D/2 at each race).  Returns the force on the needle F [N], n, arm r [m], the
+    contact damping (needle_normal), tanh friction (needle_friction), Eq. (12) rolling resistance (mu_r P D/2 at
+    each race: the paper's mu_r = F/P is the force F that rolls a needle between two plates, so
+    its two contacts resist with F D in all).  Returns the force on the needle F [N], n, arm r [m], the
     contact_tangent coefficients kp, coef, w, the load f [N] and the rolling moment and its tangent.
     c: the row's constants (needle_forces)."""
     rn, Cs, ms, mu, mur, vst, h, hk = c
@@ -188,8 +189,8 @@ def trunnion_law(S, rho, delta, body, c, fric, om_tr, dd_tr):
     F1, F2, F3, iso = needle_friction(f, s1, s2, s3, n1, n2, 0.0, mu, vst, fric)
     fd, cd = needle_normal(f, kn, ms, s1 * n1 + s2 * n2)
     gr = tanh_clipped(3.0 * rn * (w3 - om_tr) / vst)
-    mr = 0.5 * mur * f * rn * gr
-    cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+    mr = mur * f * rn * gr
+    cr = h * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
     return (F1 + fd * n1, F2 + fd * n2, F3, n1, n2, r1, r2, r3, hk * kn * (u1 * n1 + u2 * n2),
             h * h * kn + h * cd - h * iso, h * iso, f, mr, cr)
 
@@ -236,8 +237,8 @@ def bore_law(S, q, rb, delta, body, roller, c, fric):
     F1, F2, F3, iso = needle_friction(f, u1 - z1, u2 - z2, u3 - z3, n1, n2, n3, mu, vst, fric)
     fd, cd = needle_normal(f, kn, ms, (u1 - z1) * n1 + (u2 - z2) * n2 + (u3 - z3) * n3)
     gr = tanh_clipped(3.0 * rn * (w3 - wr3) / vst)
-    mr = 0.5 * mur * f * rn * gr
-    cr = h * 0.5 * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
+    mr = mur * f * rn * gr
+    cr = h * mur * f * rn * 3.0 * rn / vst * (1.0 - gr * gr)
     return (F1 + fd * n1, F2 + fd * n2, F3 + fd * n3, n1, n2, n3, r1, r2, r3, R1, R2, R3,
             kn, u1 * n1 + u2 * n2 + u3 * n3, z1 * n1 + z2 * n2 + z3 * n3,
             h * h * kn + h * cd - h * iso, iso, f, mr, cr)
