@@ -336,8 +336,8 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
     """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, tanh law on
     the 2-D slip, as each needle contact of the resolved row has it), as a line contact along
     the needles (length l, ROW_LINE points y along it, q / ROW_LINE each) at the row's load
-    centre, lever [m] from the trunnion axis along the pressing direction e1 (where the loaded
-    needles meet the bore).  The slip there along the trunnion is the slide's ud - vax less
+    centre, lever [m] from the trunnion axis along the pressing direction e1 (row_lever: where
+    the loaded needles meet the bore).  The slip there along the trunnion is the slide's ud - vax less
     the bore's own axial motion from the tilt about e2, lever b2d; across, along the needles'
     rolling direction, it is the tilt about e1's b1d y, which a needle cannot roll away (it
     varies along the needle).  q: the needle loads [N]; ud, vax [m/s]; b1d, b2d [rad/s].
@@ -350,8 +350,10 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
     c = P[P_MU_NEEDLE] * q / ROW_LINE
     sa = ud - vax - lever * b2d
     fa = f1 = jaa = ja1 = j11 = 0.0
-    for k in range(ROW_LINE):
+    # the points at -y and y alike: the middle one, then the pairs outwards
+    for k in range(ROW_LINE // 2, ROW_LINE):
         d = lh * ((k + 0.5) / ROW_LINE - 0.5)   # the point's place along the needle [m]
+        w = 1.0 if 2 * k + 1 == ROW_LINE else 2.0
         st = d * b1d
         s = math.sqrt(sa * sa + st * st)
         x = k3 * s
@@ -360,11 +362,12 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
         t = 0.0
         if s > 0.0:
             t = (k3 * (1.0 - g * g) - gs) / (s * s)   # (dg/d|s| - g/|s|) / |s|^2
-        fa += c * gs * sa
-        f1 += c * gs * st * d
-        jaa += c * (gs + t * sa * sa)
-        ja1 += c * t * sa * st * d
-        j11 += c * (gs + t * st * st) * d * d
+        cw = c * w
+        fa += cw * gs * sa
+        f1 += cw * gs * st * d
+        jaa += cw * (gs + t * sa * sa)
+        ja1 += cw * t * sa * st * d
+        j11 += cw * (gs + t * st * st) * d * d
     # the slip along the trunnion is sa = ud - lever b2d: the chain rule for b2d
     return (fa, f1, -lever * fa, h * jaa, h * ja1, -h * lever * jaa, h * j11,
             -h * lever * ja1, h * lever * lever * jaa)
@@ -372,10 +375,11 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
 
 @inline
 def row_lever(P, Fr, q):
-    """Lumped row: how far from the trunnion axis its loaded needles meet the roller bore on
-    average [m], r_bore times the load-weighted cosine of their angle, F_r / q (q the sum of
-    the needle loads [N], F_r the row's radial load [N])."""
-    return P[P_R_BORE] * abs(Fr) / q if q > 0.0 else P[P_R_BORE]
+    """Lumped row: where along the pressing direction e1 its loaded needles meet the roller
+    bore on average [m], r_bore times the load-weighted cosine of their angle, F_r / q (F_r the
+    row's radial force on the roller [N]: > 0 in drive, the needles on the +e1 side; < 0 in
+    coast; q the sum of the needle loads [N])."""
+    return P[P_R_BORE] * Fr / q if q > 0.0 else 0.0
 
 
 @inline

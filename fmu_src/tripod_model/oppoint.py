@@ -199,15 +199,18 @@ def row_sums(P, a):
     dc, ds = math.cos(2.0 * math.pi / n), math.sin(2.0 * math.pi / n)
     cj, sj = 1.0, 0.0
     f = k = kw = q = 0.0
-    for _ in range(n):
+    # needle j and n - j alike: from the pressing direction outwards while they are loaded
+    for j in range(n // 2 + 1):
         ap = a * cj - c
-        if ap > 0.0:
-            g9 = math.exp(math.log(ap) / 9.0)   # ap^(1/9); pow costs more
-            g = ap * g9
-            q += g
-            f += g * cj
-            k += g9 * cj * cj
-            kw += g9 * sj * sj
+        if not ap > 0.0:
+            break
+        w = 1.0 if j == 0 or 2 * j == n else 2.0
+        g9 = math.exp(math.log(ap) / 9.0)   # ap^(1/9); pow costs more
+        g = w * ap * g9
+        q += g
+        f += g * cj
+        k += w * g9 * cj * cj
+        kw += w * g9 * sj * sj
         cj, sj = cj * dc - sj * ds, sj * dc + cj * ds   # the next needle's angle
     C = P[P_KN1]
     return C * f, 10.0 / 9.0 * C * k, 10.0 / 9.0 * C * kw, C * q
