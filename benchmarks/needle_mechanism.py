@@ -42,7 +42,7 @@ QUICK = ("resolved", "lumped", "ideal")
 def friction_parts(m, L):
     """The groove's friction on the roller of ContactModel m now, split along the trunnion
     axis a and the rolling direction n x a (both in the contact plane): the two parts of the
-    thrust on the groove [N] (they sum to Fz) and the friction along a [N]."""
+    thrust on the groove [N] (they sum to Fz)."""
     r = m._res
     n = np.array([r[K.R_NX], r[K.R_NY], 0.0])
     f = np.array([r[K.R_FX], r[K.R_FY], r[K.R_FZ]]) + r[K.R_FN] * n   # less the normal force
@@ -50,7 +50,7 @@ def friction_parts(m, L):
     ah = a - a.dot(n) * n
     ah /= np.linalg.norm(ah)
     rh = np.cross(n, ah)
-    return -f.dot(ah) * ah[2], -f.dot(rh) * rh[2], -f.dot(ah)
+    return -f.dot(ah) * ah[2], -f.dot(rh) * rh[2]
 
 
 def run(over, F, theta, omega, cycles=3, dt=1e-4):
@@ -65,7 +65,7 @@ def run(over, F, theta, omega, cycles=3, dt=1e-4):
         o = m.step(dt, theta, omega, F)
         L[K.L_KX] = math.nan
         contact.line_kinematics(m.Y[K.Y_X], omega, theta, m.P, L)
-        ax, ro, _ = friction_parts(m, L)
+        ax, ro = friction_parts(m, L)
         rows.append((m.time, m.whirl_angle, o["Fz"], ax, ro, m.Y[K.Y_B1], m.Y[K.Y_U]))
     return np.array(rows)
 

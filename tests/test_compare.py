@@ -44,17 +44,13 @@ def test_compare_json_keys_and_plots(tmp_path):
 
 
 def test_compare_names_the_contact_model_it_judged_against():
-    """--bearing picks the contact FMU's bearing (as --set bearing=N does) and every report
-    names it: the JSON's contact_model, the table's line."""
-    p = cli("compare", "--bearing", "1", "--json", "--max-cycles", "3")
-    assert p.returncode in (0, 1), p.stderr
-    r = json.loads(p.stdout)
-    assert r["scene"]["bearing"] == 1
-    assert r["contact_model"] == "contact FMU, lumped needle row (bearing = 1)"
+    """--bearing picks the contact FMU's bearing (as --set bearing=N does) and the table names
+    it (the JSON's contact_model: test_compare_json_keys_and_plots; a bad value:
+    tests/test_cli.py)."""
     p = cli("compare", "--bearing", "1", "--max-cycles", "3")
+    assert p.returncode in (0, 1), p.stderr
+    assert "bearing = 1)" in p.stdout.splitlines()[0]
     assert "contact model: contact FMU, lumped needle row (bearing = 1)" in p.stdout
-    p = cli("compare", "--bearing", "3")
-    assert p.returncode == 2 and "--bearing" in p.stderr
 
 
 def test_compare_takes_coast_and_reverse_by_the_models_symmetry():
