@@ -115,7 +115,7 @@ def test_contact_damping_table():
     """docs/validation.md's contact-damping table, rerun: the Hunt-Crossley term leaves the
     slide ring (the slide hardly changes the approach: the line within 5 % up to 10 s/m) and
     orders 1 and 3 (order 3 within 0.1 %); the lumped bearing's needle friction, which acts
-    along the slide, takes at least a third off it (measured 4.0 -> 2.3 N); the table current."""
+    along the slide, takes at least a third off it (measured 4.0 -> 1.3 N); the table current."""
     from harness import validation
     rows = validation.damping_rows()
     base = rows[0]

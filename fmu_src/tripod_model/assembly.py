@@ -8,7 +8,8 @@ from .jit import inline, njit
 from . import ring
 from .needles import needle_forces
 from .contact import (groove_contact, line_kinematics, roller_motion, row_damping, row_load,
-    row_rolling_resistance, row_sliding_friction, row_stiffness, spin_moment, trunnion_axial)
+    row_lever, row_rolling_resistance, row_sliding_friction, row_stiffness, spin_moment,
+    trunnion_axial)
 from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX,
     P_AXIAL, P_A1, P_FRICTION_NEEDLE, P_INTEGRATOR, P_IS, P_IT, P_M_ROLLER, P_MU_GROOVE, P_QSUM,
     P_R_ROLLER, P_ROLLING_RESISTANCE, P_S, P_SPIN_MOMENT, P_VST_OP, R_FN, R_FX, R_FY, R_FZ, R_G,
@@ -134,19 +135,29 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     [N/m] (row_load)."""
     m = P[P_M_ROLLER]
     ud, om = Y[Y_UD], Y[Y_OM]
-    Fr, kr = row_load(P, Y[Y_E])
-    q = P[P_QSUM] * abs(Fr)       # sum of the needle loads (> F_r: they fan out)
+    Fr, kr, kw, q = row_load(P, Y[Y_E])
     if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
-        f, hk = row_sliding_friction(P, q, ud, L[L_VAX], h)
-        b[0] -= f
+        fu, f1, f2, juu, ju1, ju2, j11, j12, j22 = row_sliding_friction(
+            P, q, ud, L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), h)
+        b[0] -= fu
+        b[3] -= f1
+        b[4] -= f2
         if P[P_INTEGRATOR] != INT_EXPLICIT:
-            A[0, 0] += hk
+            A[0, 0] += juu
+            A[0, 3] += ju1
+            A[3, 0] += ju1
+            A[0, 4] += ju2
+            A[4, 0] += ju2
+            A[3, 3] += j11
+            A[3, 4] += j12
+            A[4, 3] += j12
+            A[4, 4] += j22
     if P[P_ROLLING_RESISTANCE] > 0.5 and q > 0.0:
         mr, hk = row_rolling_resistance(P, q, om, L[L_SPIN], h)
         b[1] -= mr
         if P[P_INTEGRATOR] != INT_EXPLICIT:
             A[1, 1] += hk
-    kw, kt1, kt2 = row_stiffness(P, kr)
+    kw, kt1, kt2 = row_stiffness(P, kr, kw)
     cw, c1, c2 = row_damping(P, kw, m), row_damping(P, kt1, It), row_damping(P, kt2, It)
     b[2] -= kw * (Y[Y_W] + h * Y[Y_WD]) + cw * Y[Y_WD]
     b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1 + c1 * Y[Y_B1D]

@@ -12,10 +12,11 @@ those on the groove (kernel.run_substeps).
 import math
 
 from reduced_model import friction
+from . import oppoint
 from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
     L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
-    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KWR, P_LT,
+    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_LT,
     P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE, P_R_GROOVE, P_ROLL, P_S,
     P_SPIN_MOMENT, P_VP, P_VST_OP, P_YAW, P_ROW_DAMPING, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
     R_MY, R_MZ, R_NX, R_NY, R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1D, Y_B2D,
@@ -308,26 +309,77 @@ def groove_contact(c, v, wr, P, res):
     res[R_SLOPE] = slope
 
 
-@njit
-def row_load(P, e):
-    """Lumped needle row: the row's radial force on the roller F_r [N] along x and its tangent
-    stiffness [N/m] at the roller's radial offset e [m].  Eq. (17) summed over the loaded
-    needles: |F_r| = K_row g^(10/9), g the radial approach beyond the row's clearance; it
-    pushes the roller back onto the trunnion axis (+x in drive, e < 0; -x in coast)."""
-    g = abs(e) - P[P_NEEDLE_CLEARANCE]
-    if g <= 0.0:
-        return 0.0, 0.0
-    Fr = P[P_KN] * g ** (10.0 / 9.0)
-    return (Fr if e < 0.0 else -Fr), 10.0 / 9.0 * Fr / g
+# the lumped row's law, Eq. (17) over its needles (oppoint.row_sums), compiled inline
+row_sums = inline(oppoint.row_sums)
 
 
 @inline
-def row_sliding_friction(P, q, ud, vax, h):
-    """Lumped row: the needles' sliding friction on the roller's slide along the trunnion
-    [N] (mu_needle, tanh law, on the slide rate ud less the trunnion's own vax [m/s]) under
-    the needle loads q [N], and h [s] times its slope [N/m] (the implicit step's term)."""
-    g = tanh_clipped(3.0 * (ud - vax) / P[P_VST_OP])
-    return P[P_MU_NEEDLE] * q * g, h * P[P_MU_NEEDLE] * q * 3.0 / P[P_VST_OP] * (1.0 - g * g)
+def row_load(P, e):
+    """Lumped needle row with the roller e [m] off the trunnion axis along x: the row's radial
+    force on the roller F_r [N] (pushing it back onto the axis: +x in drive, e < 0; -x in
+    coast), its tangent stiffness along the load k_r and across it k_w [N/m] and the sum of
+    the needle loads q [N] (row_sums)."""
+    f, k, kw, q = row_sums(P, abs(e))
+    return (f if e < 0.0 else -f), k, kw, q
+
+
+# the lumped row's sliding friction as a line contact along the needles: its points (the
+# paper's N_s spheres a needle)
+ROW_LINE = 7
+# a needle sits between two sliding contacts of equal load and friction (the bore and the
+# trunnion): each takes half of the roller's slip on the trunnion
+ROW_SERIES = 0.5
+
+
+@inline
+def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
+    """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, tanh law on
+    the 2-D slip, as each needle contact of the resolved row has it), as a line contact along
+    the needles (length l, ROW_LINE points y along it, q / ROW_LINE each) at the row's load
+    centre, lever [m] from the trunnion axis along the pressing direction e1 (row_lever: where
+    the loaded needles meet the bore).  The slip there along the trunnion is the slide's ud - vax less
+    the bore's own axial motion from the tilt about e2, lever b2d; across, along the needles'
+    rolling direction, it is the tilt about e1's b1d y, which a needle cannot roll away (it
+    varies along the needle).  q: the needle loads [N]; ud, vax [m/s]; b1d, b2d [rad/s].
+    Returns the generalized forces against the slide [N] and the tilts about e1, e2 [N m]
+    and h [s] times their symmetric Jacobian in (ud, b1d, b2d): (f_u, f_1, f_2, h j_uu,
+    h j_u1, h j_u2, h j_11, h j_12, h j_22) (docs/model.md, "What the needle row does to the
+    thrust")."""
+    k3 = ROW_SERIES * 3.0 / P[P_VST_OP]
+    lh = math.sqrt(12.0 * P[P_LT])          # the needles' length (P_LT = l^2 / 12)
+    c = P[P_MU_NEEDLE] * q / ROW_LINE
+    sa = ud - vax - lever * b2d
+    fa = f1 = jaa = ja1 = j11 = 0.0
+    # the points at -y and y alike: the middle one, then the pairs outwards
+    for k in range(ROW_LINE // 2, ROW_LINE):
+        d = lh * ((k + 0.5) / ROW_LINE - 0.5)   # the point's place along the needle [m]
+        w = 1.0 if 2 * k + 1 == ROW_LINE else 2.0
+        st = d * b1d
+        s = math.sqrt(sa * sa + st * st)
+        x = k3 * s
+        g = tanh_clipped(x)
+        gs = k3 * (1.0 - x * x / 3.0) if x < 1e-4 else g / s   # g / |s|, its limit at 0
+        t = 0.0
+        if s > 0.0:
+            t = (k3 * (1.0 - g * g) - gs) / (s * s)   # (dg/d|s| - g/|s|) / |s|^2
+        cw = c * w
+        fa += cw * gs * sa
+        f1 += cw * gs * st * d
+        jaa += cw * (gs + t * sa * sa)
+        ja1 += cw * t * sa * st * d
+        j11 += cw * (gs + t * st * st) * d * d
+    # the slip along the trunnion is sa = ud - lever b2d: the chain rule for b2d
+    return (fa, f1, -lever * fa, h * jaa, h * ja1, -h * lever * jaa, h * j11,
+            -h * lever * ja1, h * lever * lever * jaa)
+
+
+@inline
+def row_lever(P, Fr, q):
+    """Lumped row: where along the pressing direction e1 its loaded needles meet the roller
+    bore on average [m], r_bore times the load-weighted cosine of their angle, F_r / q (F_r the
+    row's radial force on the roller [N]: > 0 in drive, the needles on the +e1 side; < 0 in
+    coast; q the sum of the needle loads [N])."""
+    return P[P_R_BORE] * Fr / q if q > 0.0 else 0.0
 
 
 @inline
@@ -342,13 +394,11 @@ def row_rolling_resistance(P, q, om, spin, h):
 
 
 @inline
-def row_stiffness(P, kr):
+def row_stiffness(P, kr, kw):
     """Lumped row: its tangent stiffness across the load kw [N/m] and in tilt about e1, e2
-    kt1, kt2 [N m/rad] from the radial one kr [N/m] (line contacts of length l: tilt = radial
-    x l^2/12)."""
-    kw = kr * P[P_KWR]
-    kt2 = kr * P[P_LT]
-    return kw, kt2 * P[P_KWR], kt2
+    kt1, kt2 [N m/rad] from the radial ones along and across the load kr, kw [N/m] (row_load;
+    line contacts of length l: tilt = radial x l^2/12)."""
+    return kw, kw * P[P_LT], kr * P[P_LT]
 
 
 @inline

@@ -155,14 +155,16 @@ def c_function(fn):
     return _nb.cfunc(t.int32(t.CPointer(t.CPointer(t.float64))), nopython=True, cache=True)(fn)
 
 
-def compiled_copies(module, names):
+def compiled_copies(module, names, given=None):
     """numba versions of ``module``'s functions ``names`` (its own and those it imported), the
     module's own calling each other compiled, in a namespace; the module itself is untouched,
     so its plain functions stay plain (oppoint: the model derives an operating point without
-    numba, and the kernel compiles the same source into the step)."""
+    numba, and the kernel compiles the same source into the step).  ``given``: callees
+    compiled elsewhere, by name (another module's compiled copies)."""
     if not HAVE_NUMBA:
         return types.SimpleNamespace(**{n: getattr(module, n) for n in names})
     g = dict(vars(module))   # the copies' globals: the module's, with the compiled callees
+    g.update(given or {})
     for n in names:
         f = g[n]
         if getattr(f, "__module__", None) == module.__name__:

@@ -45,8 +45,9 @@ derive_op, copy_op = _op.derive, _op.copy_derived
 _housing = njit(housing_forces)
 # the needle-resolved row's static offset (roller_setup.py), compiled with its callees
 _pressing_offset = compiled_copies(roller_setup, (
-    "needle_line_stiffness", "groove_offset", "lumped_offset", "row_load", "needle_radial_offset",
-    "radial_offset", "pressing_offset")).pressing_offset
+    "needle_line_stiffness", "row_load", "needle_radial_offset", "radial_offset",
+    "pressing_offset"), {"groove_offset": _op.groove_offset,
+                         "lumped_offset": _op.lumped_offset}).pressing_offset
 _fz_mod = njit(fz_mod)
 
 

@@ -11,9 +11,9 @@ from reduced_model import scene
 (P_S, P_R_ROLLER, P_R_GROOVE, P_M_ROLLER, P_IS, P_K, P_A1, P_MU_GROOVE, P_VST_OP, P_PITCH,
  P_YAW, P_ROLL, P_AXIAL, P_TRAVERSE, P_FRICTION_GROOVE, P_SPIN_MOMENT, P_BEARING, P_MU_NEEDLE,
  P_MU_ROLLING, P_FRICTION_NEEDLE, P_ROLLING_RESISTANCE, P_KN, P_R_BORE, P_QSUM,
- P_NEEDLE_CLEARANCE, P_INTEGRATOR, P_KWR, P_LT, P_IT, P_STEP_TOLERANCE, P_HMAX, P_V_ST,
+ P_NEEDLE_CLEARANCE, P_INTEGRATOR, P_LT, P_IT, P_STEP_TOLERANCE, P_HMAX, P_V_ST,
  P_MAX_SUBSTEP, P_VP, P_CONTACT_DAMPING, P_ROW_DAMPING, P_DF, P_FLANK, P_HFREE, P_RINGA,
- P_NEWTON_PASSES, P_NEWTON_TOL, P_SPIDER, P_SPIDER_MASS, P_SPIDER_INERTIA, P_LEN,
+ P_NEWTON_PASSES, P_NEWTON_TOL, P_SPIDER, P_SPIDER_MASS, P_SPIDER_INERTIA, P_NROW, P_KN1, P_LEN,
  *_) = range(128)
 # The slots named after a parameter hold its value (roller_setup.COPIED, FLAGS); the others
 # what the set-up derives (roller_setup.kernel_params) or the operating point does: P_VST_OP,
@@ -24,7 +24,8 @@ from reduced_model import scene
 # how far each flank's arc centre sits off the track's mid-plane [m] (contact.flank_centre; 0:
 # one cylinder); P_HFREE: the generalized-alpha substep without the ring's bound [s] (0: none),
 # P_RINGA: the slide's acceleration below which the ring counts as quiet [m/s^2]
-# (oppoint.derive, genalpha.ga_steps); P_STEP_TOLERANCE: step_tolerance or its automatic value
+# (oppoint.derive, genalpha.ga_steps); P_NROW, P_KN1: the lumped row's needles and each one's
+# Eq. (17) constant over its two races in series (oppoint.row_sums); P_STEP_TOLERANCE: step_tolerance or its automatic value
 # --- the bearings and integrators: the values of the parameters `bearing` and `integrator`
 # as named in reduced_model/scene.py, as the floats P holds; the kernel tests P[P_BEARING],
 # P[P_INTEGRATOR] against these

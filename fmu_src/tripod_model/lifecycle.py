@@ -462,7 +462,7 @@ def compiled_namespace():
     from reduced_model.cfuncs import compile_over
     from reduced_model.kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import fmu_arrays, hertz, kernel, oppoint, roller_setup
+    from . import fmu_arrays, hertz, kernel, roller_setup
 
     def jit(f):
         return nb.njit(f)
@@ -472,9 +472,10 @@ def compiled_namespace():
     for name in ("operating_point", "traverse_table", "table_state_at", "hertz_point",
                  "pressing_load", "same_step"):
         g[name] = red[name]
-    for f in (spin_inertia, hertz.needle_line_stiffness, oppoint.groove_offset,
-              oppoint.lumped_offset):
+    for f in (spin_inertia, hertz.needle_line_stiffness):
         g[f.__name__] = jit(f)
+    # (the kernel's copies: lumped_offset calls row_sums, compiled beside it there)
+    g["groove_offset"], g["lumped_offset"] = kernel._op.groove_offset, kernel._op.lumped_offset
     g["v_st"], g["substep"] = kernel._op.v_st, kernel._op.substep   # (the kernel's copies)
     g["_at"] = fmu_arrays.compiled_at()
     return compile_over(g, roller_setup.COMPILED + fmu_arrays.COMPILED + COMPILED, jit)

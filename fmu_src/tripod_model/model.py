@@ -37,7 +37,7 @@ class ContactModel:
         self.T = np.array(start_slide.params_array(p))
         P = np.zeros(K.P_LEN)
         roller_setup.kernel_params(self.T, P)
-        self.Kh, self.a1, self.K_row = P[K.P_K], P[K.P_A1], P[K.P_KN]
+        self.Kh, self.a1 = P[K.P_K], P[K.P_A1]
         self.P = P
         self.n_needle_bodies = p["n_needles"] if p["bearing"] == K.BEAR_RESOLVED else 0
         # None unless the needles are resolved: the kernel is then compiled without them
@@ -105,8 +105,7 @@ class ContactModel:
             return float(np.sum(self.NW.ND[:, K.D_R1]))
         if self.p["bearing"] != K.BEAR_LUMPED:
             return 0.0
-        g = abs(self.Y[K.Y_E]) - self.p["needle_clearance"]
-        return self.K_row * g ** (10 / 9) if g > 0 else 0.0
+        return oppoint.row_sums(self.P, abs(self.Y[K.Y_E]))[0]
 
     def start(self, theta, omega, F_press=0.0, plunge_speed=0.0):
         """Initial state at whirl angle ``self.phase`` [rad] (0, 2 pi/3, 4 pi/3 for the rollers

@@ -75,19 +75,21 @@ def kernel_params(T, P):
     P[K.P_K] = Kh
     P[K.P_A1] = a1
     P[K.P_IS] = spin_inertia(m, r, rb)   # thick ring
-    # the lumped row: needles at 2 pi j / n from the pressing direction, the loaded half summed
-    # (two line contacts in series a needle)
+    # the row's load over the pressing offset with no clearance: needles at 2 pi j / n from the
+    # pressing direction, the loaded half summed (two line contacts in series a needle): the
+    # resolved row's substep and its slide's rate (oppoint.substep); the lumped row's law is
+    # oppoint.row_sums, with the clearance
     n = int(T[T_N_NEEDLES])
-    s19 = s10 = s_a = 0.0
+    s19 = s10 = 0.0
     for j in range(n):
         c = math.cos(2.0 * math.pi * j / n)
         if c > 1e-12:
             s19 += c ** (19.0 / 9.0)
             s10 += c ** (10.0 / 9.0)
-            s_a += c ** (1.0 / 9.0) * (1.0 - c * c)
     P[K.P_KN] = needle_line_stiffness(l_n) * 2.0 ** (-10.0 / 9.0) * s19   # F_r = K_row g^(10/9)
     P[K.P_QSUM] = s10 / s19                  # sum of needle loads / F_r
-    P[K.P_KWR] = s_a / s19                   # across the load / along it
+    P[K.P_NROW] = n
+    P[K.P_KN1] = needle_line_stiffness(l_n) * 2.0 ** (-10.0 / 9.0)
     P[K.P_LT] = l_n * l_n / 12.0             # tilt = radial x l^2 / 12
     P[K.P_IT] = m * (3.0 * (r * r + rb * rb) + T[T_ROLLER_WIDTH] * T[T_ROLLER_WIDTH]) / 12.0
     tol = T[T_STEP_TOLERANCE]

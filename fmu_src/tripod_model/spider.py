@@ -22,7 +22,7 @@ import math
 
 from . import layout as K
 from .contact import groove_contact, groove_stiffness_x, line_kinematics, roller_motion, row_load
-from .contact import row_damping, row_sliding_friction, row_stiffness
+from .contact import row_damping, row_lever, row_sliding_friction
 from reduced_model.housing import spider_orbit
 from .jit import inline, njit
 
@@ -76,17 +76,17 @@ def trunnion_force(Y, P, x0, rate, drive, W):
         fx = res[K.R_FX]
         fz = res[K.R_FZ] - P[K.P_M_ROLLER] * L[K.L_QZDD]
         return fx, -(fx * ax + fz * az) / ay, fz, groove_stiffness_x(P, res, c)
-    Fr, kr = row_load(P, Y[K.Y_E])
+    Fr, kr, kw, q = row_load(P, Y[K.Y_E])
+    lever = row_lever(P, Fr, q)
     # the radial damping the roller's step puts between it and the trunnion (kernel's lumped
     # radial step: the row's and the groove's stiffness together)
     m = P[K.P_M_ROLLER]
     Fr -= row_damping(P, kr + groove_stiffness_x(P, res, c), m) * Y[K.Y_ED]
-    kw = row_stiffness(P, kr)[0]
     Fw = -kw * Y[K.Y_W] - row_damping(P, kw, m) * Y[K.Y_WD]
     fa = 0.0
-    q = P[K.P_QSUM] * abs(Fr)
     if P[K.P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
-        fa = row_sliding_friction(P, q, Y[K.Y_UD], L[K.L_VAX], 0.0)[0]
+        fa = row_sliding_friction(P, q, Y[K.Y_UD], L[K.L_VAX], Y[K.Y_B1D], Y[K.Y_B2D],
+                                  lever, 0.0)[0]
     e1x, e1y, e1z = e1
     e2x, e2y, e2z = e2
     return (-(Fr * e1x + Fw * e2x) + fa * ax, -(Fr * e1y + Fw * e2y) + fa * ay,
