@@ -46,6 +46,14 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
                                       ("mu_groove", 0.07), 0.5)}
 
 
+# the win64 run against the linux64 one [of each output's scale]: 1e-9, but where the lumped
+# row's friction holds a roller's slide and lets go (roller 3 at 0.284 s: its slide's
+# acceleration from 1.5 to 300 m/s2 in one step, Fz_3 from -74.8 to -90.3 N) the moment of
+# letting go takes the last bit: the runs part there by 3.6e-9 of Fz_3's scale for three
+# samples, 1e-13 before and after (measured)
+WINE_BOUND = {"TripodRoller-lumped-three": 1e-8}
+
+
 @pytest.fixture(scope="module", params=sorted(CASES))
 def fmus(request):
     name = request.param.split("-")[0]
@@ -223,7 +231,7 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     assert "python-in-process no" in pw.stdout
     scale = np.abs(rl).max(axis=0)
     if not fmus[2].endswith("resolved"):
-        assert (np.abs(rw - rl).max(axis=0) <= 1e-9 * scale).all()
+        assert (np.abs(rw - rl).max(axis=0) <= WINE_BOUND.get(fmus[2], 1e-9) * scale).all()
         return
     assert (np.abs(rw[0] - rl[0]) <= 1e-9 * scale).all()
     _, rp = _run([str(lin), str(d / f"binaries/linux64/{mid}.so")], fmus, tmp_path / "p.bin",
