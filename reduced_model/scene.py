@@ -393,7 +393,55 @@ def check_param(p: Param, value) -> None:
         raise ValueError(f"{name} = {v!r} is subnormal (below {sys.float_info.min:.4g} in "
                          f"magnitude): give 0 or a value in {p.range_text()}")
     if bad:
-        raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}")
+        raise ValueError(f"{name} = {value!r} is outside the allowed range {p.range_text()}"
+                         + _thousandth_hint(p, v))
+
+
+# (the unit a value given a thousand times too large was likely meant in)
+_SMALLER_UNIT = {"m": "millimetres", "kg": "grams"}
+
+
+def _thousandth_hint(p: Param, v: float) -> str:
+    """For a length or mass refused as too large where a thousandth of it is allowed: the
+    likely unit mistake, named (empty otherwise)."""
+    if p.unit not in _SMALLER_UNIT or p.hi is None or not math.isfinite(v) or v <= p.hi:
+        return ""
+    try:
+        check_param(p, v / 1000.0)
+    except ValueError:
+        return ""
+    return f": {_SMALLER_UNIT[p.unit]}? the unit is {p.unit} ({p.name} = {v / 1000.0:g} {p.unit})"
+
+
+# A roller's density [kg/m3] from its mass and its ring (r_roller, r_bore, roller_width): a
+# value outside this is a unit mistake more likely than a material (magnesium 1740 kg/m3 to
+# tungsten carbide 15600, with room for a ring that is not a plain cylinder)
+ROLLER_DENSITY = (1000.0, 30000.0)
+
+
+def roller_density(scene: dict) -> float:
+    """The roller's mean density [kg/m3]: m_roller over the ring between r_bore and r_roller,
+    roller_width wide (the contact model's; the analytic model's scene has none: the paper's
+    width scaled with r_roller)."""
+    w = scene.get("roller_width")
+    if w is None:
+        d = defaults("contact")
+        w = d["roller_width"] * scene["r_roller"] / d["r_roller"]
+    return scene["m_roller"] / (math.pi * (scene["r_roller"] ** 2 - scene["r_bore"] ** 2) * w)
+
+
+def check_roller_mass(scene: dict) -> None:
+    """Raise ValueError where m_roller, against the roller's size, is no metal's (a density
+    outside ROLLER_DENSITY), naming the likely unit mistake."""
+    rho, (lo, hi) = roller_density(scene), ROLLER_DENSITY
+    if lo <= rho <= hi:
+        return
+    hint = " grams?" if lo <= rho / 1000.0 <= hi else ""
+    width = (f", roller_width {scene['roller_width']:g} m" if "roller_width" in scene else "")
+    raise ValueError(f"m_roller = {scene['m_roller']:g} kg is a density of {rho:.2g} kg/m3 for "
+                     f"this roller (r_roller {scene['r_roller']:g} m, r_bore "
+                     f"{scene['r_bore']:g} m{width}; steel is about 7800 kg/m3):{hint} allowed "
+                     f"{lo:g}-{hi:g} kg/m3 for its size")
 
 
 def check_drive(scene: dict, what: str) -> None:
@@ -458,6 +506,7 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
         check_traverse_mu(scene["mu_groove"])
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(RELATIONS["bore"] % (scene["r_bore"], scene["r_roller"]))
+    check_roller_mass(scene)
     if scene.get("spider", SPIDER_PRESCRIBED) == SPIDER_FREE and (
             scene["n_rollers"] != 3 or scene["bearing"] == BEARING_RESOLVED):
         raise ValueError(RELATIONS["spider"] % (scene["n_rollers"], scene["bearing"]))

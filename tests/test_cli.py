@@ -138,3 +138,33 @@ def test_scene_file_taken_wherever_help_offers_it(tmp_path):
                         "--json"], capture_output=True, text=True, timeout=120)
     assert p.returncode == 0, p.stderr
     assert json.loads(p.stdout)["scene"]["theta"] == 0.15
+
+
+@pytest.mark.parametrize("edit, needle", [
+    # grams meant: a 60 kg roller of the paper's size would be 7.2e6 kg/m3
+    (("m_roller = 0.06 ", "m_roller = 60 "), "m_roller = 60 kg is a density of 7.2e+06 kg/m3"),
+    # millimetres meant
+    (("s = 0.022 ", "s = 22 "), "s = 22 is outside the allowed range (0, 1] m: millimetres?"),
+])
+def test_a_joint_files_likely_unit_mistake_is_named(tmp_path, edit, needle):
+    root = Path(__file__).resolve().parents[1]
+    text = (root / "joints" / "paper.toml").read_text()
+    assert edit[0] in text
+    f = tmp_path / "joint.toml"
+    f.write_text(text.replace(edit[0], edit[1]))
+    p = run("analytic", "--joint", str(f))
+    assert p.returncode == 2 and p.stdout == ""
+    lines = p.stderr.strip().splitlines()
+    assert len(lines) == 1 and needle in lines[0], p.stderr
+    assert "grams?" in lines[0] or "(s = 0.022 m)" in lines[0]
+
+
+def test_every_shipped_joints_roller_is_a_steel_ring():
+    # the plausibility check's density from each joint file's mass and ring: steel is
+    # 7700-8050 kg/m3; the files' rollers (scaled from the paper's joint) 7175 kg/m3, a ring
+    # that is not quite a plain cylinder: within 10 % of steel's 7850
+    from reduced_model.joint import EXAMPLES, load_joint
+    from reduced_model.scene import roller_density, validate
+    for f in sorted(EXAMPLES.glob("*.toml")):
+        scene = validate(load_joint(f), "contact")
+        assert roller_density(scene) == pytest.approx(7850.0, rel=0.10), f.name
