@@ -126,7 +126,32 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
                 phase_lag=None if verification else -diff27["order3"]["phase_deg"],
                 settled=rc["settle"]["settled"])
     r["spider"] = _spider_block(contact_sc, rc, dt, max_cycles, rel_tol)
+    _add_joint(r, contact_sc, ra, rc, lambda run: omega * run["time"])
     return r
+
+
+def _joint_block(contact_sc, ra, rc, tol, angle):
+    """n_rollers = 3: the housing's thrust Fz_joint, the contact FMU's orders against the
+    analytic FMU's, order 3 judged within the rollers' order-3 tolerance; order 1, a sum of
+    the three rollers' order 1 that cancels by symmetry, reported as its complex difference
+    over the joint's order 3.  angle(run): the whirl angle the orders are taken against."""
+    oa = last_cycle_orders(ra["time"], ra["Fz_joint"], angle(ra), ORDERS)
+    oc = last_cycle_orders(rc["time"], rc["Fz_joint"], angle(rc), ORDERS)
+    t3 = {"order3": tol["order3"]} if "order3" in tol else {}
+    diff, ok = _judge(oc, oa, t3)
+    z = lambda o: o[1][0] * np.exp(1j * math.radians(o[1][1]))     # order 1, complex
+    diff["order1"] = {"of_order3": float(abs(z(oc) - z(oa)) / oa[3][0]) if oa[3][0] > 0
+                      else math.inf}
+    return {"analytic_fmu": _orders(oa), "contact": _orders(oc), "difference": diff,
+            "tolerance": t3, "pass": bool(ok)}
+
+
+def _add_joint(r, contact_sc, ra, rc, angle):
+    """r["joint"]: _joint_block with three rollers (None with one), and the verdict with it."""
+    r["joint"] = None
+    if contact_sc["n_rollers"] == 3:
+        r["joint"] = _joint_block(contact_sc, ra, rc, r["tolerance"], angle)
+        r["pass"] = bool(r["pass"] and r["joint"]["pass"])
 
 
 def _spider_block(contact_sc, rc, dt, max_cycles, rel_tol):
@@ -157,6 +182,7 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
                 _tolerance(contact_sc), {"analytic": ra, "contact": rc, "omega": w},
                 settled=rc["settle"]["settled"] and ra["settle"]["settled"])
     r["spider"] = _spider_block(contact_sc, rc, dt, max_cycles, rel_tol)
+    _add_joint(r, contact_sc, ra, rc, lambda run: np.abs(run["whirl_angle"]))
     return r
 
 
@@ -221,6 +247,31 @@ def _cell(orders, key):
     return f"{orders[key]['amplitude']:11.3f} N {orders[key]['phase_deg']:7.2f}°"
 
 
+def _tol_text(t: dict) -> str:
+    return " / ".join(x for x in (f"{100 * t['amplitude_rel']:g} %" if "amplitude_rel" in t else "",
+                                  f"{t['phase_deg']:g} deg" if "phase_deg" in t else "") if x)
+
+
+def _joint_lines(j: dict) -> list[str]:
+    """format_table's block of the housing's thrust (three rollers)."""
+    a, c, d = j["analytic_fmu"], j["contact"], j["difference"]
+    lines = ["Fz_joint, the housing's thrust (three rollers), last whole whirl cycle; judged "
+             "against the analytic FMU's",
+             f"{'':8s}{'analytic FMU':>22s}{'contact FMU':>22s}{'difference':>24s}"
+             f"{'tolerance':>20s}"]
+    for k in ORDERS:
+        key = f"order{k}"
+        if k == 1:   # cancels by symmetry: its difference against the joint's order 3
+            dtxt, ttxt = f"{100 * d[key]['of_order3']:.2f} % of order 3", "reported"
+        else:
+            dtxt = f"{100 * d[key]['amplitude_rel']:+10.2f} % {d[key]['phase_deg']:+6.2f}°"
+            ttxt = _tol_text(j["tolerance"].get(key, {})) or "reported"
+        lines.append(f"{'order ' + str(k):8s}{_cell(a, key)}{_cell(c, key)}{dtxt:>24s}"
+                     f"{ttxt:>20s}")
+    lines.append(f"joint: {'PASS' if j['pass'] else 'FAIL'}")
+    return lines
+
+
 def format_table(r: dict) -> str:
     sc = r["scene"]
     a, c, d = r["analytic"], r["contact"], r["difference"]
@@ -251,8 +302,7 @@ def format_table(r: dict) -> str:
     for k in ORDERS:
         key = f"order{k}"
         t = r["tolerance"].get(key, {})
-        ttxt = " / ".join(x for x in (f"{100 * t['amplitude_rel']:g} %" if "amplitude_rel" in t else "",
-                                      f"{t['phase_deg']:g} deg" if "phase_deg" in t else "") if x) or "reported"
+        ttxt = _tol_text(t) or "reported"
         lines.append(
             f"{'order ' + str(k):8s}"
             f"{a['fmu'][key]['amplitude']:9.3f} N {a['fmu'][key]['phase_deg']:7.2f}°"
@@ -263,6 +313,8 @@ def format_table(r: dict) -> str:
         d27 = r["difference_eqs_18_27"]["order3"]
         lines.append(f"against Eqs. (18)-(27) (reported, not judged): order 3 "
                      f"{100 * d27['amplitude_rel']:+.1f} %, lagging by {r['phase_lag_deg']:.1f} deg")
+    if r.get("joint"):
+        lines += ["", *_joint_lines(r["joint"])]
     if r.get("spider"):
         lines += ["", format_spider(r["spider"])]
     lines += ["", f"wall time: analytic FMU {r['wall_s']['analytic']:.2f} s, contact FMU "

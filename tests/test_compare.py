@@ -174,3 +174,22 @@ def test_settled_orders_hold_when_the_cycles_are_doubled(scene):
             assert abs(ca - cb) <= 2e-3 * scale, (name, k, a[k], b[k])
     j = last_cycle_orders(r["time"], r["Fz_joint"], w * r["time"], (1, 3))
     assert j[1][0] < 0.02 * j[3][0], j
+
+
+def test_compare_judges_the_housings_thrust_with_three_rollers():
+    """n_rollers = 3: --json carries Fz_joint's orders 1 and 3 from both FMUs and its verdict,
+    which the overall verdict includes.  Physics: the rollers sit 120 deg apart, so the joint's
+    order 1 cancels (below 1 % of its order 3, for both models) while order 3 adds."""
+    p = cli("compare", "--set", "n_rollers=3", "--json")
+    assert p.returncode == 0, p.stderr
+    r = json.loads(p.stdout)
+    j = r["joint"]
+    for part in ("analytic_fmu", "contact"):
+        assert j[part]["order1"]["amplitude"] < 0.01 * j[part]["order3"]["amplitude"]
+    assert set(j["difference"]["order3"]) == {"amplitude_rel", "phase_deg"}
+    assert j["difference"]["order1"]["of_order3"] < 0.01
+    assert j["tolerance"] == {"order3": r["tolerance"]["order3"]}
+    assert abs(j["difference"]["order3"]["amplitude_rel"]) <= j["tolerance"]["order3"]["amplitude_rel"]
+    assert j["pass"] is True and r["pass"] is True
+    one = json.loads(cli("compare", "--json", "--max-cycles", "3").stdout)
+    assert one["joint"] is None
