@@ -18,6 +18,7 @@ import shutil
 import subprocess
 import sys
 import tempfile
+import uuid
 import zipfile
 from pathlib import Path
 from xml.etree import ElementTree as ET
@@ -285,6 +286,38 @@ def _table(name):
     return BY_NAME, OUTPUTS
 
 
+def _project_version() -> str:
+    import tomllib
+    with open(ROOT / "pyproject.toml", "rb") as f:
+        return tomllib.load(f)["project"]["version"]
+
+
+def content_guid(name, xml: bytes) -> str:
+    """The FMU's GUID from what it is made of: its model description (the guid and the
+    generation attributes left out), its sources by their paths in the checkout, and the
+    compilers' versions: the same commit gives the same GUID on any machine and in any folder,
+    a change to the model another."""
+    import llvmlite
+    import numba
+    h = hashlib.sha256(re.sub(rb'\s(guid|generationTool|generationDateAndTime)="[^"]*"', b"", xml))
+    for s in sorted(_sources(name), key=lambda f: str(f.relative_to(ROOT))):
+        h.update(str(s.relative_to(ROOT)).encode() + b"\0" + s.read_bytes())
+    h.update(f"numba {numba.__version__} llvmlite {llvmlite.__version__}".encode())
+    b = bytearray(h.digest()[:16])
+    b[6], b[8] = (b[6] & 0x0F) | 0x50, (b[8] & 0x3F) | 0x80     # an RFC 4122 name-based GUID
+    return "{%s}" % uuid.UUID(bytes=bytes(b))
+
+
+def _identity(xml: bytes, name) -> bytes:
+    """The model description named by its content (content_guid) and its true generation tool,
+    with no generation time: the same sources give the same bytes."""
+    xml = re.sub(rb'\sgenerationDateAndTime="[^"]*"', b"", xml, count=1)
+    xml = re.sub(rb'\sgenerationTool="[^"]*"',
+                 f' generationTool="tripod-thrust {_project_version()}"'.encode(), xml, count=1)
+    return re.sub(rb'\sguid="[^"]*"', f' guid="{content_guid(name, xml)}"'.encode(), xml,
+                  count=1)
+
+
 def _units_and_ranges(xml: bytes, BY_NAME, OUTPUTS) -> bytes:
     out_units = {n: u for n, u, _ in OUTPUTS}
     root = ET.fromstring(xml)
@@ -350,7 +383,7 @@ def _build(name, force):
     table = _table(name)
     ref = reference_path(name) if name in COMPILED else dest
     out = package(SLAVES[name], ref, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
-                  lambda xml: _units_and_ranges(xml, *table), extra)
+                  lambda xml: _identity(_units_and_ranges(xml, *table), name), extra)
     if name in COMPILED:    # the same model description over the compiled model
         import importlib
         native_fmu = build_module("native_fmu")

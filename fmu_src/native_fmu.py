@@ -123,7 +123,10 @@ def binary(objs: dict, xml: bytes, layout: dict, target: str, dest: Path,
         data = Path(tmp) / "model_data.c"
         data.write_text(model_data(xml, symbols={k: v[1] for k, v in objs.items()}, **layout))
         # every symbol resolved when linked (-z defs: on Linux too, as Windows demands)
-        flags = (["-static-libgcc"] if aot.TARGETS[target]["triple"] else
+        # (no link time stamp in the PE header, and no image base hashed from the temporary
+        # folder's name: the same sources give the same DLL)
+        flags = (["-static-libgcc", "-Wl,--no-insert-timestamp", "-Wl,--disable-auto-image-base"]
+                 if aot.TARGETS[target]["triple"] else
                  ["-fPIC", "-fvisibility=hidden", "-Wl,-z,defs",
                   f"-Wl,--version-script={NATIVE / 'exports.map'}"])
         cmd = cc.split()[:1] + ["-std=c99", "-O2", "-shared", "-Wall", "-Wextra",
@@ -136,6 +139,13 @@ def binary(objs: dict, xml: bytes, layout: dict, target: str, dest: Path,
             raise RuntimeError(f"linking the {target} binary failed:\n{p.stderr[-3000:]}")
     aot.check_imports(dest, target)
     return dest
+
+
+def _member(z: zipfile.ZipFile, arc: str, data: bytes) -> None:
+    """One file into the FMU with a fixed time and mode (the same bytes make the same FMU)."""
+    info = zipfile.ZipInfo(arc, date_time=(1980, 1, 1, 0, 0, 0))
+    info.external_attr = 0o644 << 16
+    z.writestr(info, data, zipfile.ZIP_DEFLATED)
 
 
 def package(reference: Path, dest: Path, spec: str, layout: dict, headers: Path,
@@ -152,12 +162,12 @@ def package(reference: Path, dest: Path, spec: str, layout: dict, headers: Path,
         objs = aot.compile_functions(spec, Path(tmp) / "objects", targets)
         out = Path(tmp) / "native.fmu"
         with zipfile.ZipFile(out, "w", zipfile.ZIP_DEFLATED) as z:
-            z.writestr("modelDescription.xml", xml)
+            _member(z, "modelDescription.xml", xml)
             for target in targets:
                 name = BINARY[target].format(id=model_id)
                 lib = binary(objs[target], xml, layout, target, Path(tmp) / target / name,
                              headers)
-                z.write(lib, f"binaries/{target}/{name}")
+                _member(z, f"binaries/{target}/{name}", lib.read_bytes())
         dest.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(out), dest)
     return dest

@@ -296,7 +296,11 @@ def cmd_joint(args) -> int:
 
 
 def cmd_build(args) -> int:
-    from harness.fmus import FMU_NAMES, ensure_fmu
+    from harness.fmus import FMU_NAMES, check_fmu, ensure_fmu
+    if args.check:
+        same, line = check_fmu(args.check)
+        print(line)
+        return 0 if same else 1
     for name in FMU_NAMES + ("Powertrain",):
         print(ensure_fmu(name, force=args.force))
     return 0
@@ -434,6 +438,8 @@ def build_parser() -> argparse.ArgumentParser:
     p = add("build", "build build/TripodRoller.fmu, build/TripodRollerAnalytic.fmu and "
                      "build/Powertrain.fmu (when missing or stale)")
     p.add_argument("--force", action="store_true", help="rebuild even when up to date")
+    p.add_argument("--check", metavar="FMU", help="instead: whether FMU came from this "
+                   "checkout, byte for byte (exit 0) or not (exit 1)")
     p.set_defaults(func=cmd_build)
     p = add("joint", "check a joint file and print the FMUs' start values from it (and whether "
                      "the analytic model was checked for such a joint)")

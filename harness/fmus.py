@@ -29,3 +29,32 @@ def reference_fmu(name: str) -> Path:
     hold the compiled FMU to."""
     ensure_fmu(name)
     return builder().reference_path(name)
+
+
+def check_fmu(fmu: str | Path) -> tuple[bool, str]:
+    """Whether ``fmu`` came from this checkout: this checkout's FMU of its model (built when
+    missing or stale) holds the same files with the same bytes (the build is reproducible:
+    fmu_src/build.py content_guid).  Returns (same, one line saying so)."""
+    import zipfile
+    from xml.etree import ElementTree as ET
+    try:
+        with zipfile.ZipFile(fmu) as z:
+            theirs = {i.filename: z.read(i.filename) for i in z.infolist()}
+    except (OSError, zipfile.BadZipFile) as e:
+        raise ValueError(f"{fmu}: not an FMU ({e})") from None
+    if "modelDescription.xml" not in theirs:
+        raise ValueError(f"{fmu}: not an FMU (no modelDescription.xml)")
+    root = ET.fromstring(theirs["modelDescription.xml"])
+    name = root.get("modelName")
+    if name not in FMU_NAMES + ("Powertrain",):
+        return False, f"{fmu}: model {name!r} is none of this project's FMUs"
+    ours_path = ensure_fmu(name)
+    with zipfile.ZipFile(ours_path) as z:
+        ours = {i.filename: z.read(i.filename) for i in z.infolist()}
+    differ = sorted(k for k in set(ours) | set(theirs) if ours.get(k) != theirs.get(k))
+    guid = root.get("guid")
+    if not differ:
+        return True, f"{fmu}: built from this checkout (GUID {guid}, byte for byte {ours_path})"
+    ours_guid = ET.fromstring(ours["modelDescription.xml"]).get("guid")
+    return False, (f"{fmu}: not from this checkout: {', '.join(differ)} differ (GUID {guid}, "
+                   f"this checkout's {ours_guid})")
