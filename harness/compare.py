@@ -100,7 +100,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     ra = run_fmu(ensure_fmu("TripodRollerAnalytic"), analytic_sc, 2 * period, dt)
     signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
     rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, omega, signals, dt, max_cycles,
-                     rel_tol)
+                     rel_tol, progress="contact FMU")
     oa = last_cycle_orders(ra["time"], ra["Fz_mod"], omega * ra["time"], ORDERS)
     oc = last_cycle_orders(rc["time"], rc["Fz_mod"], omega * rc["time"], ORDERS)
     rep = analytic_report(analytic_sc)
@@ -161,7 +161,7 @@ def _spider_block(contact_sc, rc, dt, max_cycles, rel_tol):
         return None
     rp = run_settled(ensure_fmu("TripodRoller"), dict(contact_sc, spider=0),
                      abs(contact_sc["omega"]), ["Fz_mod", "Fz_2", "Fz_3"], dt, max_cycles,
-                     rel_tol)
+                     rel_tol, progress="contact FMU, prescribed spider")
     return spider_comparison(contact_sc, rc, rp)
 
 
@@ -172,8 +172,9 @@ def _compare_fmus(contact_sc, analytic_sc, dt, max_cycles, rel_tol) -> dict:
     w = abs(contact_sc["omega"])
     signals = ["Fz_mod"] + (["Fz_2", "Fz_3"] if contact_sc["n_rollers"] == 3 else [])
     ra = run_settled(ensure_fmu("TripodRollerAnalytic"), analytic_sc, w, ["Fz_mod"], dt,
-                     max_cycles, rel_tol)
-    rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, w, signals, dt, max_cycles, rel_tol)
+                     max_cycles, rel_tol, progress="analytic FMU")
+    rc = run_settled(ensure_fmu("TripodRoller"), contact_sc, w, signals, dt, max_cycles, rel_tol,
+                     progress="contact FMU")
     oa, oc = (last_cycle_orders(r["time"], r["Fz_mod"], np.abs(r["whirl_angle"]), ORDERS)
               for r in (ra, rc))
     fmu = _orders(oa)

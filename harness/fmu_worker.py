@@ -43,6 +43,25 @@ class SettleWatch:
                 "worst": worst(self.changes) if self.changes else None}
 
 
+class Progress:
+    """FMPy step_finished callback: every PROGRESS_EVERY s of wall time, one line on stderr,
+    "progress <simulated time [s]> <stop time [s]> <whole cycles so far>" (harness.runs reads
+    it); then the settle watch's verdict, when there is one."""
+    PROGRESS_EVERY = 0.5
+
+    def __init__(self, stop, watch):
+        self.stop, self.watch, self.last = stop, watch, time.perf_counter()
+
+    def __call__(self, t, recorder):
+        go = self.watch(t, recorder) if self.watch else True
+        now = time.perf_counter()
+        if now - self.last >= self.PROGRESS_EVERY:
+            self.last = now
+            cycles = int(t / self.watch.T + 1e-9) if self.watch else 0
+            print(f"progress {t!r} {self.stop!r} {cycles}", file=sys.stderr, flush=True)
+        return go
+
+
 def main():
     req = json.loads(sys.stdin.read())
     status = {"ok": False}
@@ -72,7 +91,8 @@ def main():
                            start_values=req.get("start_values", {}),
                            stop_time=req["stop_time"], output_interval=req["output_interval"],
                            output=req.get("outputs"), debug_logging=True, logger=logger,
-                           terminate=True, input=inp, step_finished=watch)
+                           terminate=True, input=inp,
+                           step_finished=Progress(req["stop_time"], watch))
         wall = time.perf_counter() - t0
         np.savez(req["out"], **{n: res[n] for n in res.dtype.names})
         status = {"ok": True, "wall_s": wall, "log": logs[-50:]}

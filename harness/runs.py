@@ -7,6 +7,8 @@ import os
 import subprocess
 import sys
 import tempfile
+import threading
+import time
 from pathlib import Path
 
 import numpy as np
@@ -31,7 +33,7 @@ def default_dt(omega: float) -> float:
 def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float = 0.2,
             output_interval: float = 1e-4, outputs: list[str] | None = None,
             timeout: float = 900.0, inputs: dict | None = None,
-            settle: dict | None = None) -> dict:
+            settle: dict | None = None, progress: str | None = None) -> dict:
     """Simulate ``fmu`` with FMPy in a new Python process.
 
     start_values: {name: value} in SI units; stop_time, output_interval [s].
@@ -41,6 +43,8 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
     "settle": {"cycles", "settled", "cycle_change", "worst", ...}.
     Returns {"time": array, <output>: array, ..., "wall_s": simulate time [s] in the worker,
     "log": the FMU's last log lines}.  Raises FmuRunError with the FMU's log on failure.
+    progress: a label; on a terminal, a run longer than PROGRESS_AFTER s shows how far it got
+    under it (one line on stderr, overwritten, cleared at the end).
     """
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "result.npz")
@@ -48,9 +52,7 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
                "stop_time": stop_time, "output_interval": output_interval,
                "outputs": outputs, "out": out, "settle": settle,
                "inputs": {k: [float(x) for x in v] for k, v in (inputs or {}).items()}}
-        p = subprocess.run([sys.executable, "-m", "harness.fmu_worker"], input=json.dumps(req),
-                           capture_output=True, text=True, timeout=timeout,
-                           cwd=tmp)
+        p = _worker(req, timeout, tmp, progress)
         status_file = out + ".json"
         if not os.path.exists(status_file):
             raise FmuRunError(f"FMU process died (exit {p.returncode}): {p.stderr.strip()[-2000:]}")
@@ -65,6 +67,53 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
     if "settle" in status:
         data["settle"] = status["settle"]
     return data
+
+
+PROGRESS_AFTER = 2.0   # [s] of wall time before a run shows its progress
+
+
+def _worker(req: dict, timeout: float, cwd: str, label: str | None):
+    """harness.fmu_worker on ``req``: the finished process (stdout, stderr without the progress
+    lines).  With ``label`` and a terminal on stderr, the worker's progress lines become one
+    line there after PROGRESS_AFTER s."""
+    show = label is not None and sys.stderr.isatty()
+    proc = subprocess.Popen([sys.executable, "-m", "harness.fmu_worker"], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, cwd=cwd)
+    t0 = time.monotonic()
+    out = []
+
+    def read_stderr():
+        shown = False
+        for line in proc.stderr:
+            if not line.startswith("progress "):
+                out.append(line)
+                continue
+            if show and time.monotonic() - t0 >= PROGRESS_AFTER:
+                t, stop, cycles = line.split()[1:]
+                cyc = f", whirl cycle {cycles} done" if int(cycles) else ""
+                sys.stderr.write(f"\r{label}: {float(t):.3f} of at most {float(stop):.3f} s "
+                                 f"simulated{cyc}, {time.monotonic() - t0:.0f} s ")
+                sys.stderr.flush()
+                shown = True
+        if shown:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()
+
+    reader = threading.Thread(target=read_stderr, daemon=True)
+    reader.start()
+    watchdog = threading.Timer(timeout, proc.kill)
+    watchdog.start()
+    try:
+        proc.stdin.write(json.dumps(req))
+        proc.stdin.close()
+        stdout = proc.stdout.read()
+        proc.wait()
+    finally:
+        watchdog.cancel()
+        reader.join()
+    if time.monotonic() - t0 >= timeout and proc.returncode < 0:
+        raise subprocess.TimeoutExpired(proc.args, timeout)
+    return subprocess.CompletedProcess(proc.args, proc.returncode, stdout, "".join(out))
 
 
 def settle_request(omega: float, signals, rel_tol: float | None = None,
@@ -85,14 +134,16 @@ def settle_request(omega: float, signals, rel_tol: float | None = None,
 
 
 def run_settled(fmu, start_values: dict, omega: float, signals, dt: float = 1e-4,
-                max_cycles: int | None = None, rel_tol: float | None = None) -> dict:
+                max_cycles: int | None = None, rel_tol: float | None = None,
+                progress: str | None = None) -> dict:
     """run_fmu for whole whirl cycles until ``signals`` are periodic (or the cap): the result
     carries "settle" (cycles used, settled, the last cycle-to-cycle change)."""
     if rel_tol is None:
         from reduced_model.steady import tolerance_for
         rel_tol = tolerance_for(start_values)
     req, stop = settle_request(omega, signals, rel_tol, max_cycles)
-    return run_fmu(fmu, start_values, stop_time=stop, output_interval=dt, settle=req)
+    return run_fmu(fmu, start_values, stop_time=stop, output_interval=dt, settle=req,
+                   progress=progress)
 
 
 def settle_line(st: dict) -> str:

@@ -84,7 +84,7 @@ def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: flo
         if omega <= 0:
             raise ValueError("omega must be > 0 for an order analysis")
         r = run_settled(fmu, sv, omega, [signal], default_dt(omega) if dt is None else dt,
-                        max_cycles)
+                        max_cycles, progress="sweep point")
         o = last_cycle_orders(r["time"], r[signal], omega * r["time"], (1, 3))
         st = r["settle"]
         row.update(order1_amplitude=o[1][0], order1_phase_deg=o[1][1],

@@ -338,7 +338,7 @@ def runup_fmus(start_values, inputs, stop_time, dt=DT):
     signal = runup_signal(start_values)
     for model, name in (("contact", "TripodRoller"), ("analytic", "TripodRollerAnalytic")):
         r = run_fmu(ensure_fmu(name), by_model[model], stop_time=stop_time, output_interval=dt,
-                    outputs=[signal, "whirl_angle"], inputs=inputs)
+                    outputs=[signal, "whirl_angle"], inputs=inputs, progress=f"{model} FMU")
         res[model] = revolution_orders(r["time"], r["whirl_angle"], r[signal])
     rows = []
     for c, a in zip(res["contact"], res["analytic"]):

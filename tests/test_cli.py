@@ -2,6 +2,7 @@
 import json
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import pytest
@@ -168,3 +169,38 @@ def test_every_shipped_joints_roller_is_a_steel_ring():
     for f in sorted(EXAMPLES.glob("*.toml")):
         scene = validate(load_joint(f), "contact")
         assert roller_density(scene) == pytest.approx(7850.0, rel=0.10), f.name
+
+
+def _in_terminal(argv, timeout=300):
+    """The CLI run in a pseudo-terminal: (exit status, everything it wrote there)."""
+    import os
+    import pty
+    import select
+    pid, fd = pty.fork()
+    if pid == 0:
+        os.execv(sys.executable, [sys.executable, "-m", "harness.cli", *argv])
+    out, end = b"", time.monotonic() + timeout
+    while time.monotonic() < end:
+        if select.select([fd], [], [], 1.0)[0]:
+            try:
+                d = os.read(fd, 4096)
+            except OSError:
+                break
+            if not d:
+                break
+            out += d
+    _, st = os.waitpid(pid, 0)
+    return os.waitstatus_to_exitcode(st), out.decode(errors="replace")
+
+
+def test_a_long_run_shows_its_progress_in_a_terminal():
+    # the needle-resolved row's three whirl cycles take 6-17 s: after 2 s the contact FMU's run
+    # says how far it got, on one line overwritten in place and cleared before the table; the
+    # same run with its output captured (no terminal) writes nothing but the table
+    code, out = _in_terminal(["compare", "--bearing", "2", "--max-cycles", "3"])
+    assert code in (0, 1), out
+    assert "\rcontact FMU: " in out and "of at most 0.300 s simulated" in out, out[:2000]
+    assert "whirl cycle 1 done" in out
+    assert "\r\x1b[K" in out and "verdict:" in out.split("\r\x1b[K")[-1]
+    p = run("compare", "--max-cycles", "3")
+    assert p.returncode in (0, 1) and "simulated" not in p.stderr + p.stdout
