@@ -35,7 +35,8 @@ def parse_grid(spec: str) -> tuple[str, np.ndarray]:
         raise ValueError(f"--grid {name}: START and STOP must be numbers and N an integer") from None
     if n < 1:
         raise ValueError(f"--grid {name}: N = {n}; allowed range N >= 1")
-    vals = np.linspace(a, b, n)
+    # (each point the double nearest its decimal: 0.15, not linspace's 0.15000000000000002)
+    vals = np.array([float(f"{v:.15g}") for v in np.linspace(a, b, n)])
     for v in vals:
         scene_mod.check_value(name, v if scene_mod.BY_NAME[name].kind == "real" else int(round(v)))
     return name, vals
@@ -84,7 +85,7 @@ def run_point(fmu: str, base: dict, point: dict, max_cycles: int | None, dt: flo
         if omega <= 0:
             raise ValueError("omega must be > 0 for an order analysis")
         r = run_settled(fmu, sv, omega, [signal], default_dt(omega) if dt is None else dt,
-                        max_cycles, progress="sweep point")
+                        max_cycles)
         o = last_cycle_orders(r["time"], r[signal], omega * r["time"], (1, 3))
         st = r["settle"]
         row.update(order1_amplitude=o[1][0], order1_phase_deg=o[1][1],
@@ -132,13 +133,26 @@ def sweep(grid: dict, base: dict | None = None, model: str = "contact",
     return list(dask.compute(*tasks, **kw))
 
 
+# the result columns' units (SI; a name ending in _deg or _s says its own)
+UNITS = {"order1_amplitude": "N", "order3_amplitude": "N"}
+
+
+def header(name: str) -> str:
+    """A CSV column's heading: the name and, where the name does not say it, its unit in
+    brackets (a grid parameter's from the table; none for dimensionless columns)."""
+    p = scene_mod.BY_NAME.get(name)
+    unit = UNITS.get(name) or (p.unit if p is not None and p.kind == "real" else "1")
+    return name if unit == "1" else f"{name} [{unit}]"
+
+
 def write_csv(rows: list[dict], path) -> Path:
+    """sweep.csv: one row a grid point, each heading with its unit (header)."""
     path = Path(path)
     path.parent.mkdir(parents=True, exist_ok=True)
     with open(path, "w", newline="") as f:
-        w = csv.DictWriter(f, fieldnames=list(rows[0]))
-        w.writeheader()
-        w.writerows(rows)
+        w = csv.writer(f)
+        w.writerow([header(k) for k in rows[0]])
+        w.writerows([list(r.values()) for r in rows])
     return path
 
 

@@ -48,7 +48,11 @@ def test_grid_parsing_and_cli(tmp_path):
                         "--grid", "theta=0.1:0.2:2", "--out", str(tmp_path)],
                        capture_output=True, text=True, timeout=300)
     assert p.returncode == 0, p.stderr[-2000:]
-    assert (tmp_path / "sweep.csv").read_text().count("\n") == 3
+    lines = (tmp_path / "sweep.csv").read_text().splitlines()
+    assert len(lines) == 3
+    # units in the header (theta in rad, the amplitudes in N); the grid's points as written
+    assert lines[0].startswith("theta [rad],order1_amplitude [N],order1_phase_deg,")
+    assert [x.split(",")[0] for x in lines[1:]] == ["0.1", "0.2"]
     assert (tmp_path / "sweep_order3.png").stat().st_size > 10_000
 
 
