@@ -52,12 +52,13 @@ def _param_epilog(model: str, params=None) -> str:
 
 JOINT_HELP = ("a joint file (TOML or JSON; joints/ holds the paper's, a small car's and a light "
               "truck's): the joint's geometry, masses, materials, friction and needle row; "
-              "--scene and --set override it (docs/getting-started.md)")
+              "{over} (docs/getting-started.md)")
 
 
 def _scene_args(p: argparse.ArgumentParser, model: str) -> None:
     p.epilog = _param_epilog(model)
-    p.add_argument("--joint", metavar="FILE", help=JOINT_HELP)
+    p.add_argument("--joint", metavar="FILE",
+                   help=JOINT_HELP.format(over="--scene and --set override it"))
     p.add_argument("--scene", metavar="FILE.toml", help="scene parameters (SI) as NAME = VALUE; "
                                                         "over the joint file's, under --set")
     p.add_argument("--set", metavar="NAME=VALUE", action="append", default=[],
@@ -426,7 +427,9 @@ def build_parser() -> argparse.ArgumentParser:
                         "defaults and ranges below)")
     p.add_argument("--model", choices=("contact", "analytic", "both"), default="both",
                    help="which joint FMU is in the system (both: one run each)")
-    p.add_argument("--joint", metavar="FILE", help=JOINT_HELP)
+    p.add_argument("--joint", metavar="FILE",
+                   help=JOINT_HELP.format(over="the joint FMU's values (--set sets the "
+                                               "powertrain's)"))
     p.add_argument("--tool", choices=("fmpy", "libcosim", "both"), default="both",
                    help="which co-simulation tool runs it")
     p.add_argument("--stop", type=float, default=2.5, help="end of the launch [s]")
