@@ -130,7 +130,7 @@ def compare(overrides: dict | None = None, max_cycles: int | None = None,
     return r
 
 
-def _joint_block(contact_sc, ra, rc, tol, angle):
+def _joint_block(ra, rc, tol, angle):
     """n_rollers = 3: the housing's thrust Fz_joint, the contact FMU's orders against the
     analytic FMU's, order 3 judged within the rollers' order-3 tolerance; order 1, a sum of
     the three rollers' order 1 that cancels by symmetry, reported as its complex difference
@@ -150,7 +150,7 @@ def _add_joint(r, contact_sc, ra, rc, angle):
     """r["joint"]: _joint_block with three rollers (None with one), and the verdict with it."""
     r["joint"] = None
     if contact_sc["n_rollers"] == 3:
-        r["joint"] = _joint_block(contact_sc, ra, rc, r["tolerance"], angle)
+        r["joint"] = _joint_block(ra, rc, r["tolerance"], angle)
         r["pass"] = bool(r["pass"] and r["joint"]["pass"])
 
 
