@@ -177,20 +177,23 @@ def signal_names() -> list[str]:
     return names + [f"joint.{n}" for n in TO_POWERTRAIN + RECORD["joint"] + TO_JOINT]
 
 
-def run_system(ssp, tool="fmpy", stop=STOP, step=STEP, timeout=900.0) -> dict:
+def run_system(ssp, tool="fmpy", stop=STOP, step=STEP, timeout=900.0,
+               progress: str | None = None) -> dict:
     """Run the SSP ``ssp`` with ``tool`` ('fmpy' or 'libcosim') in a new process, fixed
     communication step ``step`` [s] up to ``stop`` [s]; returns {"time": step ends [s],
-    "<component>.<variable>": values after each step}."""
-    from .runs import FmuRunError
+    "<component>.<variable>": values after each step}.  ``progress``: a label shown with the
+    wall time on a terminal while a run takes longer than two seconds."""
+    from .runs import FmuRunError, Ticker
     if tool not in TOOLS:
         raise ValueError(f"tool = {tool!r}: allowed {', '.join(TOOLS)}")
     with tempfile.TemporaryDirectory() as tmp:
         out = os.path.join(tmp, "r.npz")
         req = {"ssp": os.path.abspath(str(ssp)), "stop": stop, "step": step, "out": out,
                "names": signal_names()}
-        p = subprocess.run([sys.executable, "-c", _FMPY if tool == "fmpy" else _LIBCOSIM],
-                           input=json.dumps(req), capture_output=True, text=True,
-                           timeout=timeout, cwd=tmp)
+        with Ticker(progress):
+            p = subprocess.run([sys.executable, "-c", _FMPY if tool == "fmpy" else _LIBCOSIM],
+                               input=json.dumps(req), capture_output=True, text=True,
+                               timeout=timeout, cwd=tmp)
         if p.returncode != 0 or not os.path.exists(out):
             raise FmuRunError(f"{tool} run of {Path(ssp).name} failed (exit {p.returncode}): "
                               f"{p.stderr.strip()[-1500:]}")
@@ -253,6 +256,11 @@ def launch(out, stop=STOP, step=STEP, joints=tuple(JOINTS), tools=TOOLS, powertr
     out = Path(out)
     out.mkdir(parents=True, exist_ok=True)
     runs = {}
+    n_runs = len(joints) * len(tools) + bool(check_step)
+
+    def label(j, tool, s):
+        return (f"example: run {len(runs) + 1} of {n_runs}, the {j} joint in {tool} "
+                f"({stop:g} s simulated at a {s:g} s step)")
     for name in joints:
         values = None
         if joint is not None:   # the joint's values, and the creep load at its pitch circle
@@ -261,7 +269,7 @@ def launch(out, stop=STOP, step=STEP, joints=tuple(JOINTS), tools=TOOLS, powertr
                 "F_press": p["torque_creep"] / (3.0 * joint["s"])}
         ssp = write_ssp(out / f"launch_{name}.ssp", name, powertrain, values, stop=stop)
         for tool in tools:
-            runs[name, tool] = run_system(ssp, tool, stop, step)
+            runs[name, tool] = run_system(ssp, tool, stop, step, progress=label(name, tool, step))
     rows = [{"joint": j, "tool": t, **peak(r)} for (j, t), r in runs.items()]
     checks = {}
     first = tools[0]
@@ -279,7 +287,8 @@ def launch(out, stop=STOP, step=STEP, joints=tuple(JOINTS), tools=TOOLS, powertr
         checks["analytic vs contact, peak"] = abs(pa["peak_acc_y"] / pb["peak_acc_y"] - 1)
     if check_step:
         j = joints[0]
-        half = run_system(out / f"launch_{j}.ssp", first, stop, step / 2)
+        half = run_system(out / f"launch_{j}.ssp", first, stop, step / 2,
+                          progress=label(j, first, step / 2))
         runs[j, first + " (half step)"] = half
         rows.append({"joint": j, "tool": first + f" (step {step / 2:g} s)", **peak(half)})
         checks[f"{j}: step {step:g} s -> {step / 2:g} s, peak"] = \

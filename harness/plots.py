@@ -34,6 +34,18 @@ def _save(fig, path):
     return path
 
 
+def scene_title(sc: dict, omega: float) -> str:
+    """The scene under a plot's title, in two lines that fit the 8-inch figures: angle, whirl
+    [rad/s in, Hz out] and load on the first, the contact model on the second."""
+    from .compare import BEARING_NAMES
+    tq = sc.get("torque", 0.0)
+    load = (f"torque {tq:.6g} N m ({scene_mod.pressing_load(sc['F_press'], tq, sc['s']):.0f} N "
+            f"a roller)" if tq else f"F_press = {sc['F_press']:.6g} N")
+    rollers = "whole joint" if int(sc.get("n_rollers", 1)) == 3 else "one roller"
+    return (f"theta = {math.degrees(sc['theta']):.1f} deg, {omega / (2 * math.pi):.3g} Hz, {load}\n"
+            f"{BEARING_NAMES[int(sc['bearing'])]}, traverse = {str(sc['traverse']).lower()}, {rollers}")
+
+
 def compare_plots(r: dict, out: str | Path) -> list[Path]:
     """Write the five comparison plots into ``out``; returns their paths."""
     from .compare import spectrum
@@ -41,9 +53,7 @@ def compare_plots(r: dict, out: str | Path) -> list[Path]:
     out.mkdir(parents=True, exist_ok=True)
     ra, rc, w = r["_runs"]["analytic"], r["_runs"]["contact"], r["_runs"]["omega"]
     sc = r["scene"]
-    title = (f"theta = {math.degrees(sc['theta']):.1f} deg, {w / (2 * math.pi):.3g} Hz, "
-             f"{scene_mod.load_text(sc)}, traverse = {str(sc['traverse']).lower()}, "
-             f"bearing = {sc['bearing']}")
+    title = scene_title(sc, w)
     paths = []
     ma, xa = last_cycle(ra, w)
     mc, xc = last_cycle(rc, w)

@@ -72,6 +72,40 @@ def run_fmu(fmu: str | Path, start_values: dict | None = None, stop_time: float 
 PROGRESS_AFTER = 2.0   # [s] of wall time before a run shows its progress
 
 
+class Ticker:
+    """For work that reports no simulated time (the example's SSP runs): on a terminal, after
+    PROGRESS_AFTER s, ``label`` and the wall time so far on one line of stderr, updated every
+    half second and cleared at the end.  Nothing without a label or a terminal."""
+
+    def __init__(self, label: str | None):
+        self.label = label if label is not None and sys.stderr.isatty() else None
+        self.done = threading.Event()
+        self.thread = None
+
+    def _tick(self):
+        t0 = time.monotonic()
+        shown = False
+        while not self.done.wait(0.5):
+            if time.monotonic() - t0 >= PROGRESS_AFTER:
+                sys.stderr.write(f"\r{self.label}, {time.monotonic() - t0:.0f} s ")
+                sys.stderr.flush()
+                shown = True
+        if shown:
+            sys.stderr.write("\r\033[K")
+            sys.stderr.flush()
+
+    def __enter__(self):
+        if self.label is not None:
+            self.thread = threading.Thread(target=self._tick, daemon=True)
+            self.thread.start()
+        return self
+
+    def __exit__(self, *exc):
+        self.done.set()
+        if self.thread is not None:
+            self.thread.join()
+
+
 def _worker(req: dict, timeout: float, cwd: str, label: str | None):
     """harness.fmu_worker on ``req``: the finished process (stdout, stderr without the progress
     lines).  With ``label`` and a terminal on stderr, the worker's progress lines become one

@@ -1,5 +1,6 @@
 """The analytic command as a user runs it: a fresh process, text and JSON, bad input."""
 import json
+import re
 import subprocess
 import sys
 import time
@@ -171,14 +172,15 @@ def test_every_shipped_joints_roller_is_a_steel_ring():
         assert roller_density(scene) == pytest.approx(7850.0, rel=0.10), f.name
 
 
-def _in_terminal(argv, timeout=300):
-    """The CLI run in a pseudo-terminal: (exit status, everything it wrote there)."""
+def _in_terminal(argv, timeout=300, python=("-m", "harness.cli")):
+    """The CLI (or ``python`` -c ...) run in a pseudo-terminal: (exit status, everything it
+    wrote there)."""
     import os
     import pty
     import select
     pid, fd = pty.fork()
     if pid == 0:
-        os.execv(sys.executable, [sys.executable, "-m", "harness.cli", *argv])
+        os.execv(sys.executable, [sys.executable, *python, *argv])
     out, end = b"", time.monotonic() + timeout
     while time.monotonic() < end:
         if select.select([fd], [], [], 1.0)[0]:
@@ -204,3 +206,15 @@ def test_a_long_run_shows_its_progress_in_a_terminal():
     assert "\r\x1b[K" in out and "verdict:" in out.split("\r\x1b[K")[-1]
     p = run("compare", "--max-cycles", "3")
     assert p.returncode in (0, 1) and "simulated" not in p.stderr + p.stdout
+
+
+def test_the_examples_runs_show_their_progress_in_a_terminal():
+    # the example's SSP runs report no simulated time: each says which run of how many and its
+    # wall time after 2 s, on one line cleared at the end; nothing for a short run
+    code = ("import time, sys\nfrom harness.runs import Ticker\n"
+            "with Ticker('example: run 1 of 5'): time.sleep(3.2)\n"
+            "with Ticker('short run'): time.sleep(0.6)\nprint('done')")
+    status, out = _in_terminal([code], timeout=60, python=("-c",))
+    assert status == 0, out
+    assert re.search(r"\rexample: run 1 of 5, [23] s ", out), out
+    assert "\r\x1b[K" in out and "short run" not in out and out.rstrip().endswith("done")

@@ -193,3 +193,22 @@ def test_compare_judges_the_housings_thrust_with_three_rollers():
     assert j["pass"] is True and r["pass"] is True
     one = json.loads(cli("compare", "--json", "--max-cycles", "3").stdout)
     assert one["joint"] is None
+
+
+def test_plot_titles_fit_their_figures():
+    """The longest scene a plot names (a launch torque at a large angle and speed, the resolved
+    row, the whole joint): every title line inside the figure, none cut at its edges."""
+    import matplotlib.pyplot as plt
+    from harness.plots import scene_title
+    from reduced_model import scene as scene_mod
+    sc = scene_mod.validate({"theta": math.radians(24.9), "torque": 3000.0, "bearing": 2,
+                             "n_rollers": 3}, "contact")
+    fig, ax = plt.subplots(figsize=(8, 4.5))
+    ax.set_title("Pressing-force change and lateral force, contact FMU (Fig. 11)\n"
+                 + scene_title(sc, 2 * math.pi * 29.9))
+    fig.tight_layout()
+    fig.canvas.draw()
+    box = ax.title.get_window_extent()
+    width = fig.get_size_inches()[0] * fig.dpi
+    assert box.x0 >= 0 and box.x1 <= width, (box, width)
+    plt.close(fig)
