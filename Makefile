@@ -13,6 +13,8 @@ UV := .uv/bin/uv
 # uv installs uv.lock exactly; it never downloads a Python of its own
 UV_ENV := UV_PROJECT_ENVIRONMENT=$(VENV) UV_PYTHON_DOWNLOADS=never UV_NO_PROGRESS=1
 
+.DEFAULT_GOAL := demo
+
 .PHONY: demo example test test-slow venv lock fmu bench native-check docs docs-quick clean cross-tools
 
 venv: $(STAMP)

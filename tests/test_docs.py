@@ -105,3 +105,81 @@ def test_make_targets_the_readme_names():
     demo = re.search(r"^demo:.*\n\t(.*)$", mk, re.M).group(1)
     assert demo.endswith("tripod-thrust compare --out out")
     assert re.search(r"^test:.*\n\t.*pytest", mk, re.M)
+
+
+# Commands of README.md and docs/getting-started.md the fresh-clone walk does not run, and why
+NOT_RUN = {
+    "git clone <this repository> && cd tripod-thrust": "a placeholder: the walk's own clone",
+    "make demo": "the set-up command, run first",
+    "make test": "this test suite itself",
+}
+WALKED = ("README.md", "docs/getting-started.md")
+
+
+def doc_commands(text: str) -> list:
+    """Every shell command of ``text``'s code blocks, in order, as (kind, command, shown):
+    kind "sh" for a command (shown: the output printed under a `$ ` line, else None), "python"
+    for a ```python block (shown: what the sentence after it says it prints, else None)."""
+    out = []
+    for m in re.finditer(r"```(sh|python|)\n(.*?)```(\n\nprints `([^`]*)`)?", text, re.S):
+        lang, body = m.group(1), m.group(2)
+        if lang == "python":
+            out.append(("python", body, m.group(4)))
+            continue
+        lines = body.splitlines()
+        if any(line.startswith("$ ") for line in lines):
+            for i, line in enumerate(lines):
+                if line.startswith("$ "):
+                    shown = []
+                    for nxt in lines[i + 1:]:
+                        if nxt.startswith("$ "):
+                            break
+                        shown.append(nxt)
+                    out.append(("sh", line[2:], "\n".join(shown).strip() or None))
+        elif lang == "sh":
+            for line in lines:
+                cmd = line.split("  #")[0].strip()
+                if cmd and not cmd.startswith("#"):
+                    out.append(("sh", cmd, None))
+    return out
+
+
+@pytest.mark.slow   # a fresh clone set up by `make demo` (minutes)
+def test_the_docs_commands_run_as_written_in_a_fresh_clone(tmp_path):
+    """A newcomer's first hour: a fresh clone of this commit, the README's set-up command, then
+    every command and Python block of README.md and docs/getting-started.md in the order the
+    docs give them, each in a shell that ran `. .venv/bin/activate` as the README says, in the
+    clone's folder; what they print compared where the doc shows it (exactly: the numbers shown
+    are rounded far from their last digit's boundaries).  Tests this checkout's last commit."""
+    clone = tmp_path / "fresh clone"
+    subprocess.run(["git", "clone", "-q", str(ROOT), str(clone)], check=True)
+    env = {k: v for k, v in os.environ.items() if k not in ("PYTHONPATH", "VIRTUAL_ENV")}
+    env["PATH"] = os.pathsep.join(p for p in env["PATH"].split(os.pathsep)
+                                  if not p.startswith(str(ROOT)))
+    p = subprocess.run(["make", "demo"], cwd=clone, env=env, capture_output=True, text=True,
+                       timeout=1800)
+    assert p.returncode == 0, (p.stdout + p.stderr)[-3000:]
+    assert "verdict: PASS" in p.stdout
+
+    skipped, ran = set(), 0
+    for doc in WALKED:
+        for kind, cmd, shown in doc_commands((clone / doc).read_text()):
+            if kind == "sh" and cmd in NOT_RUN:
+                skipped.add(cmd)
+                continue
+            if kind == "sh" and cmd == ". .venv/bin/activate":
+                continue            # every command below runs after it
+            script = ". .venv/bin/activate && " + (cmd if kind == "sh" else "python -")
+            r = subprocess.run(["bash", "-c", script], cwd=clone, env=env, text=True,
+                               input=cmd if kind == "python" else None, capture_output=True,
+                               timeout=900)
+            said = (r.stdout + r.stderr).strip()
+            where = f"{doc}: {cmd[:80]!r}"
+            if shown is not None and "error:" in shown:   # bad input: exit 2 and that line
+                assert r.returncode == 2 and said == shown, (where, said)
+            else:
+                assert r.returncode == 0, (where, said[-3000:])
+                assert shown is None or said == shown, (where, said, shown)
+            ran += 1
+    assert skipped == set(NOT_RUN)     # each reason still names a command the docs give
+    assert ran >= 9, ran

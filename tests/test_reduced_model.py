@@ -207,3 +207,30 @@ def test_transition_velocity_floor_at_standstill():
     slip_start = 3 * p["mu_groove"] * 1000.0 * (2 - p["nu"]) / (8 * G * math.sqrt(a * b))
     creep = V_ST_FLOOR / 3 * math.atanh(0.99) * 1.0       # [m] in one second
     assert slip_start / 2 < creep < slip_start * 2
+
+
+@pytest.mark.parametrize("k", [1e-3, 0.3, 3.0, 12.0, 100.0, 1e3])
+def test_eq25_amplitude_against_adaptive_quadrature(k):
+    """C of Eq. (25) against scipy's adaptive quadrature of its integral (an independent
+    method): within 1e-11 relative (quad is asked for 1e-12; the trapezoid rule's own error is
+    below 1e-15 by its pole distance)."""
+    from scipy.integrate import quad
+    from reduced_model.thrust import second_order_amplitude
+    F, mu = 1000.0, 0.06
+    ref = quad(lambda u: np.tanh(k * np.sin(u)) * np.sin(u), 0.0, np.pi, epsabs=1e-14,
+               epsrel=1e-13, limit=400)[0] * F * mu * 2.0 / np.pi
+    assert second_order_amplitude(F, mu, k * 0.01, 0.03) == pytest.approx(ref, rel=1e-11)
+
+
+def test_eq25_amplitude_limits():
+    """Coulomb friction (v_st = 0): C = 4/pi F mu; a steep tanh (k = 3e4, past the switch to the
+    boundary-layer series) within pi^2/(12 k^2) of it, and both branches agree at the switch."""
+    from reduced_model.thrust import second_order_amplitude as C
+    F, mu = 1000.0, 0.06
+    coulomb = 4.0 / np.pi * F * mu
+    assert C(F, mu, 0.01, 0.0) == pytest.approx(coulomb, rel=1e-15)
+    k = 3e4
+    assert C(F, mu, k * 0.01, 0.03) == pytest.approx(coulomb * (1 - np.pi ** 2 / (24 * k * k)),
+                                                     rel=1e-14)
+    below, above = C(F, mu, 1e4 * 0.01 * (1 - 1e-12), 0.03), C(F, mu, 1e4 * 0.01 * (1 + 1e-12), 0.03)
+    assert below == pytest.approx(above, rel=1e-13)
