@@ -24,9 +24,10 @@ T = 2 * math.pi / W
 N_CYC = 480                 # samples a cycle on the common grid (divisible by 3: 120 deg shifts)
 
 
-def _run(sv):
-    """The contact FMU at the paper's scene, whole cycles until Fz_mod is periodic."""
-    return run_settled(ensure_fmu("TripodRoller"), sv, W, ["Fz_mod"])
+def _run(sv, label=None):
+    """The contact FMU at the paper's scene, whole cycles until Fz_mod is periodic; ``label``
+    shows its progress on a terminal."""
+    return run_settled(ensure_fmu("TripodRoller"), sv, W, ["Fz_mod"], progress=label)
 
 
 def cycle(run, name, n=N_CYC):
@@ -66,19 +67,20 @@ class Runs:
         self.xdeg = np.arange(N_CYC) * 360.0 / N_CYC
         self.xs = 2 * math.pi * np.arange(N_CYC) / N_CYC
         base = {"traverse": True, "bearing": 0}
-        self.runs = {
-            "all": _run(base),
-            "pitch": _run(dict(base, yaw=False, roll=False, axial=False)),
-            "pitch+roll": _run(dict(base, yaw=False, axial=False)),
-            "pitch+yaw": _run(dict(base, roll=False, axial=False)),
-            "pitch+axial": _run(dict(base, yaw=False, roll=False)),
-        }
         # Section 4.2: every friction source, then each switched off in turn (the resolved
         # bearing by default: the paper's model; share_bearing = 1 uses the lumped one, 20x
         # faster)
         sb = {"traverse": True, "bearing": share_bearing}
-        for k, v in SHARE_CASES.items():
-            self.runs[f"share {k}"] = _run(dict(sb, **v))
+        cases = {
+            "all": base,
+            "pitch": dict(base, yaw=False, roll=False, axial=False),
+            "pitch+roll": dict(base, yaw=False, axial=False),
+            "pitch+yaw": dict(base, roll=False, axial=False),
+            "pitch+axial": dict(base, yaw=False, roll=False),
+            **{f"share {k}": dict(sb, **v) for k, v in SHARE_CASES.items()},
+        }
+        self.runs = {k: _run(sv, f"paper: run {i + 1} of {len(cases)} ({k}), contact FMU")
+                     for i, (k, sv) in enumerate(cases.items())}
         self.fzm = {k: cycle(r, "Fz_mod") for k, r in self.runs.items()}
 
     def fig(self, name, build):

@@ -159,7 +159,7 @@ def run_case(name, sv, inputs, stop, dt, expect_ok):
     t0 = time.perf_counter()
     try:
         r = run_fmu(ensure_fmu("TripodRoller"), sv, stop_time=stop, output_interval=dt,
-                    inputs=inputs, timeout=1200)
+                    inputs=inputs, timeout=1200, progress=f"stress: {name}")
     except FmuRunError as e:
         row["wall_s"] = time.perf_counter() - t0
         row["status"] = "refused"

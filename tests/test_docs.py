@@ -183,3 +183,11 @@ def test_the_docs_commands_run_as_written_in_a_fresh_clone(tmp_path):
             ran += 1
     assert skipped == set(NOT_RUN)     # each reason still names a command the docs give
     assert ran >= 9, ran
+
+
+def test_getting_started_names_the_keys_the_analytic_model_takes():
+    from reduced_model.joint import for_model, load_joint
+    text = (ROOT / "docs" / "getting-started.md").read_text()
+    said = re.search(r"the analytic model uses (.*?); the contact model", text, re.S).group(1)
+    named = set(re.findall(r"`(\w+)`", said))
+    assert named == set(for_model(load_joint(ROOT / "joints" / "paper.toml"), "analytic"))

@@ -22,8 +22,8 @@ def test_claims_follow_the_runs(tmp_path, monkeypatch):
     # which it cannot if the number were typed in
     real = paper._run
 
-    def fake(sv):
-        r = real(sv)
+    def fake(sv, label=None):
+        r = real(sv, label)
         if sv.get("bearing") == 1 and sv.get("friction_needle") is False:
             r = dict(r, Fz_mod=2 * r["Fz_mod"])
         return r
