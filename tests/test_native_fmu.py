@@ -61,8 +61,23 @@ def fmus(request):
     return native, builder().reference_path(name), request.param
 
 
+# a state resumed in a fresh instance of another process (test_a_state_resumes_...): the joint
+# at 300 N m (the master moving it by 100 N m), its parameters other than the defaults
+RESUMED = {"TripodRoller-lumped-three": CASES["TripodRoller-lumped-three"],
+           "TripodRoller-free-spider-lumped": (CONTACT_INPUTS, {"spider": 1, "n_rollers": 3,
+                                                                "bearing": 1},
+                                               ("mu_groove", 0.07), 0.5),
+           "TripodRollerAnalytic-three": CASES["TripodRollerAnalytic-three"]}
+
+
+# the lumped row's floating spider: win64 and linux64 part by up to 6e-7 of scale over the run
+# (measured), where the operating point restarts on an input's last bit and the two C runtimes'
+# libm differ in it (issue 70 point 2, not fixed yet)
+LIBM_GROWN = {"TripodRoller-free-spider-lumped"}
+
+
 def _case(fmus):
-    return CASES[fmus[2]]
+    return CASES[fmus[2]] if fmus[2] in CASES else RESUMED[fmus[2]]
 
 
 def _model_id(fmu):
@@ -240,6 +255,54 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     assert (np.abs(rw - rl).max(axis=0) <= 10 * spread + 1e-9 * scale).all()
 
 
+@pytest.mark.parametrize("case", sorted(RESUMED))
+def test_a_state_resumes_in_a_fresh_instance_of_another_process(case, tmp_path):
+    """As fmusim restores a state: serialised halfway through one process's run, set in
+    another process right after fmi2Instantiate (no start value: its parameters, three rollers,
+    a bearing, a floating spider, come with the state) and stepped on: the same outputs bit
+    for bit; the win64 binary under wine resuming the linux64 state within the wine test's
+    bound of each output's scale."""
+    assert shutil.which("x86_64-w64-mingw32-gcc") and os.path.exists(WINE), \
+        "mingw-w64 and wine64 missing: make test installs them (make cross-tools)"
+    fm = (ensure_fmu(case.split("-")[0]), None, case)
+    d = tmp_path / "fmu"
+    d.mkdir()
+    zipfile.ZipFile(fm[0]).extractall(d)
+    mid = _model_id(fm[0])
+    so, dll = d / f"binaries/linux64/{mid}.so", d / f"binaries/win64/{mid}.dll"
+    lin = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
+    win = _host("x86_64-w64-mingw32-gcc", tmp_path / "fmu_run.exe",
+                ["-static-libgcc", "-lpsapi", "-lshell32"])
+    state = tmp_path / "state.bin"
+    env = {"PATH": "/usr/bin:/bin"}
+    p, full = _run([str(lin), str(so)], fm, tmp_path / "full.bin",
+                   dict(env, FMU_RUN_STATE_OUT=str(state)))
+    assert p.returncode == 0 and state.stat().st_size > 0, p.stdout + p.stderr
+    q, resumed = _run([str(lin), str(so)], fm, tmp_path / "resumed.bin",
+                      dict(env, FMU_RUN_STATE_IN=str(state)))
+    assert q.returncode == 0 and "FAILED" not in q.stdout, q.stdout + q.stderr
+    half = len(full) // 2
+    assert np.array_equal(resumed[half:], full[half:])
+    assert np.ptp(full[half:], axis=0).max() > 0          # (the run moved)
+    wenv = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG="-all",
+                FMU_RUN_STATE_IN=_windows(state))
+    w, rw = _run([WINE, str(win), _windows(dll)], fm, tmp_path / "win.bin", wenv, wine=True)
+    assert w.returncode == 0 and "FAILED" not in w.stdout, w.stdout + w.stderr
+    scale = np.abs(full[half:]).max(axis=0)
+    bound = WINE_BOUND.get(case, 1e-9)
+    off = np.abs(rw[half:] - full[half:])
+    assert (off[0] <= 1e-9 * scale).all()       # the state itself carried over exactly
+    if case not in LIBM_GROWN:
+        assert (off.max(axis=0) <= bound * scale).all()
+        return
+    # where the two libms' last bits grow in the run itself, the resumed run stays within ten
+    # times what the uninterrupted win64 run parts from the linux64 one
+    _, whole = _run([WINE, str(win), _windows(dll)], fm, tmp_path / "w2.bin",
+                    dict(wenv, FMU_RUN_STATE_IN=""), wine=True)
+    spread = np.abs(whole[half:] - full[half:]).max(axis=0)
+    assert (off.max(axis=0) <= 10 * spread + 1e-9 * scale).all()
+
+
 @pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind not installed "
                     "(make native-check installs it)")
 def test_the_linux_binary_is_valgrind_clean(fmus, tmp_path):
@@ -346,9 +409,10 @@ print(json.dumps({"cases": res, "good_after": res_good_after}))
 def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
     """Bytes into C: every truncation (a seventh of them), 200 bit flips, 300 values changed
     with the checksum made valid (NaN, inf, 1e308, subnormal, plausible-looking), a wrong
-    version, phase, size or GUID, a state of other parameters: each is refused at
-    deserialise or set, or steps 20 times to finite outputs or is refused at a step; none
-    crashes the host; the good state still restores after them all."""
+    version, phase, size or GUID: each is refused at deserialise or set, or steps 20 times to
+    finite outputs or is refused at a step; none crashes the host; the good state still
+    restores after them all.  A state of other parameters (valid ones) is taken with them and
+    steps to finite outputs."""
     import json
     _, ints, other, _ = _case(fmus)
     p = subprocess.run([sys.executable, "-c", _ABUSE, str(fmus[0]), json.dumps(ints),
@@ -359,9 +423,9 @@ def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
     assert cases.pop("good") == "finite" and r["good_after"] == "finite"
     wrong = {k: v for k, v in cases.items() if v not in ("refused", "finite", "refused-later")}
     assert not wrong, wrong
-    for k in ("empty", "longer", "other-parameters", "phase-99", "version-2", "size-huge",
-              "guid"):
+    for k in ("empty", "longer", "phase-99", "version-2", "size-huge", "guid"):
         assert cases[k] == "refused", k
+    assert cases["other-parameters"] == "finite"
     assert all(v == "refused" for k, v in cases.items() if k.startswith(("truncated", "flip")))
     values = {k: v for k, v in cases.items() if k.startswith("value-")}
     assert len(values) == 300
@@ -415,3 +479,59 @@ def test_a_crafted_contact_state_is_refused_or_meets_the_budget(slide, outcome, 
     assert f"OUTCOME {outcome}" in p.stdout and said in p.stdout, p.stdout[-3000:]
     if slide == 3e-3:
         assert "the substeps tried reached their budget" in p.stdout
+
+
+# a contact FMU's state after 50 steps with one parameter set, restored into a fresh instance
+_FOREIGN = r'''
+import struct, sys, zlib
+from fmpy import extract, read_model_description
+from fmpy.fmi1 import FMICallException
+from fmpy.fmi2 import FMU2Slave
+fmu, at, value = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+md = read_model_description(fmu)
+d = extract(fmu)
+def instance(name):
+    return FMU2Slave(guid=md.guid, unzipDirectory=d,
+                     modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+s = instance("donor")
+s.instantiate()
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+s.exitInitializationMode()
+for i in range(50):
+    s.doStep(i * 1e-4, 1e-4)
+b = bytearray(bytes(s.serializeFMUstate(s.getFMUstate()))[:-4])
+struct.pack_into("<d", b, 8 + 4 * 4 + 6 * 4 + 8 + 8 * at, value)
+b += struct.pack("<I", zlib.crc32(bytes(b)))
+f = instance("fresh")
+f.instantiate(loggingOn=True)
+try:
+    f.setFMUstate(f.deSerializeFMUstate(bytes(b)))
+    f.doStep(50e-4, 1e-4)
+    print("OUTCOME stepped")
+except FMICallException:
+    print("OUTCOME refused")
+'''
+
+
+@pytest.mark.parametrize("name,value,said", [
+    ("r_bore", 0.02, "fmi2SetFMUstate: invalid parameter in the state: "),
+    ("n_rollers", 2.0, "fmi2SetFMUstate: invalid parameter in the state: "),
+    ("bearing", 0.5, "fmi2SetFMUstate: invalid parameter in the state: bearing = 0.5 is not an "
+                     "integer"),
+    ("mu_groove", 7.0, "fmi2SetFMUstate: invalid parameter in the state: mu_groove = 7.0 is "
+                       "outside the allowed range [0, 1]")])
+def test_a_states_parameters_meet_the_checks_of_initialisation(name, value, said):
+    """A state's parameters set into a fresh instance pass what fmi2SetInteger, fmi2SetReal and
+    initialisation check: a bore wider than the roller and two rollers (each in its range, the
+    relation refused, the model's own message), a Real where an Integer belongs, a value out of
+    range: refused with one line.  (Valid other parameters come with a state that was taken
+    with them: test_a_state_resumes_in_a_fresh_instance_of_another_process.)"""
+    from tripod_model import lifecycle as LC
+    at = LC.PARAM_NAMES.index(name)         # (the state's arrays: P first)
+    p = subprocess.run([sys.executable, "-c", _FOREIGN, str(ensure_fmu("TripodRoller")),
+                        str(at), repr(value)], capture_output=True, text=True, timeout=300)
+    assert p.returncode == 0, p.stderr[-3000:]
+    assert "OUTCOME refused" in p.stdout and said in p.stdout, p.stdout[-3000:]
+    line = next(x for x in p.stdout.splitlines() if said in x)
+    assert name in line

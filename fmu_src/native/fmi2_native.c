@@ -78,10 +78,10 @@ static void say(Inst *c, int level, const char *prefix, const char *msg)
 
 /* The notes the last compiled call left in W, worded and logged (errors after prefix); the
    count and codes are the model's, checked before use like any value of a state. */
-static void log_notes(Inst *c, const char *prefix)
+static void log_notes_of(Inst *c, const double *work, const char *prefix)
 {
     if (MODEL_NOTES_AT < 0) return;
-    const double *W = c->arr[A_W] + MODEL_NOTES_AT;
+    const double *W = work + MODEL_NOTES_AT;
     double count = W[0];
     int n = count >= 0.0 && count <= (double)MODEL_MAX_NOTES ? (int)count : 0;
     char msg[1024] = "", part[512];
@@ -105,6 +105,8 @@ static void log_notes(Inst *c, const char *prefix)
     }
     if (msg[0]) say(c, level, prefix, msg);
 }
+
+static void log_notes(Inst *c, const char *prefix) { log_notes_of(c, c->arr[A_W], prefix); }
 
 /* ---- the call sequence -------------------------------------------------------------------- */
 
@@ -508,10 +510,46 @@ fmi2Status fmi2GetFMUstate(fmi2Component component, fmi2FMUstate *FMUstate)
     return fmi2OK;
 }
 
-/* Whether the state's values can be set into this instance: finite; its inputs in range; its
-   parameters this instance's (they are fixed; before initialisation, the ones set so far). */
-static int state_fits(Inst *c, const State *s, char *why, size_t n)
+/* The work W a stepping state's parameters need (the needle rows' geometry, caches keyed on
+   the parameters), built by the model's own start on a scratch copy of the state, whose
+   checks are initialisation's (the relations between parameters; the model's notes are then
+   the reason, logged).  0 when refused; why is empty when the notes said it. */
+static int work_for(Inst *c, const State *s, double *scratch, char *why, size_t n)
 {
+    memcpy(scratch, s->data, c->n_state * sizeof *scratch);
+    memset(scratch + c->n_state, 0, (c->n_data - c->n_state) * sizeof *scratch);
+    double *arr[A_COUNT];
+    place_arrays(arr, scratch);
+    int32_t rc = model_init(arr);
+    if (rc == 1) return 1;
+    why[0] = '\0';
+    if (rc == 3) {
+        log_notes_of(c, arr[A_W], "fmi2SetFMUstate: invalid parameter in the state: ");
+    } else if (rc < 0) {
+        for (int k = 0; k < MODEL_N_VARS; ++k) {
+            const ModelVar *v = &MODEL_VARS[k];
+            if (v->array != IN_P || v->slot != -rc - 1) continue;
+            char text[48];
+            native_value_text(v, arr[A_P][v->slot], text, sizeof text);
+            snprintf(why, n, "invalid parameter in the state: %s = %s is too small to compute "
+                     "with; allowed range %s", v->name, text, v->range_text);
+        }
+    } else {
+        snprintf(why, n, "invalid parameters in the state: their start's outputs are not finite");
+    }
+    if (!why[0] && rc != 3) snprintf(why, n, "invalid parameters in the state");
+    return 0;
+}
+
+/* Whether the state's values can be set into this instance: finite; its inputs and parameters
+   in range (FMI 2.0 counts the parameters part of the state: they come with it); a stepping
+   state's parameters accepted by the model's start and its arrays by the model's own check.
+   *rebuilt: 1 when the work for the state's parameters was built into scratch (this
+   instance's W is for other parameters, or for none yet). */
+static int state_fits(Inst *c, const State *s, double *scratch, int *rebuilt, char *why,
+                      size_t n)
+{
+    *rebuilt = 0;
     if (s->n_data != c->n_state) {
         snprintf(why, n, "a state of another model");
         return 0;
@@ -521,28 +559,42 @@ static int state_fits(Inst *c, const State *s, char *why, size_t n)
             snprintf(why, n, "the state cannot be stepped: it holds a non-finite value");
             return 0;
         }
+    int same = 1;
     for (int k = 0; k < MODEL_N_VARS; ++k) {
         const ModelVar *v = &MODEL_VARS[k];
         size_t at = (size_t)(slot_of(c, v) - c->data);
-        if (v->array == IN_IN && !native_value_ok(v, s->data[at], why, n)) return 0;
-        if (v->array == IN_P && s->data[at] != c->data[at]) {
-            char a[48], b[48];
-            native_value_text(v, s->data[at], a, sizeof a);
-            native_value_text(v, c->data[at], b, sizeof b);
-            snprintf(why, n, "state taken with other parameters: %s = %s (this instance: %s)",
-                     v->name, a, b);
+        double x = s->data[at];
+        if (v->array == IN_IN && !native_value_ok(v, x, why, n)) return 0;
+        if (v->array != IN_P) continue;
+        if (!native_value_ok(v, x, why, n)) {
+            char text[512];
+            snprintf(text, sizeof text, "invalid parameter in the state: %s", why);
+            snprintf(why, n, "%s", text);
             return 0;
         }
+        if ((v->type == 'I' || v->type == 'B') && (x != floor(x) || (v->type == 'B' && x != 0.0
+                                                                     && x != 1.0))) {
+            snprintf(why, n, "invalid parameter in the state: %s = %.17g is not %s", v->name, x,
+                     v->type == 'I' ? "an integer" : "a Boolean (0 or 1)");
+            return 0;
+        }
+        same = same && x == c->data[at];
     }
     if (!(s->phase >= INSTANTIATED && s->phase <= ERRORED) || !isfinite(s->last_ok_time)) {
         snprintf(why, n, "corrupt state: its phase or time");
         return 0;
     }
     if (s->phase == STEP_COMPLETE || s->phase == STEP_FAILED || s->phase == TERMINATED) {
+        int built = same && (c->phase == STEP_COMPLETE || c->phase == STEP_FAILED ||
+                             c->phase == TERMINATED);
+        if (!built) {
+            if (!work_for(c, s, scratch, why, n)) return 0;
+            *rebuilt = 1;
+        }
         double *arr[A_COUNT];     /* the model's own check of what it would step (its work:
-                                     this instance's) */
+                                     the state's parameters') */
         place_arrays(arr, s->data);
-        arr[A_W] = c->arr[A_W];
+        arr[A_W] = built ? c->arr[A_W] : scratch + c->n_state;
         int32_t code = model_check_state(arr);
         if (code != 0) {
             snprintf(why, n, "corrupt state: %s",
@@ -564,11 +616,22 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
         logf_(c, fmi2Error, "fmi2SetFMUstate: NULL state");
         return fmi2Error;
     }
-    if (!state_fits(c, s, why, sizeof why)) {
-        logf_(c, fmi2Error, "fmi2SetFMUstate: %s", why);
+    double *scratch = malloc(c->n_data * sizeof *scratch);
+    if (!scratch) {
+        logf_(c, fmi2Error, "fmi2SetFMUstate: out of memory");
+        return fmi2Error;
+    }
+    int rebuilt = 0;
+    if (!state_fits(c, s, scratch, &rebuilt, why, sizeof why)) {
+        if (why[0]) logf_(c, fmi2Error, "fmi2SetFMUstate: %s", why);
+        free(scratch);
         return fmi2Error;    /* the instance as it was, its phase included */
     }
     memcpy(c->data, s->data, c->n_state * sizeof *c->data);
+    if (rebuilt)
+        memcpy(c->data + c->n_state, scratch + c->n_state,
+               (c->n_data - c->n_state) * sizeof *c->data);
+    free(scratch);
     c->phase = s->phase;
     c->last_ok_time = s->last_ok_time;
     c->wants_to_terminate = s->wants_to_terminate;

@@ -9,7 +9,11 @@
    (before the binary is loaded) to the first step done, and the mean of the steps after it.
 
    usage: fmu_run BINARY GUID STEPS DT OUT IN_VRS OUT_VRS [INTS]   (VRS: comma-separated;
-   INTS: VR=VALUE,... Integer parameters set before initialisation) */
+   INTS: VR=VALUE,... Integer parameters set before initialisation)
+   With FMU_RUN_STATE_OUT=FILE in the environment the serialised state taken halfway is written
+   there; with FMU_RUN_STATE_IN=FILE the run is a resumed one, as fmusim restores a state: the
+   state read from FILE is set right after fmi2Instantiate (no start value, no initialisation)
+   and the second half stepped from it (the first half's rows are zeros). */
 #ifndef _WIN32
 #define _POSIX_C_SOURCE 200809L   /* clock_gettime under -std=c99 */
 #endif
@@ -196,6 +200,29 @@ int main(int argc, char **argv)
                                       fmi2False, fmi2False);
     check("instantiate", c != NULL);
     if (!c || !rows || !again) return 1;
+    int half = steps / 2;
+    const char *state_in = getenv("FMU_RUN_STATE_IN");
+    if (state_in && *state_in) {    /* the resumed run */
+        FILE *f = fopen(state_in, "rb");
+        static fmi2Byte blob[1 << 24];
+        size_t size = f ? fread(blob, 1, sizeof blob, f) : 0;
+        if (f) fclose(f);
+        fmi2FMUstate st = NULL;
+        check("read state", size > 0 && size < sizeof blob);
+        check("deserialise", fmi2DeSerializeFMUstate(c, blob, size, &st) == fmi2OK);
+        check("set state into a fresh instance", st && fmi2SetFMUstate(c, st) == fmi2OK);
+        check("second half", run(c, half, steps, dt, rows));
+        fmi2FreeFMUstate(c, &st);
+        check("terminate", fmi2Terminate(c) == fmi2OK);
+        fmi2FreeInstance(c);
+        FILE *o = fopen(argv[5], "wb");
+        check("write", o && fwrite(rows, sizeof *rows, (size_t)steps * g_nout, o) ==
+                                 (size_t)steps * g_nout);
+        if (o) fclose(o);
+        free(rows);
+        free(again);
+        return g_failures ? 1 : 0;
+    }
     check("initialise", fmi2SetupExperiment(c, fmi2False, 0, 0.0, fmi2False, 0) == fmi2OK &&
                         fmi2EnterInitializationMode(c) == fmi2OK);
     for (const char *s = argc == 9 ? argv[8] : NULL; s && *s;) {   /* VR=VALUE,... */
@@ -207,7 +234,6 @@ int main(int argc, char **argv)
     }
     check("initialised", 
                         fmi2ExitInitializationMode(c) == fmi2OK);
-    int half = steps / 2;
     check("first half", run(c, 0, half, dt, rows));
     g_steps_time = now() - g_first_done;
     fmi2FMUstate st = NULL, st2 = NULL;
@@ -217,6 +243,12 @@ int main(int argc, char **argv)
     fmi2Byte *bytes = malloc(size);
     check("serialise", bytes && fmi2SerializeFMUstate(c, st, bytes, size) == fmi2OK);
     check("deserialise", fmi2DeSerializeFMUstate(c, bytes, size, &st2) == fmi2OK);
+    const char *state_out = getenv("FMU_RUN_STATE_OUT");
+    if (state_out && bytes) {
+        FILE *f = fopen(state_out, "wb");
+        check("write state", f && fwrite(bytes, 1, size, f) == size);
+        if (f) fclose(f);
+    }
     check("second half", run(c, half, steps, dt, rows));
     check("set state", fmi2SetFMUstate(c, st2) == fmi2OK);
     check("second half again", run(c, half, steps, dt, again));
