@@ -199,6 +199,12 @@ PARAMS: tuple[Param, ...] = (
     Param("spider_inertia", 8.5e-5, "kg.m2", 0.0, 10.0,
           "spider = 1: moment of inertia of the spider about the shaft axis", lo_open=True,
           models=_C),
+    Param("tolerance", 0.0, "1", 0.0, 0.1,
+          "the relative error of the thrust's orders the generalized-alpha substep (integrator "
+          "4, ideal and lumped bearing) is set for: the automatic substep times "
+          "sqrt(tolerance / 7.5e-3), at most 4 times it; 0 = the host's tolerance "
+          "(fmi2SetupExperiment) where it gives one, else the automatic substep",
+          models=_C, auto_or_min=1e-6),
 )
 
 BY_NAME = {p.name: p for p in PARAMS}

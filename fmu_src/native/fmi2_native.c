@@ -38,6 +38,7 @@ typedef struct {
     Phase phase;
     double last_ok_time;
     int wants_to_terminate;
+    double host_tolerance;         /* fmi2SetupExperiment's tolerance; 0: none given */
     double *data;                  /* every array, one block: the state's arrays, then W */
     double *arr[A_COUNT];
     size_t n_data;                 /* doubles in the block */
@@ -213,8 +214,6 @@ fmi2Status fmi2SetupExperiment(fmi2Component component, fmi2Boolean toleranceDef
                                fmi2Real tolerance, fmi2Real startTime,
                                fmi2Boolean stopTimeDefined, fmi2Real stopTime)
 {
-    (void)toleranceDefined;
-    (void)tolerance;
     (void)stopTimeDefined;
     (void)stopTime;
     Inst *c = (Inst *)component;
@@ -225,7 +224,29 @@ fmi2Status fmi2SetupExperiment(fmi2Component component, fmi2Boolean toleranceDef
         return fmi2Error;
     }
     c->last_ok_time = startTime;
+    c->host_tolerance = toleranceDefined && isfinite(tolerance) && tolerance > 0.0 ? tolerance
+                                                                                  : 0.0;
     return fmi2OK;
+}
+
+/* The host's tolerance into the model's parameter "tolerance" where the model has one and it
+   was left at 0 (automatic): clipped into its range, and said so. */
+static void take_host_tolerance(Inst *c)
+{
+    if (!(c->host_tolerance > 0.0)) return;
+    for (int k = 0; k < MODEL_N_VARS; ++k) {
+        const ModelVar *v = &MODEL_VARS[k];
+        if (v->array != IN_P || strcmp(v->name, "tolerance") != 0) continue;
+        double *x = slot_of(c, v);
+        if (*x != 0.0) return;        /* the user's own */
+        double t = c->host_tolerance;
+        if (v->auto_or_min > 0.0 && t < v->auto_or_min) t = v->auto_or_min;
+        if (v->has_hi && t > v->hi) t = v->hi;
+        *x = t;
+        logf_(c, fmi2OK, "tolerance = %g: the host's %g (fmi2SetupExperiment)", t,
+              c->host_tolerance);
+        return;
+    }
 }
 
 fmi2Status fmi2EnterInitializationMode(fmi2Component component)
@@ -244,6 +265,7 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
     if (!c) return fmi2Error;
     if (!allowed(c, "fmi2ExitInitializationMode", P_INIT)) return fmi2Error;
     char why[512];
+    take_host_tolerance(c);
     for (int i = 0; i < MODEL_N_CHECK; ++i) {
         const ModelVar *v = &MODEL_VARS[MODEL_CHECK_ORDER[i]];
         if (!native_value_ok(v, *slot_of(c, v), why, sizeof why)) {

@@ -19,7 +19,7 @@ from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP
     P_FRICTION_GROOVE, P_FRICTION_NEEDLE, P_HMAX, P_MAX_SUBSTEP, P_INTEGRATOR, P_K, P_KN,
     P_M_ROLLER, P_MU_GROOVE, P_MU_NEEDLE, P_NEWTON_PASSES, P_PITCH, P_FLANK, P_HFREE, P_QSUM,
     P_RINGA, P_R_ROLLER, P_R_GROOVE, P_ROLL, P_S, P_TRAVERSE, P_VP, P_VST_OP, P_V_ST, P_NROW,
-    P_KN1)
+    P_KN1, P_TOL)
 
 
 # The fewest substeps a whirl cycle: about 2000, a resolution floor for the driven motion.
@@ -92,6 +92,22 @@ def ga_step_size(P, theta, omega, F, vst):
     return max(min(ga_free_step(P, theta, omega, vst), ring_step(P, F)), 1e-7)
 
 
+# The tolerance the automatic generalized-alpha substep h_a stands for.  At the paper's scene
+# (1 ms communication steps) order 3's error falls as the substep squared below h_a / 5, 1.5e-4
+# at 10 us and 3.6e-5 at 5 us: 3.75e-3 (h / h_a)^2; above, the roller's ring leaves it at 2e-4 to
+# 1e-3 (docs/integrators.md).  Twice 3.75e-3: the tolerance then bounds the error with a factor
+# of 2 to spare where the square law holds
+TOL_AUTO = 7.5e-3
+
+
+def tolerance_scale(P):
+    """The generalized-alpha substep's factor for the tolerance P[P_TOL] [1]: sqrt(tolerance /
+    TOL_AUTO) (the method is of second order), at most 4; 1 without a tolerance (0)."""
+    if P[P_TOL] > 0.0:
+        return min(math.sqrt(P[P_TOL] / TOL_AUTO), 4.0)
+    return 1.0
+
+
 def ga_free_step(P, theta, omega, vst):
     """Step of the generalized-alpha integrator [s] where the roller's ring is quiet
     (genalpha.ga_steps).  Implicit with Newton, it needs no substep for the stick mode; it
@@ -99,7 +115,7 @@ def ga_free_step(P, theta, omega, vst):
     20 steps and take at least CYCLE_SUBSTEPS steps a whirl cycle, and at most 1e-4 s.  The
     lumped row's own modes (radial about 12 kHz, tilt about 2 kHz) are left to the step's
     numerical damping: order 3 0.03 % off the reference at 50 us (measured)."""
-    return max(_accuracy_bound(P, theta, abs(omega), vst, 20.0), 1e-7)
+    return max(_accuracy_bound(P, theta, abs(omega), vst, 20.0), 1e-7) * tolerance_scale(P)
 
 
 def ring_step(P, F):
@@ -112,8 +128,8 @@ def ring_step(P, F):
     F = abs(F)      # coast: the same ring
     if F > 0:
         rho = P[P_R_GROOVE] - P[P_R_ROLLER] + (F / P[P_K]) ** (2.0 / 3.0)
-        return min(0.5 / math.sqrt(F / (P[P_M_ROLLER] * rho)), 1e-4)
-    return 1e-4
+        return min(0.5 / math.sqrt(F / (P[P_M_ROLLER] * rho)), 1e-4) * tolerance_scale(P)
+    return 1e-4 * tolerance_scale(P)
 
 
 def substep(P, theta, omega, F, vst, stiff):
@@ -319,5 +335,5 @@ def copy_derived(P, OP, P_to, OP_to):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "_accuracy_bound", "ga_substeps", "ga_step_size", "ga_free_step", "ring_step", "substep", "groove_offset", "row_sums", "lumped_offset",
+             "_rate_amplitude", "_accuracy_bound", "ga_substeps", "ga_step_size", "tolerance_scale", "ga_free_step", "ring_step", "substep", "groove_offset", "row_sums", "lumped_offset",
              "derive", "copy_derived")
