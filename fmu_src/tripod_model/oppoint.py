@@ -19,7 +19,7 @@ from .layout import (BEAR_LUMPED, BEAR_RESOLVED, INT_DEFAULT, OP_DT, OP_F, OP_FP
     P_FRICTION_GROOVE, P_FRICTION_NEEDLE, P_HMAX, P_MAX_SUBSTEP, P_INTEGRATOR, P_K, P_KN,
     P_M_ROLLER, P_MU_GROOVE, P_MU_NEEDLE, P_NEWTON_PASSES, P_PITCH, P_FLANK, P_HFREE, P_QSUM,
     P_RINGA, P_R_ROLLER, P_R_GROOVE, P_ROLL, P_S, P_TRAVERSE, P_VP, P_VST_OP, P_V_ST, P_NROW,
-    P_KN1, P_TOL)
+    P_KN1, P_TOLERANCE)
 
 
 # The fewest substeps a whirl cycle: about 2000, a resolution floor for the driven motion.
@@ -101,10 +101,10 @@ TOL_AUTO = 7.5e-3
 
 
 def tolerance_scale(P):
-    """The generalized-alpha substep's factor for the tolerance P[P_TOL] [1]: sqrt(tolerance /
+    """The generalized-alpha substep's factor for the tolerance P[P_TOLERANCE] [1]: sqrt(tolerance /
     TOL_AUTO) (the method is of second order), at most 4; 1 without a tolerance (0)."""
-    if P[P_TOL] > 0.0:
-        return min(math.sqrt(P[P_TOL] / TOL_AUTO), 4.0)
+    if P[P_TOLERANCE] > 0.0:
+        return min(math.sqrt(P[P_TOLERANCE] / TOL_AUTO), 4.0)
     return 1.0
 
 
