@@ -53,20 +53,48 @@ def _env():
     return dict(os.environ, PATH=f"{BIN}:{os.environ['PATH']}", PYTHONPATH=str(ROOT))
 
 
-def _shell_examples():
-    """($ command, the output lines shown under it) of every ```sh block's commands."""
+# Commands of README.md and docs/getting-started.md the fresh-clone walk does not run, and why
+NOT_RUN = {
+    "git clone <this repository> && cd tripod-thrust": "a placeholder: the walk's own clone",
+    "make demo": "the set-up command, run first",
+    "make test": "this test suite itself",
+}
+WALKED = ("README.md", "docs/getting-started.md")
+
+
+def doc_commands(text: str) -> list:
+    """Every shell command of ``text``'s code blocks, in order, as (kind, command, shown):
+    kind "sh" for a command (shown: for a `$ ` line the output printed under it, "" for none;
+    None for a line without `$ `), "python" for a ```python block (shown: what the sentence
+    after it says it prints, else None)."""
     out = []
-    for block in re.findall(r"```sh\n(.*?)```", README, re.S):
-        lines = block.splitlines()
-        for i, line in enumerate(lines):
-            if line.startswith("$ "):
-                shown = []
-                for nxt in lines[i + 1:]:
-                    if nxt.startswith("$ "):
-                        break
-                    shown.append(nxt)
-                out.append((line[2:], "\n".join(shown).strip()))
+    for m in re.finditer(r"```(sh|python|)\n(.*?)```(\n\nprints `([^`]*)`)?", text, re.S):
+        lang, body = m.group(1), m.group(2)
+        if lang == "python":
+            out.append(("python", body, m.group(4)))
+            continue
+        lines = body.splitlines()
+        if any(line.startswith("$ ") for line in lines):
+            for i, line in enumerate(lines):
+                if line.startswith("$ "):
+                    shown = []
+                    for nxt in lines[i + 1:]:
+                        if nxt.startswith("$ "):
+                            break
+                        shown.append(nxt)
+                    out.append(("sh", line[2:], "\n".join(shown).strip()))
+        elif lang == "sh":
+            for line in lines:
+                cmd = line.split("  #")[0].strip()
+                if cmd and not cmd.startswith("#"):
+                    out.append(("sh", cmd, None))
     return out
+
+
+def _shell_examples():
+    """($ command, the output lines shown under it) of the README's `$ ` lines."""
+    return [(cmd, shown) for kind, cmd, shown in doc_commands(README)
+            if kind == "sh" and shown is not None]
 
 
 def test_readme_has_shell_examples():
@@ -107,43 +135,6 @@ def test_make_targets_the_readme_names():
     assert re.search(r"^test:.*\n\t.*pytest", mk, re.M)
 
 
-# Commands of README.md and docs/getting-started.md the fresh-clone walk does not run, and why
-NOT_RUN = {
-    "git clone <this repository> && cd tripod-thrust": "a placeholder: the walk's own clone",
-    "make demo": "the set-up command, run first",
-    "make test": "this test suite itself",
-}
-WALKED = ("README.md", "docs/getting-started.md")
-
-
-def doc_commands(text: str) -> list:
-    """Every shell command of ``text``'s code blocks, in order, as (kind, command, shown):
-    kind "sh" for a command (shown: the output printed under a `$ ` line, else None), "python"
-    for a ```python block (shown: what the sentence after it says it prints, else None)."""
-    out = []
-    for m in re.finditer(r"```(sh|python|)\n(.*?)```(\n\nprints `([^`]*)`)?", text, re.S):
-        lang, body = m.group(1), m.group(2)
-        if lang == "python":
-            out.append(("python", body, m.group(4)))
-            continue
-        lines = body.splitlines()
-        if any(line.startswith("$ ") for line in lines):
-            for i, line in enumerate(lines):
-                if line.startswith("$ "):
-                    shown = []
-                    for nxt in lines[i + 1:]:
-                        if nxt.startswith("$ "):
-                            break
-                        shown.append(nxt)
-                    out.append(("sh", line[2:], "\n".join(shown).strip() or None))
-        elif lang == "sh":
-            for line in lines:
-                cmd = line.split("  #")[0].strip()
-                if cmd and not cmd.startswith("#"):
-                    out.append(("sh", cmd, None))
-    return out
-
-
 @pytest.mark.slow   # a fresh clone set up by `make demo` (minutes)
 def test_the_docs_commands_run_as_written_in_a_fresh_clone(tmp_path):
     """A newcomer's first hour: a fresh clone of this commit, the README's set-up command, then
@@ -175,11 +166,11 @@ def test_the_docs_commands_run_as_written_in_a_fresh_clone(tmp_path):
                                timeout=900)
             said = (r.stdout + r.stderr).strip()
             where = f"{doc}: {cmd[:80]!r}"
-            if shown is not None and "error:" in shown:   # bad input: exit 2 and that line
+            if shown and "error:" in shown:   # bad input: exit 2 and that line
                 assert r.returncode == 2 and said == shown, (where, said)
             else:
                 assert r.returncode == 0, (where, said[-3000:])
-                assert shown is None or said == shown, (where, said, shown)
+                assert not shown or said == shown, (where, said, shown)
             ran += 1
     assert skipped == set(NOT_RUN)     # each reason still names a command the docs give
     assert ran >= 9, ran

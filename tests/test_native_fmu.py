@@ -433,17 +433,22 @@ def test_states_a_host_hands_it_are_checked(fmus, tmp_path):
     assert all(v == "refused" for k, v in values.items() if k.endswith("nonfinite"))
 
 
-# a contact FMU's state after 50 steps with one of its values set, stepped 20 times
+# a contact FMU's state after 50 steps with one of its values set (the checksum made valid),
+# set into the instance it came from ("same") or into a fresh one ("fresh"), then stepped
 _CRAFTED = r'''
 import json, struct, sys, zlib
 from fmpy import extract, read_model_description
 from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave
-fmu, at, value = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
+fmu, at, value, where = sys.argv[1], int(sys.argv[2]), float(sys.argv[3]), sys.argv[4]
 md = read_model_description(fmu)
-s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu),
-              modelIdentifier=md.coSimulation.modelIdentifier, instanceName="a")
-s.instantiate(loggingOn=True)
+d = extract(fmu)
+def instance(name):
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d,
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
+    s.instantiate(loggingOn=True)
+    return s
+s = instance("a")
 s.setupExperiment(startTime=0.0)
 s.enterInitializationMode()
 s.exitInitializationMode()
@@ -452,6 +457,8 @@ for i in range(50):
 b = bytearray(bytes(s.serializeFMUstate(s.getFMUstate()))[:-4])
 struct.pack_into("<d", b, 8 + 4 * 4 + 6 * 4 + 8 + 8 * at, value)
 b += struct.pack("<I", zlib.crc32(bytes(b)))
+if where == "fresh":
+    s = instance("fresh")
 try:
     s.setFMUstate(s.deSerializeFMUstate(bytes(b)))
     for i in range(20):
@@ -474,44 +481,12 @@ def test_a_crafted_contact_state_is_refused_or_meets_the_budget(slide, outcome, 
     from tripod_model import layout as K, lifecycle as LC
     at = LC.T_LEN + LC.IN_LEN + LC.X_Y + K.Y_U   # (the state's arrays: P, IN, X, ...)
     p = subprocess.run([sys.executable, "-c", _CRAFTED, str(ensure_fmu("TripodRoller")),
-                        str(at), repr(slide)], capture_output=True, text=True, timeout=300)
+                        str(at), repr(slide), "same"], capture_output=True, text=True,
+                       timeout=300)
     assert p.returncode == 0, p.stderr[-3000:]
     assert f"OUTCOME {outcome}" in p.stdout and said in p.stdout, p.stdout[-3000:]
     if slide == 3e-3:
         assert "the substeps tried reached their budget" in p.stdout
-
-
-# a contact FMU's state after 50 steps with one parameter set, restored into a fresh instance
-_FOREIGN = r'''
-import struct, sys, zlib
-from fmpy import extract, read_model_description
-from fmpy.fmi1 import FMICallException
-from fmpy.fmi2 import FMU2Slave
-fmu, at, value = sys.argv[1], int(sys.argv[2]), float(sys.argv[3])
-md = read_model_description(fmu)
-d = extract(fmu)
-def instance(name):
-    return FMU2Slave(guid=md.guid, unzipDirectory=d,
-                     modelIdentifier=md.coSimulation.modelIdentifier, instanceName=name)
-s = instance("donor")
-s.instantiate()
-s.setupExperiment(startTime=0.0)
-s.enterInitializationMode()
-s.exitInitializationMode()
-for i in range(50):
-    s.doStep(i * 1e-4, 1e-4)
-b = bytearray(bytes(s.serializeFMUstate(s.getFMUstate()))[:-4])
-struct.pack_into("<d", b, 8 + 4 * 4 + 6 * 4 + 8 + 8 * at, value)
-b += struct.pack("<I", zlib.crc32(bytes(b)))
-f = instance("fresh")
-f.instantiate(loggingOn=True)
-try:
-    f.setFMUstate(f.deSerializeFMUstate(bytes(b)))
-    f.doStep(50e-4, 1e-4)
-    print("OUTCOME stepped")
-except FMICallException:
-    print("OUTCOME refused")
-'''
 
 
 @pytest.mark.parametrize("name,value,said", [
@@ -529,8 +504,9 @@ def test_a_states_parameters_meet_the_checks_of_initialisation(name, value, said
     with them: test_a_state_resumes_in_a_fresh_instance_of_another_process.)"""
     from tripod_model import lifecycle as LC
     at = LC.PARAM_NAMES.index(name)         # (the state's arrays: P first)
-    p = subprocess.run([sys.executable, "-c", _FOREIGN, str(ensure_fmu("TripodRoller")),
-                        str(at), repr(value)], capture_output=True, text=True, timeout=300)
+    p = subprocess.run([sys.executable, "-c", _CRAFTED, str(ensure_fmu("TripodRoller")),
+                        str(at), repr(value), "fresh"], capture_output=True, text=True,
+                       timeout=300)
     assert p.returncode == 0, p.stderr[-3000:]
     assert "OUTCOME refused" in p.stdout and said in p.stdout, p.stdout[-3000:]
     line = next(x for x in p.stdout.splitlines() if said in x)
