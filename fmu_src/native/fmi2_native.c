@@ -566,12 +566,12 @@ static int work_for(Inst *c, const State *s, double *scratch, char *why, size_t 
 /* Whether the state's values can be set into this instance: finite; its inputs and parameters
    in range (FMI 2.0 counts the parameters part of the state: they come with it); a stepping
    state's parameters accepted by the model's start and its arrays by the model's own check.
-   *rebuilt: 1 when the work for the state's parameters was built into scratch (this
-   instance's W is for other parameters, or for none yet). */
-static int state_fits(Inst *c, const State *s, double *scratch, int *rebuilt, char *why,
-                      size_t n)
+   *scratch: a block holding the work built for the state's parameters (this instance's W is for
+   other parameters, or for none yet), the caller's to free; NULL where this instance's serves
+   (a rollback: nothing allocated). */
+static int state_fits(Inst *c, const State *s, double **scratch, char *why, size_t n)
 {
-    *rebuilt = 0;
+    *scratch = NULL;
     if (s->n_data != c->n_state) {
         snprintf(why, n, "a state of another model");
         return 0;
@@ -610,13 +610,17 @@ static int state_fits(Inst *c, const State *s, double *scratch, int *rebuilt, ch
         int built = same && (c->phase == STEP_COMPLETE || c->phase == STEP_FAILED ||
                              c->phase == TERMINATED);
         if (!built) {
-            if (!work_for(c, s, scratch, why, n)) return 0;
-            *rebuilt = 1;
+            *scratch = malloc(c->n_data * sizeof **scratch);
+            if (!*scratch) {
+                snprintf(why, n, "out of memory");
+                return 0;
+            }
+            if (!work_for(c, s, *scratch, why, n)) return 0;
         }
         double *arr[A_COUNT];     /* the model's own check of what it would step (its work:
                                      the state's parameters') */
         place_arrays(arr, s->data);
-        arr[A_W] = built ? c->arr[A_W] : scratch + c->n_state;
+        arr[A_W] = built ? c->arr[A_W] : *scratch + c->n_state;
         int32_t code = model_check_state(arr);
         if (code != 0) {
             snprintf(why, n, "corrupt state: %s",
@@ -638,19 +642,14 @@ fmi2Status fmi2SetFMUstate(fmi2Component component, fmi2FMUstate FMUstate)
         logf_(c, fmi2Error, "fmi2SetFMUstate: NULL state");
         return fmi2Error;
     }
-    double *scratch = malloc(c->n_data * sizeof *scratch);
-    if (!scratch) {
-        logf_(c, fmi2Error, "fmi2SetFMUstate: out of memory");
-        return fmi2Error;
-    }
-    int rebuilt = 0;
-    if (!state_fits(c, s, scratch, &rebuilt, why, sizeof why)) {
+    double *scratch = NULL;
+    if (!state_fits(c, s, &scratch, why, sizeof why)) {
         if (why[0]) logf_(c, fmi2Error, "fmi2SetFMUstate: %s", why);
         free(scratch);
         return fmi2Error;    /* the instance as it was, its phase included */
     }
     memcpy(c->data, s->data, c->n_state * sizeof *c->data);
-    if (rebuilt)
+    if (scratch)
         memcpy(c->data + c->n_state, scratch + c->n_state,
                (c->n_data - c->n_state) * sizeof *c->data);
     free(scratch);

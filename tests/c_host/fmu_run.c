@@ -162,6 +162,17 @@ static int run(fmi2Component c, int k0, int k1, double dt, double *rows)
     return 1;
 }
 
+/* terminate and free the instance, then every row into path */
+static void finish(fmi2Component c, const char *path, const double *rows, int steps)
+{
+    check("terminate", fmi2Terminate(c) == fmi2OK);
+    fmi2FreeInstance(c);
+    FILE *f = fopen(path, "wb");
+    check("write", f && fwrite(rows, sizeof *rows, (size_t)steps * g_nout, f) ==
+                             (size_t)steps * g_nout);
+    if (f) fclose(f);
+}
+
 int main(int argc, char **argv)
 {
     double t_start = now();
@@ -213,12 +224,7 @@ int main(int argc, char **argv)
         check("set state into a fresh instance", st && fmi2SetFMUstate(c, st) == fmi2OK);
         check("second half", run(c, half, steps, dt, rows));
         fmi2FreeFMUstate(c, &st);
-        check("terminate", fmi2Terminate(c) == fmi2OK);
-        fmi2FreeInstance(c);
-        FILE *o = fopen(argv[5], "wb");
-        check("write", o && fwrite(rows, sizeof *rows, (size_t)steps * g_nout, o) ==
-                                 (size_t)steps * g_nout);
-        if (o) fclose(o);
+        finish(c, argv[5], rows, steps);
         free(rows);
         free(again);
         return g_failures ? 1 : 0;
@@ -258,12 +264,7 @@ int main(int argc, char **argv)
     fmi2FreeFMUstate(c, &st);
     fmi2FreeFMUstate(c, &st2);
     free(bytes);
-    check("terminate", fmi2Terminate(c) == fmi2OK);
-    fmi2FreeInstance(c);
-    FILE *f = fopen(argv[5], "wb");
-    check("write", f && fwrite(rows, sizeof *rows, (size_t)steps * g_nout, f) ==
-                             (size_t)steps * g_nout);
-    if (f) fclose(f);
+    finish(c, argv[5], rows, steps);
     int py = python_loaded();
     printf("python-in-process %s\n", py == 0 ? "no" : py > 0 ? "yes" : "unknown");
     printf("time load-to-first-step-s %.6f\n", g_first_done - t_start);
