@@ -13,6 +13,7 @@ Prints Markdown tables:
 Usage: python benchmarks/needle_speed.py [--runs N] [--quick]
 """
 import argparse
+import math
 import time
 
 import numba
@@ -21,7 +22,7 @@ import numpy as np
 from harness.bench import REFERENCES, time_runs
 from harness.fmus import ensure_fmu
 from reduced_model.orders import last_cycle_orders
-from tripod_model import assembly, bdf2, rowsolve, layout as LY
+from tripod_model import assembly, bdf2, needle_laws, needles, rowsolve, layout as LY
 from tripod_model.model import ContactModel
 from tripod_model.simulate import simulate
 
@@ -65,6 +66,106 @@ def _loop_copy(reps, NW, n, h, A0, b0, A, b, AN0, FN0):
 
 
 @numba.njit
+def _loop_clear(reps, Y, NW, n):
+    for _ in range(reps):     # each needle's system cleared, its sphere centres placed
+        for j in range(n):
+            needles._clear_needle(j, Y, NW, (0.0, 0.0, 0.0))
+
+
+@numba.njit
+def _loop_finish(reps, Y, NW, n, frame, o):
+    for _ in range(reps):     # the friction blocks from their moments, the roller's unknowns
+        needles._finish_systems(Y, NW, n, True, frame, o)
+
+
+@numba.njit
+def _touching(Y, NW, n, ns, o, ob):
+    """Sphere-contact tests that find contact, by kind: trunnion, bore, next needle (the
+    tests of needles._contacts on the sphere centres NW.SP)."""
+    NP, SP = NW.NP, NW.SP
+    rn, Rt, Rb, hw, dc = NP[LY.N_RN], NP[LY.N_RT], NP[LY.N_RBR], NP[LY.N_HW], NP[LY.N_DC]
+    t = b = c = 0
+    for j in range(n):
+        needles._clear_needle(j, Y, NW, (0.0, 0.0, 0.0))
+    for j in range(n):
+        jn = j + 1 if j + 1 < n else 0
+        for k in range(ns):
+            P1, P2, P3 = SP[j, k, 0], SP[j, k, 1], SP[j, k, 2]
+            if math.sqrt(P1 * P1 + P2 * P2) < Rt + rn:
+                t += 1
+            if needle_laws.bore_gap(P1, P2, P3, o[0], o[1], o[2], ob[0], ob[1], ob[2], hw, Rb,
+                                    rn)[4] > 0.0:
+                b += 1
+            Q1, Q2, Q3 = SP[jn, k, 0] - P1, SP[jn, k, 1] - P2, SP[jn, k, 2] - P3
+            if math.sqrt(Q1 * Q1 + Q2 * Q2 + Q3 * Q3) < dc:
+                c += 1
+    return t, b, c
+
+
+def _roller_pose(Y, e1, a):
+    """The roller's centre and bore axis in the trunnion frame T (assembly.resolved_forces)."""
+    E, W, u = Y[LY.Y_E], Y[LY.Y_W], Y[LY.Y_U]
+    e1x, ax = e1[0], a[0]
+    b1, b2 = Y[LY.Y_B1], Y[LY.Y_B2]
+    ib = 1.0 / math.sqrt(1.0 + b1 * b1 + b2 * b2)
+    return (E * e1x, W, u + E * ax), (b2 * ib, -b1 * ib, ib), (e1x, ax)
+
+
+def _all_clear(m, Y):
+    """Y with the roller centred on the trunnion and every needle at mid-gap, untilted: no
+    trunnion or bore contact (the contact tests without a law behind them)."""
+    Y = Y.copy()
+    for i in (LY.Y_E, LY.Y_W, LY.Y_B1, LY.Y_B2):
+        Y[i] = 0.0
+    NP = m.NW.NP
+    r_mid = 0.5 * (NP[LY.N_RT] + NP[LY.N_RBR])
+    for j in range(m.n_needle_bodies):
+        q = LY.Y_LEN + LY.N_F * j
+        rho = math.hypot(Y[q], Y[q + 1])
+        Y[q], Y[q + 1] = Y[q] * r_mid / rho, Y[q + 1] * r_mid / rho
+        Y[q + 3] = Y[q + 4] = 0.0
+    return Y
+
+
+def evaluation_profile(m, reps=1000):
+    """[us] of one contact evaluation's parts on the model's state, the best of 5 rounds
+    (substep_profile's timing): the needles' systems cleared and their sphere centres placed;
+    the contact loop (what is left of the whole evaluation); the contact loop with every
+    needle clear (tests alone: _all_clear); the friction blocks and the roller's unknowns
+    (_finish_systems); and how many of the 3 x n x ns sphere tests find contact."""
+    th = m.p["theta"]
+    NW, L, n, ns = m.NW, m._L, m.n_needle_bodies, m.p["n_spheres"]
+    h = m._OP[LY.OP_H]
+    a = L[LY.L_AX:LY.L_AZ + 1]
+    e1 = np.array([1 - a[0] ** 2, -a[0] * a[1], -a[0] * a[2]])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(a, e1)
+    Y = m.Y.copy()
+    o, ob, frame = _roller_pose(Y, e1, a)
+
+    def timed(f, *args):
+        f(10, *args)
+        best = np.inf
+        for _ in range(5):
+            t0 = time.perf_counter()
+            f(reps, *args)
+            best = min(best, (time.perf_counter() - t0) / reps * 1e6)
+        return best
+    whole = timed(_loop_contacts, Y, m.P, NW, th, Y[LY.Y_X], h, L, e1, e2)
+    clear = timed(_loop_clear, Y, NW, n)
+    finish = timed(_loop_finish, Y, NW, n, frame, o)
+    Yc = _all_clear(m, Y)
+    whole_clear = timed(_loop_contacts, Yc, m.P, NW, th, Yc[LY.Y_X], h, L, e1, e2)
+    finish_clear = timed(_loop_finish, Yc, NW, n, frame, _roller_pose(Yc, e1, a)[0])
+    touching = _touching(Y, NW, n, ns, o, ob)
+    clear_touch = _touching(Yc, NW, n, ns, *_roller_pose(Yc, e1, a)[:2])
+    return {"whole": whole, "clear": clear, "finish": finish,
+            "contacts": whole - clear - finish,
+            "tests_only": whole_clear - clear - finish_clear, "touching": touching,
+            "clear_touching": clear_touch, "tests": 3 * n * ns}
+
+
+@numba.njit
 def _loop_substep(reps, Y0, Yp0, Y, P, drive, h, W, NW):
     for _ in range(reps):
         Y[:] = Y0
@@ -105,7 +206,7 @@ def substep_profile(m, reps=1000):
     a = (NW, n, h, A0, NW.FR.copy(), np.empty((6, 6)), np.empty(6), AN0, FN0)
     tr = timed(_loop_solve, *a) - timed(_loop_copy, *a)
     W = m._W._replace(Y2=m._Y2.copy())   # the model's own previous state left as it is
-    drive = LY.Drive(th, om, m._x0, 0.0)
+    drive = LY.Drive(th, om, m._OP[LY.OP_X0], 0.0)
     ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m.P, drive, h, W, NW)
     touching = [int(np.sum(NW.ND[:, k] > 0)) for k in (LY.D_BORE, LY.D_TRUN, LY.D_NEIGH)]
     return tc, tr, ts, touching
@@ -199,6 +300,23 @@ def main():
           + (f"{rest:.1f} | {100 * rest / ts:.0f} % |" if rest > 0 else
              "- | - (the parts, timed apart, add to more than the whole) |"))
     print(f"| whole substep | {ts:.1f} | 100 % |\n")
+    ev = evaluation_profile(m)
+    t, b, c = ev["touching"]
+    per = ev["tests"] // 3
+    print(f"One contact evaluation's parts on the same state (a substep's {evals:.2f} "
+          f"evaluations each pay these; sphere tests that find contact: trunnion {t}, bore "
+          f"{b}, next needle {c}, of {per} each):\n")
+    print("| part | us | share of the evaluation |")
+    print("|---|---|---|")
+    for name, tt in (("the needles' systems cleared, sphere centres placed", ev["clear"]),
+                     (f"the contact loop: {ev['tests']} sphere tests, the laws and tangent "
+                      f"blocks of the {t + b + c} contacts found", ev["contacts"]),
+                     ("of it, the tests alone (every needle at mid-gap: "
+                      f"{sum(ev['clear_touching'])} neighbour contacts left)", ev["tests_only"]),
+                     ("the friction blocks from their moments, the roller's unknowns",
+                      ev["finish"])):
+        print(f"| {name} | {tt:.1f} | {100 * tt / ev['whole']:.0f} % |")
+    print(f"| whole evaluation (assembly.resolved_forces) | {ev['whole']:.1f} | 100 % |\n")
     avg = r["wall"] / (evals * attempts * CYCLES) * 1e6
     print(f"Averaged over the run: {avg:.1f} us of wall time per evaluation, FMI boundary, slave "
           f"and model Python included (the state profiled has more needles in touch than the "

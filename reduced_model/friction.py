@@ -21,7 +21,7 @@ def spin_moment(mu, fn, a1, wn, vst):
     contact's semi-major axis a = a1 f_n^(1/3) [m] (Eq. 15, a1 from hertz.hertz_point) and
     3/8 mu f_n a, regularised in the spin rate wn [rad/s] like the sliding friction (tanh of
     3 wn a / v_st); v_st = 0: Coulomb (tanh -> sign).  Scalars; the contact kernel compiles it
-    (contact.groove_contact), traverse.py steps with it, analytic_step.c mirrors it."""
+    (contact.groove_contact), traverse.py steps with it, the analytic kernel compiles it."""
     a = a1 * fn ** (1.0 / 3.0)
     t = math.tanh(3.0 * wn * a / vst) if vst > 0 else \
         math.copysign(1.0, wn) if wn != 0 else 0.0

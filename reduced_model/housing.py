@@ -6,8 +6,8 @@ a_i = 2 pi i / 3 (its whirl phase, model.md "Three rollers"); its groove frame i
 y_i (trunnion axis, radial) = (cos a_i, sin a_i), x_i (pressing) = y_i x Z = (sin a_i, -cos a_i).
 
 Plain Python on scalars: the contact FMU's compiled step takes it through numba
-(tripod_model/kernel.py), the analytic FMU's Python path as it is; fmu_src/native/analytic_step.c
-carries the same lines in C for its compiled step.
+(tripod_model/kernel.py), the analytic FMU's through reduced_model/kernel.py, compiled the
+same way: one implementation.
 """
 import math
 

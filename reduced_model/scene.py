@@ -299,8 +299,8 @@ class StepRefused(RuntimeError):
 
 
 # The most substeps one communication step may take, in either FMU (about a second of work):
-# a longer step is refused before it starts (too_long).  fmu_src/native/analytic_step.c holds
-# the same number (tests/test_budget.py checks it)
+# a longer step is refused before it starts (too_long); both kernels compile this number
+# (tests/test_budget.py checks it)
 MAX_SUBSTEPS = float(2 ** 20)
 
 

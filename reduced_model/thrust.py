@@ -18,8 +18,7 @@ def _load(scene):
 def fz_mod(Fx, Fz, F):
     """Fz_mod [N]: the thrust Fz [N] scaled to the pressing load F [N], Fz F / Fx, the paper's
     Fz' (its Fig. 16); 0 while the roller carries no load in F's direction (Fx F <= 1e-9 F^2:
-    coast has F and Fx both negative).  Scalars; the contact FMU compiles it (kernel.py) and
-    analytic_step.c mirrors it."""
+    coast has F and Fx both negative).  Scalars; both FMUs' kernels compile it."""
     return Fz * F / Fx if Fx * F > 1e-9 * max(F * F, 1.0) else 0.0
 
 

@@ -70,9 +70,13 @@ RESUMED = {"TripodRoller-lumped-three": CASES["TripodRoller-lumped-three"],
            "TripodRollerAnalytic-three": CASES["TripodRollerAnalytic-three"]}
 
 
-# the lumped row's floating spider: win64 and linux64 part by up to 6e-7 of scale over the run
-# (measured), where the operating point restarts on an input's last bit and the two C runtimes'
-# libm differ in it (issue 70 point 2, not fixed yet)
+# the lumped row's floating spider: under this master a roller's slide sticks and lets go
+# about 0.26 s in, and at the default substep the spider's step amplifies the moment's last
+# bit: a 4-ulp change of theta moves Fz_joint by 12 % of its scale there (measured in process,
+# the same before and after the proportional restart; 1.9e-8 at max_substep = 5 us, and the
+# prescribed spider's lumped row 4.6e-7), and the win64 run parts from the linux64 one by up
+# to 0.24 of an output's scale.  Held to ten times that spread instead of 1e-9 (issue 70
+# point 2: not met for this case; docs/integrators.md)
 LIBM_GROWN = {"TripodRoller-free-spider-lumped"}
 
 

@@ -220,7 +220,8 @@ def needle_work(X, W, i, nn, ns):
 STATE_PROBLEMS = ("", "its flags or counts are none the model writes",
                   "a roller's parameters are not this instance's",
                   "a roller's operating point is not the one its inputs give",
-                  "a roller's transition velocity, substep or counts are out of range",
+                  "a roller's transition velocity, substep, restart weight or counts are out "
+                  "of range",
                   "a roller's whirl angle is outside the shaft angle's range",
                   "a roller's slide u is beyond half the needle length: the roller off its "
                   "needles",

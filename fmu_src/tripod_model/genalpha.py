@@ -10,10 +10,10 @@ from .linalg import solve_small
 from .contact import (groove_contact, groove_stiffness_x, line_kinematics, roller_motion,
     row_damping, row_lever, row_load, row_rolling_resistance, row_sliding_friction, row_stiffness,
     tilt_drag)
-from .oppoint import JUMP_RELAX, JUMP_STEP, LOAD_RELAX
+from .oppoint import JUMP_FULL, JUMP_RELAX, JUMP_STEP, LOAD_RELAX
 from .steplib import adaptive_steps
-from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_RING, H_TAKEN, L_AAX, L_AAY,
-    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, P_BEARING, P_DF, P_FRICTION_NEEDLE, P_HFREE,
+from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_JUMPW, H_RING, H_TAKEN, L_AAX, L_AAY,
+    L_AAZ, L_AX, L_AY, L_AZ, L_QZDD, L_SPIN, L_VAX, NV, P_BEARING, P_DF, P_FRICTION_NEEDLE, P_HFREE,
     P_IS, P_IT, P_M_ROLLER, P_QSUM, P_R_ROLLER, P_RINGA, P_ROLLING_RESISTANCE, P_TRAVERSE,
     P_VST_OP, RING_OPEN, RING_QUIET, R_FX, R_FY, R_FZ, R_MX, R_MY, R_MZ, V_POS, V_ROT, V_VEL, W_A,
     W_A0, W_AT, W_D, W_M, W_R, W_RT, W_S, Y_B1, Y_B1D, Y_B2, Y_B2D, Y_E, Y_ED, Y_OM, Y_U, Y_UD,
@@ -46,6 +46,18 @@ GA_STEP = _ga_coefficients(RHO_GA)
 # to 10 % in order 3.  With rho = 0 (af = 0) the forces are taken at t_{n+1}: the slip lands on
 # the new value, still second order, at the cost of the same one step.
 GA_RESTART = _ga_coefficients(0.0)
+
+
+@inline
+def _restart_coefficients(w):
+    """The coefficients of a restart step of weight w in (0, 1] (hs[H_JUMPW]): GA_RESTART at 1,
+    below it those of the spectral radius RHO_GA (1 - w), GA_STEP's as w falls to 0: a small
+    change of the inputs changes the step by as little (inputs_jumped)."""
+    if w >= 1.0:
+        return GA_RESTART
+    rho = RHO_GA * (1.0 - w)
+    am, af = (2.0 * rho - 1.0) / (rho + 1.0), rho / (rho + 1.0)
+    return am, af, 0.5 - am + af, 0.25 * (1.0 - am + af) ** 2
 GA_RELAX = -2.0        # hs[H_GA]: the next substep by the adaptive substeps (a jump above
                        # oppoint.JUMP_RELAX)
 GA_STEP_IN = -3.0      # hs[H_GA]: a step input (above oppoint.JUMP_STEP or LOAD_RELAX): the
@@ -220,11 +232,11 @@ def _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co):
 
 
 @inline
-def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
+def _ga_accept(Y, GW, h, w, nv, hs, co, Q, wr):
     """Newmark update of the unknowns' positions and velocities from a0 (GW[W_A0]) and the
     converged a1 (GW[W_A]); a1 kept in hs[H_ACC:] for the next step.  Q: the forces at the
     converged a1 (of the last residual evaluation, or those the converged equation implies:
-    ga_step)."""
+    ga_step); wr: the restart's weight (0: a regular step)."""
     ga, be = co[2], co[3]
     for i in range(nv):
         a0 = GW[W_A0, i]
@@ -239,17 +251,17 @@ def _ga_accept(Y, GW, h, w, nv, hs, co, Q):
     Y[Y_X] += h * w
     hs[H_TAKEN] += 1.0
     # whose history the accelerations are: a restart step's serve a restart at the next jump,
-    # a regular step takes its own from the forces after it (ga_step).  A restart step's
+    # a regular step takes its own from the forces after it (ga_step).  A full restart step's
     # equation holds at t_f = t_{n+1} (alpha_f = 0), the state just written: the regular step
-    # takes the forces there (Q, GA_AFTER_RESTART) instead of evaluating them again
-    if co[1] == GA_STEP[1]:
+    # takes the forces there (Q, GA_AFTER_RESTART) instead of evaluating them again; one of
+    # weight wr < 1 (its t_f before t_{n+1}) leaves a1 and those forces' accelerations
+    # blended by wr
+    if wr == 0.0:
         hs[H_GA] = 1.0
-    elif co[1] == 0.0:
+    else:
         for i in range(nv):
-            hs[H_FACC + i] = Q[i] / GW[W_M, i]
+            hs[H_FACC + i] = (1.0 - wr) * GW[W_A, i] + wr * (Q[i] / GW[W_M, i])
         hs[H_GA] = GA_AFTER_RESTART
-    else:    # (a restart with alpha_f > 0 evaluates them elsewhere: anew)
-        hs[H_GA] = GA_AFTER_RESTART_AFRESH
 
 
 @njit
@@ -258,8 +270,9 @@ def ga_step(Y, P, drive, h, W):
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
     is steep over v_st).  hs[H_ACC:] carry the algorithmic accelerations from step to step
-    (hs[H_GA] = 1 when valid; 2 after a restart step; 0: first step or after a fallback, from the
-    forces; -1: the inputs jumped at this communication point, this step with GA_RESTART).
+    (hs[H_GA] = 1 when valid; GA_AFTER_RESTART, GA_AFTER_RESTART_AFRESH after a restart step;
+    0: first step or after a fallback, from the forces; -1: the inputs jumped at this
+    communication point, this step a restart of weight hs[H_JUMPW], inputs_jumped).
     Returns False and leaves Y untouched when Newton does not converge.  W: the work arrays
     (layout.Work), taken apart once here: the Newton loop passes the arrays themselves (each
     access to a record's array costs a reference count: 9 % of this step's time, measured,
@@ -269,19 +282,23 @@ def ga_step(Y, P, drive, h, W):
     trav = P[P_TRAVERSE] > 0.5
     for i in range(Y.shape[0]):
         Yf[i] = Y[i]
-    co = GA_RESTART if hs[H_GA] < 0.0 else GA_STEP
+    regular = hs[H_GA] >= 0.0
+    wr = 0.0 if regular else hs[H_JUMPW]     # a restart's weight (inputs_jumped)
+    co = GA_STEP if regular else _restart_coefficients(wr)
     # accelerations from the forces: at the first step, after a fallback, and for a regular
     # step after a restart step (the history belongs to the other coefficients; the slip is on
-    # the new inputs' value by now): those the restart step left, or anew
+    # the new inputs' value by now): those the restart step left, with the inputs moved since
+    # blended with anew by the move's weight (inputs_jumped)
     nv = 6 if P[P_BEARING] == BEAR_LUMPED else 2
-    regular = co[1] == GA_STEP[1]
-    if regular and hs[H_GA] == GA_AFTER_RESTART:
+    if regular and hs[H_GA] >= GA_AFTER_RESTART_AFRESH:
         for i in range(nv):
             hs[H_ACC + i] = hs[H_FACC + i]
-    elif hs[H_GA] == 0.0 or (regular and hs[H_GA] == GA_AFTER_RESTART_AFRESH):
+    if hs[H_GA] == 0.0 or (hs[H_GA] == GA_AFTER_RESTART_AFRESH and hs[H_JUMPW] > 0.0):
         ga_forces(Y, P, drive, L, res, Q, GW[W_M])
+        f = 1.0 if hs[H_GA] == 0.0 else hs[H_JUMPW]
         for i in range(nv):
-            hs[H_ACC + i] = Q[i] / GW[W_M, i]
+            a = Q[i] / GW[W_M, i]
+            hs[H_ACC + i] = a if f >= 1.0 else (1.0 - f) * hs[H_ACC + i] + f * a
     ga = co[2]
     for i in range(nv):
         GW[W_A0, i] = hs[H_ACC + i]
@@ -305,14 +322,14 @@ def ga_step(Y, P, drive, h, W):
                 GW[W_A, i] = GW[W_A, i] + GW[W_D, i]
                 if not regular:     # (only a restart step keeps them)
                     Q[i] = GW[W_M, i] * ((1.0 - am) * GW[W_A, i] + am * GW[W_A0, i])
-            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
+            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q, wr)
             return True
         lam = _ga_line_search(Y, Yf, P, drive, h, GW, nv, n0, L, res, Q, co)
         for i in range(nv):
             GW[W_A, i] = GW[W_AT, i]
             GW[W_R, i] = GW[W_RT, i]
         if _ga_step_below_tolerance(GW, nv, h * ga * lam, r, vs):
-            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q)
+            _ga_accept(Y, GW, h, drive.w, nv, hs, co, Q, wr)
             return True
         if it % 3 == 2 or lam < 1.0:
             fresh = False       # slow convergence: a Jacobian at the current iterate
@@ -334,10 +351,18 @@ def inputs_jumped(P, hs, jump):
       adaptive substeps, its boundary layer.  (Taking two communication steps there too,
       the coupled launch of docs/driveline-example.md, whose jumps hover about that bound,
       switched between the paths from step to step and lost 0.65 % of its peak.)
-    - A small one (a master's ramp, every step): one GA_RESTART step; the lumped bearing
-      takes a small load change so too (its row's offset moves with the load).
+    - A small one (a master's ramp, every step): one restart step; the lumped bearing takes
+      a small load change so too (its row's offset moves with the load).  Its weight w
+      (hs[H_JUMPW]) is the change's size over JUMP_FULL, at most 1: below 1 the step's
+      coefficients (_restart_coefficients), the accelerations it starts from and those it
+      leaves lie between the regular step's (w = 0) and the full restart's (w = 1), so that the
+      outputs move with the inputs continuously: a change by an ulp (a host's last-bit
+      rounding, FMPy's interpolation of a held input) moves them by about as little, where a
+      full restart moved Fz_joint by 1e-4 of its scale.
     The first two also resolve the roller's ring again (hs[H_RING] = RING_OPEN); after a
-    small one the step's verdict on the ring decides (ga_steps).
+    small one the step's verdict on the ring decides (ga_steps).  After a restart step, a
+    change that restarts nothing takes the forces at the new inputs for the next step's
+    accelerations with the change's weight (GA_AFTER_RESTART_AFRESH).
     (kernel.inputs_moved calls it for integrator 4 with the ideal or lumped bearing; BDF2
     has its own, bdf2.inputs_jumped; the other integrators are L-stable one-step methods that
     land on the new inputs' slip without overshoot.)"""
@@ -345,15 +370,22 @@ def inputs_jumped(P, hs, jump):
         hs[H_RING] = RING_OPEN
     if hs[H_GA] <= 0.0 or jump < 0.0:
         return
-    if hs[H_GA] == GA_AFTER_RESTART:   # the forces it kept were the old drive's
-        hs[H_GA] = GA_AFTER_RESTART_AFRESH
     lumped = P[P_BEARING] == BEAR_LUMPED
+    after = hs[H_GA] == GA_AFTER_RESTART    # the forces it kept were the old drive's
+    if after:
+        hs[H_GA] = GA_AFTER_RESTART_AFRESH
+        hs[H_JUMPW] = min(1.0, (jump + P[P_DF]) / JUMP_FULL)
+    w = min(1.0, (jump + (P[P_DF] if lumped else 0.0)) / JUMP_FULL)
     if P[P_DF] > LOAD_RELAX or jump > (JUMP_RELAX if lumped else JUMP_STEP):
         hs[H_GA] = GA_STEP_IN
     elif jump > JUMP_RELAX:
         hs[H_GA] = GA_RELAX
-    elif jump > 0.0 or (lumped and P[P_DF] > 0.0):
+    elif w > 0.0:
+        if after:   # the restart starts from between the regular step's a0 and its own
+            for i in range(NV):
+                hs[H_ACC + i] = (1.0 - w) * hs[H_FACC + i] + w * hs[H_ACC + i]
         hs[H_GA] = -1.0
+        hs[H_JUMPW] = w
 
 
 @njit

@@ -33,7 +33,7 @@ from reduced_model import scene
 BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED = (float(b) for b in (
     scene.BEARING_IDEAL, scene.BEARING_LUMPED, scene.BEARING_RESOLVED))
 INT_EULER = float(scene.INTEGRATOR_EULER)                # linearly implicit Euler
-INT_EXTRAPOLATED = float(scene.INTEGRATOR_EXTRAPOLATED)  # Richardson-extrapolated (euler.py)
+INT_EXTRAPOLATED = float(scene.INTEGRATOR_EXTRAPOLATED)  # Richardson-extrapolated (steplib.extrapolated_step)
 INT_EXPLICIT = float(scene.INTEGRATOR_EXPLICIT)   # explicit (symplectic) Euler, for comparison
 INT_ADAPTIVE = float(scene.INTEGRATOR_ADAPTIVE)   # extrapolated, substep by its error estimate
 INT_DEFAULT = float(scene.INTEGRATOR_DEFAULT)     # generalized-alpha (ideal, lumped); BDF2 (resolved)
@@ -79,7 +79,10 @@ H_RING = H_FACC + NV
 # H_USE_TRIES the largest share of a call's budget of tries used so far, H_USE_FLOOR the
 # largest ratio floor / substep tried (both < 1 while the budget never binds)
 H_FAIL, H_FAIL_DONE, H_FAIL_H, H_USE_TRIES, H_USE_FLOOR = range(H_RING + 1, H_RING + 6)
-H_LEN = H_USE_FLOOR + 1
+# H_JUMPW: the share of a full restart the inputs' last change takes, in [0, 1]
+# (genalpha.inputs_jumped: the restart step's weight, or the fresh forces' after one)
+H_JUMPW = H_USE_FLOOR + 1
+H_LEN = H_JUMPW + 1
 FAIL_NONE, FAIL_ESTIMATE, FAIL_FLOOR, FAIL_TRIES, FAIL_LONG = 0.0, 1.0, 2.0, 3.0, 4.0
 H_PASSES = H_ACC
 RING_OPEN, RING_QUIET = 0.0, 1.0   # hs[H_RING]: resolved (the start's value), quiet

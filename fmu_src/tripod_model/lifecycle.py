@@ -384,7 +384,7 @@ def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
         return 3
     if not (0.0 < P[K.P_VST_OP] <= VST_HI):
         return 4
-    if not (0.0 <= hs[K.H_SUB] <= 1.0) or hs[K.H_TAKEN] < 0.0:
+    if not (0.0 <= hs[K.H_SUB] <= 1.0) or hs[K.H_TAKEN] < 0.0 or not 0.0 <= hs[K.H_JUMPW] <= 1.0:
         return 4
     # the speeds the driven motion makes (state_check.speed_bound), at the larger of the
     # inputs and the key

@@ -259,6 +259,11 @@ def lumped_offset(P, F):
 JUMP_RELAX = 0.02
 JUMP_STEP = 0.2
 LOAD_RELAX = 0.02
+# below JUMP_FULL (the jump plus, lumped bearing, the load's relative change) the
+# generalized-alpha restart takes the change's share size / JUMP_FULL of itself
+# (genalpha.inputs_jumped): the outputs follow the inputs continuously down to an ulp; the
+# run-ups the tests hold step by 1.5e-4 to 1.5e-2, restarted in full as before
+JUMP_FULL = 1e-4
 
 
 def derive(P, OP):

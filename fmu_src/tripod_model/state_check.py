@@ -71,6 +71,8 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
     hs = st["hs"]
     if not 0.0 <= hs[K.H_SUB] <= 1.0:
         raise BadState(f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s")
+    if not 0.0 <= hs[K.H_JUMPW] <= 1.0:
+        raise BadState(f"the restart's weight {hs[K.H_JUMPW]:.4g} is outside [0, 1]")
     v = speed_bound(p, min(theta, math.pi / 4), omega, vp)
     rb = p["r_bore"]
     tilt = math.atan(p["d_needle"] / (0.5 * p["l_needle"]))
