@@ -207,9 +207,13 @@ def substep_profile(m, reps=1000):
     tr = timed(_loop_solve, *a) - timed(_loop_copy, *a)
     W = m._W._replace(Y2=m._Y2.copy())   # the model's own previous state left as it is
     drive = LY.Drive(th, om, m._OP[LY.OP_X0], 0.0)
-    ts = timed(_loop_substep, Y, m._Y2.copy(), Y.copy(), m.P, drive, h, W, NW)
+    args = (Y, m._Y2.copy(), Y.copy(), m.P, drive, h, W, NW)
+    ts = timed(_loop_substep, *args)
+    p0 = W.hs[LY.H_PASSES]     # Newton passes a substep on this state (bdf2_substep counts
+    _loop_substep(reps, *args)     # those after the first)
+    passes = 1.0 + (W.hs[LY.H_PASSES] - p0) / reps
     touching = [int(np.sum(NW.ND[:, k] > 0)) for k in (LY.D_BORE, LY.D_TRUN, LY.D_NEIGH)]
-    return tc, tr, ts, touching
+    return tc, tr, ts, touching, passes
 
 
 def orders(sv):
@@ -283,18 +287,20 @@ def main():
     print(f"| {r['wall']:.2f} s [{min(r['walls']):.2f}-{max(r['walls']):.2f}] | "
           f"{r['wall'] / CYCLES:.2f} | {per_cycle:.0f} ({attempts - per_cycle:.0f}) | "
           f"{evals:.2f} x {checks} tests | {rate:.3g} |")
-    tc, tr, ts, touching = substep_profile(m)
+    tc, tr, ts, touching, passes = substep_profile(m)
     print(f"\nWhere one substep's time goes (timed inside numba on a mid-cycle state; needles "
           f"touching the bore, the trunnion, a neighbour: {touching[0]}, {touching[1]}, "
-          f"{touching[2]} of {m.p['n_needles']}):\n")
-    print("| part | us per evaluation | share |")
+          f"{touching[2]} of {m.p['n_needles']}; {passes:.2f} Newton passes a substep on it, "
+          f"each an evaluation and a solve):\n")
+    print("| part | us a substep | share |")
     print("|---|---|---|")
     # the parts are timed apart: the contacts on the state itself, the substep evaluates them
-    # at a predicted one, so the rest (a difference of three timings) can come out negative
-    rest = ts - tc - tr
-    for name, t in (("needle contacts: geometry, Table 1 law, friction, implicit blocks", tc),
+    # at a predicted one, so the rest (a difference of timings) can come out negative
+    rest = ts - passes * (tc + tr)
+    for name, t in (("needle contacts: geometry, Table 1 law, friction, implicit blocks",
+                     passes * tc),
                     ("solve: block Cholesky of the ring (7 right-hand sides forward), the "
-                     "roller's Schur complement", tr)):
+                     "roller's Schur complement", passes * tr)):
         print(f"| {name} | {t:.1f} | {100 * t / ts:.0f} % |")
     print("| roller, prediction and update of every state (the rest) | "
           + (f"{rest:.1f} | {100 * rest / ts:.0f} % |" if rest > 0 else
