@@ -55,3 +55,19 @@ def test_lumped_row_thrust_follows_the_resolved_row(F, bound3):
     res, lum = _orders(2, F), _orders(1, F)
     assert abs(lum[3] - res[3]) / abs(res[3]) < bound3
     assert abs(lum[1] - res[1]) / abs(res[1]) < 0.05
+
+
+@pytest.mark.slow   # (six resolved rows: about 2 minutes)
+@pytest.mark.parametrize("i", range(13, 19))
+def test_lumped_row_follows_the_resolved_row_over_the_envelope(i):
+    """Scenes 13-18 of the envelope's grid (harness/row_grid.py: the three joints, 2.7-23.6
+    deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md): order 3 of one
+    roller's Fz on the lumped row within the issue's 3 % of the needle-resolved row's (complex),
+    order 1 within 5 %.  Measured 0.3-2.1 % and 0.5-3.4 %; the resolved row's realizations
+    spread by about 0.2 %.  (Of the grid's 24 scenes two miss 3 %: a 25.8 kN coast at 3.4 deg,
+    4.1 %, and an order 3 a tenth of order 1, 11.5 %.)"""
+    from harness.row_grid import contact_orders, off, scene
+    s = scene(i)
+    res, lum = contact_orders(*s, 2), contact_orders(*s, 1)
+    assert off(lum, res, 3) < 3.0
+    assert off(lum, res, 1) < 5.0

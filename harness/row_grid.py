@@ -1,0 +1,86 @@
+"""The fast models against the full one over the driveline envelope (issue 67 point 5): a
+quasi-random grid of scenes, each run with a bearing of the contact model or the analytic model,
+orders 1 and 3 of one roller's Fz.  benchmarks/row_grid.py prints the table in
+docs/validation.md; tests/test_row_mechanism.py holds the lumped row to it.
+
+Scenes: a Halton sequence over the joint angle 2-25 deg, the load per roller 0.3-45 kN
+(logarithmic), the whirl 2-30 Hz (logarithmic), the joints of joints/ and drive or coast (the
+pressing load's sign).  Each run: three whirl cycles from the start at a 0.1 ms communication
+step, in process; orders over the last whole cycle.
+"""
+import math
+from pathlib import Path
+
+import numpy as np
+
+from reduced_model.joint import for_model, load_joint
+from reduced_model.orders import last_cycle_orders
+from reduced_model.scene import defaults
+
+JOINTS = sorted((Path(__file__).resolve().parents[1] / "joints").glob("*.toml"))
+CYCLES = 3
+DT = 1e-4
+
+
+def halton(i, base):
+    """The i-th (from 1) element of the van der Corput sequence in base, in [0, 1)."""
+    f, r = 1.0, 0.0
+    while i > 0:
+        f /= base
+        r += f * (i % base)
+        i //= base
+    return r
+
+
+def scene(i):
+    """Scene i (from 1): (joint file, theta [rad], pressing load per roller [N], < 0 coast,
+    omega [rad/s])."""
+    theta = math.radians(2.0 + 23.0 * halton(i, 2))
+    F = 300.0 * (45000.0 / 300.0) ** halton(i, 3)
+    f = 2.0 * (30.0 / 2.0) ** halton(i, 5)
+    joint = JOINTS[int(halton(i, 7) * len(JOINTS))]
+    sign = 1.0 if halton(i, 11) < 0.5 else -1.0
+    return joint, theta, sign * F, 2.0 * math.pi * f
+
+
+def _steps(omega):
+    return int(round(CYCLES * 2 * math.pi / abs(omega) / DT))
+
+
+def contact_orders(path, theta, F, omega, bearing):
+    """{1: (amplitude [N], phase [deg]), 3: ...} of Fz of one roller of the contact model with
+    ``bearing`` (0 ideal, 1 lumped, 2 needle-resolved) in the scene."""
+    from tripod_model.model import ContactModel
+    m = ContactModel(dict(for_model(load_joint(path), "contact"), bearing=bearing, theta=theta,
+                          omega=omega, F_press=F))
+    t, fz, x = [], [], []
+    for _ in range(_steps(omega)):
+        o = m.step(DT, theta, omega, F)
+        t.append(m.time)
+        fz.append(o["Fz"])
+        x.append(m.whirl_angle)
+    return last_cycle_orders(np.array(t), np.array(fz), np.array(x), (1, 3))
+
+
+def analytic_orders(path, theta, F, omega):
+    """The same orders of the analytic model (one roller) in the scene."""
+    from reduced_model.analytic_model import AnalyticModel
+    from reduced_model.kernel import INPUT_NAMES
+    values = dict(defaults("analytic"), **for_model(load_joint(path), "analytic"), theta=theta,
+                  omega=omega, F_press=F, n_rollers=1)
+    m = AnalyticModel(values)
+    inputs = [values[n] for n in INPUT_NAMES]
+    t, fz, x = [], [], []
+    for k in range(_steps(omega)):
+        m.step(DT, k * DT, inputs)
+        o = m.outputs()
+        t.append((k + 1) * DT)
+        fz.append(o["Fz"])
+        x.append(o["whirl_angle"])
+    return last_cycle_orders(np.array(t), np.array(fz), np.array(x), (1, 3))
+
+
+def off(o, ref, k):
+    """Order k of o off ref's: the complex difference over ref's amplitude [%]."""
+    z = [a * np.exp(1j * math.radians(p)) for a, p in (o[k], ref[k])]
+    return 100.0 * abs(z[0] - z[1]) / ref[k][0]
