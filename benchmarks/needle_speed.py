@@ -127,6 +127,26 @@ def _all_clear(m, Y):
     return Y
 
 
+def _best_us(f, reps, *args):
+    """[us] per call of f(reps, *args), the best of 5 rounds after a warm-up: on a shared
+    machine the others carry its load."""
+    f(10, *args)
+    best = np.inf
+    for _ in range(5):
+        t0 = time.perf_counter()
+        f(reps, *args)
+        best = min(best, (time.perf_counter() - t0) / reps * 1e6)
+    return best
+
+
+def _trunnion_frame(L):
+    """The trunnion axis a (from the kinematics L), e1 its normal toward the pressing x, e2."""
+    a = L[LY.L_AX:LY.L_AZ + 1]
+    e1 = np.array([1 - a[0] ** 2, -a[0] * a[1], -a[0] * a[2]])
+    e1 /= np.linalg.norm(e1)
+    return a, e1, np.cross(a, e1)
+
+
 def evaluation_profile(m, reps=1000):
     """[us] of one contact evaluation's parts on the model's state, the best of 5 rounds
     (substep_profile's timing): the needles' systems cleared and their sphere centres placed;
@@ -136,21 +156,12 @@ def evaluation_profile(m, reps=1000):
     th = m.p["theta"]
     NW, L, n, ns = m.NW, m._L, m.n_needle_bodies, m.p["n_spheres"]
     h = m._OP[LY.OP_H]
-    a = L[LY.L_AX:LY.L_AZ + 1]
-    e1 = np.array([1 - a[0] ** 2, -a[0] * a[1], -a[0] * a[2]])
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(a, e1)
+    a, e1, e2 = _trunnion_frame(L)
     Y = m.Y.copy()
     o, ob, frame = _roller_pose(Y, e1, a)
 
     def timed(f, *args):
-        f(10, *args)
-        best = np.inf
-        for _ in range(5):
-            t0 = time.perf_counter()
-            f(reps, *args)
-            best = min(best, (time.perf_counter() - t0) / reps * 1e6)
-        return best
+        return _best_us(f, reps, *args)
     whole = timed(_loop_contacts, Y, m.P, NW, th, Y[LY.Y_X], h, L, e1, e2)
     clear = timed(_loop_clear, Y, NW, n)
     finish = timed(_loop_finish, Y, NW, n, frame, o)
@@ -183,20 +194,11 @@ def substep_profile(m, reps=1000):
     NW, L = m.NW, m._L
     h = m._OP[LY.OP_H]
     n = m.n_needle_bodies
-    a = L[LY.L_AX:LY.L_AZ + 1]    # the trunnion axis; e1 its normal toward the pressing x
-    e1 = np.array([1 - a[0] ** 2, -a[0] * a[1], -a[0] * a[2]])
-    e1 /= np.linalg.norm(e1)
-    e2 = np.cross(a, e1)
+    _, e1, e2 = _trunnion_frame(L)
     Y = m.Y.copy()
 
-    def timed(f, *a):   # the best of 5 rounds: on a shared machine the others carry its load
-        f(10, *a)
-        best = np.inf
-        for _ in range(5):
-            t0 = time.perf_counter()
-            f(reps, *a)
-            best = min(best, (time.perf_counter() - t0) / reps * 1e6)
-        return best
+    def timed(f, *args):
+        return _best_us(f, reps, *args)
     tc = timed(_loop_contacts, Y, m.P, NW, th, Y[LY.Y_X], h, L, e1, e2)
     AN0, FN0 = NW.AN.copy(), NW.FN.copy()
     for j in range(n):   # the solve's ring matrix carries the needles' masses
