@@ -130,6 +130,21 @@ def test_a_state_outside_the_geometry_or_speeds_is_refused_naming_the_value(slot
     check_joint_state(st, m.p, THETA, OMEGA, 0.0)
 
 
+@pytest.mark.parametrize("value,words", [(1.5, "the restart's weight 1.5 is outside"),
+                                         (-0.1, "the restart's weight -0.1 is outside"),
+                                         (math.nan, "non-finite")])
+def test_a_restart_weight_outside_zero_to_one_is_refused(value, words):
+    """The integrators' history slot hs[H_JUMPW] (genalpha.inputs_jumped's restart weight,
+    in [0, 1] whenever the model writes it): a restored state with another value is refused,
+    naming it; the state as the run left it passes."""
+    m = _settled({"bearing": 1}, 10)
+    st = m.get_state()
+    check_joint_state(st, m.p, THETA, OMEGA, 0.0)
+    st[0]["hs"][K.H_JUMPW] = value
+    with pytest.raises(BadState, match="roller 1: .*" + words):
+        check_joint_state(st, m.p, THETA, OMEGA, 0.0)
+
+
 def test_the_speed_bound_is_ten_times_the_driven_motion():
     """(s + r) |omega| (1 + tan theta) at the paper's joint, 10 Hz, 8 deg: 0.041 m x 62.8 rad/s
     x 1.14 = 2.94 m/s; ten times that."""
