@@ -1,8 +1,8 @@
 """The needle row's terms in the reduced traverse model, tried before they are built in
-(issue 67 point 3): how much of the resolved row's effect on orders 1 and 3 two terms carry.
+(issue 67 point 3): how much of the resolved row's effect on orders 1 and 3 they carry.
 
-The reduced traverse model (reduced_model/traverse.py, T1-T6) with the row's two laws added the
-way the lumped row has them (docs/model.md, "What the needle row does to the thrust"), nothing
+The reduced traverse model (reduced_model/traverse.py, T1-T6) with the row's laws added the way
+the lumped row has them (docs/model.md, "What the needle row does to the thrust"), nothing
 fitted:
 
 - T2 + rolling resistance (Eq. 12): the moment mu_rolling q r_bore tanh(3 v_r / v_st) against
@@ -11,25 +11,29 @@ fitted:
 - T1 + the needles' sliding friction: mu_needle q tanh(3 u_r / (2 v_st)) along the trunnion
   against the roller's slide relative to the trunnion's material, u_r = rho_c p' - d' (T4's
   slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts);
-- optionally (`--tilt`) the spin moment carried by that friction alone, as a tilt about the
-  pressing direction whose slip across the needles uses up their axial friction.
+- the roller rocking on the row (docs/model.md, "The roller rocks on the row"): the tilt b2
+  about e2 (the groove's axis) held quasi-statically by the row's tilt stiffness,
+  k_t2 b2 = -r_roller f_a + lever f_row (k_t2 = k_r l^2 / 12, k_r the row's stiffness along
+  the load; lever = r_bore F_r / q, where the loaded needles meet the bore), whose rate moves
+  the groove contact along the trunnion by -r_roller b2' and the bore by -lever b2'.
 
-The slide is marched by T4's trapezoidal rule over whole cycles from the groove bottom (six
-cycles, 720 steps a cycle), T6 with the friction along the trunnion in place of p.  Each variant
-is compared with the needle-resolved row (run here: benchmarks/needle_mechanism.run), orders of
-Fz over the last cycle, complex differences.  Prints a Markdown table.
-Usage: python -m benchmarks.reduced_row [--tilt] (about 3 min: four resolved runs of 15-20 s)
+The slide is marched by T4's trapezoidal rule over whole cycles from the groove bottom (four
+cycles, 360 steps a cycle; the tilt by backward differences), T6 with the friction along the
+trunnion in place of p.  Each variant is compared with the needle-resolved row (run here:
+benchmarks/needle_mechanism.run), orders of Fz over the last cycle, complex differences.
+Prints a Markdown table.
+Usage: python -m benchmarks.reduced_row [--grid] (about 3 min: four resolved runs of 10-20 s;
+--grid: the envelope grid's drive scenes, about 8 min)
 """
 import argparse
 import math
 import time
 
 import numpy as np
-from scipy.optimize import brentq
+from scipy.optimize import brentq, fsolve
 
 from benchmarks.needle_mechanism import phasor, run
 from reduced_model import equations as E, scene as S
-from reduced_model.friction import spin_moment
 from reduced_model.orders import last_cycle_orders, order_component
 from reduced_model.traverse import operating_point
 from tripod_model import layout as K, oppoint
@@ -39,104 +43,120 @@ from tripod_model.roller_setup import PARAM_NAMES, kernel_params
 SCENES = ((8.0, 4500.0), (8.0, 45000.0), (3.0, 4500.0), (3.0, 45000.0))   # deg, N a roller
 VARIANTS = (("reduced traverse model", False, False, False),
             ("+ rolling resistance", False, True, False),
-            ("+ sliding friction", True, False, False), ("+ both", True, True, False))
-LINE = [(k + 0.5) / 7 - 0.5 for k in range(7)]   # the line's points along a needle [l]
+            ("+ sliding friction", True, False, False), ("+ both", True, True, False),
+            ("+ both + rocking on the row", True, True, True))
 
 
-def row_q(sc, F):
-    """The row's summed needle loads q [N] at the pressing load F [N] (Eq. 17 over the row)."""
+def row_terms(sc, F):
+    """The row at the pressing load |F| [N] (Eq. 17 over the row, oppoint.row_sums): the summed
+    needle loads q [N], the tilt stiffness about e2 k_t2 [N m/rad] and the lever [m] from the
+    trunnion axis at which the loaded needles meet the bore (on the pressed side)."""
     T = np.array([float(sc[n]) for n in PARAM_NAMES])
     P = np.zeros(K.P_LEN)
     kernel_params(T, P)
-    a = brentq(lambda a: oppoint.row_sums(P, a)[0] - F, P[K.P_NEEDLE_CLEARANCE] * (1 + 1e-12),
-               1e-3)
-    return oppoint.row_sums(P, a)[3]
+    a = brentq(lambda a: oppoint.row_sums(P, a)[0] - abs(F),
+               P[K.P_NEEDLE_CLEARANCE] * (1 + 1e-12), 1e-3)
+    Fr, kr, _kw, q = oppoint.row_sums(P, a)
+    return q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q
 
 
-def _line(c, k, sa, b, length):
-    """Axial force and moment about e1 of the line of needle contacts at axial slip sa [m/s]
-    and tilt rate b [rad/s] about e1 (the tanh law on each point's 2-D slip)."""
-    fa = m1 = 0.0
-    for d in LINE:
-        st = d * length * b
-        v = math.hypot(sa, st)
-        if v > 0.0:
-            g = math.tanh(k * v) / v
-            fa += c * g * sa
-            m1 += c * g * st * d * length
-    return fa, m1
-
-
-def row_axial(mq, k, sa, ms, length):
-    """The needles' axial friction [N] at slip sa [m/s] (mq = mu_needle q [N]); with ms > 0 [N m]
-    the line also carries the spin moment ms by a tilt about e1 that friction alone resists."""
-    if ms <= 0.0:
-        return mq * math.tanh(k * sa)
-    c = mq / len(LINE)
-    if ms >= c * length * sum(abs(d) for d in LINE):
-        return 0.0                  # the line cannot hold it: the tilt takes all the friction
-    lo, hi = 0.0, 1.0
-    while _line(c, k, sa, hi, length)[1] < ms:
-        hi *= 4.0
-    for _ in range(60):
-        mid = 0.5 * (lo + hi)
-        lo, hi = (mid, hi) if _line(c, k, sa, mid, length)[1] < ms else (lo, mid)
-    return _line(c, k, sa, 0.5 * (lo + hi), length)[0]
-
-
-def reduced_orders(sc, slide, rolling, tilt=False, cycles=6, n=720):
+def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
     """Orders 1 and 3 of Fz [N] (complex) of the reduced traverse model with the row's terms."""
     O = operating_point(sc)
     F, rho, vst, r, w = O[E.O_F], O[E.O_RHO], O[E.O_VST], O[E.O_R], O[E.O_W]
-    q = row_q(sc, F)
+    side = 1.0 if F >= 0 else -1.0          # coast: the other flank, the row's other side
+    q, kt2, lever = row_terms(sc, F)
+    lever, rim = side * lever, side * sc["r_roller"]
     mq = sc["mu_needle"] * q if slide else 0.0
     mr = sc["mu_rolling"] * q * sc["r_bore"] if rolling else 0.0
     k_row = 0.5 * 3.0 / vst
     th, hx = O[E.O_TH], 1e-6
+    h = 2 * math.pi / w / n
 
-    def at(x, s):
-        """p, the friction along the trunnion over f_n, beta, f_n, phi, V at angle x, slip s."""
+    def at(x, s, b2d):
+        """p, the friction along the trunnion over f_n, beta, f_n, phi and the row's axial
+        friction [N] at whirl angle x, slide slip s [m/s] and tilt rate b2d [rad/s]."""
         phi, xi, V, dphi, spin, bi = E.drive_at(O, x)
         vax = (trunnion_axial(x + hx, th, sc["s"], True)
                - trunnion_axial(x - hx, th, sc["s"], True)) * w / (2 * hx)
         yaw = (trunnion_yaw(x + hx, th, True) - trunnion_yaw(x - hx, th, True)) * w / (2 * hx)
+        sg = s - rim * b2d                  # the groove contact's slip along the trunnion
+        row = mq * math.tanh(k_row * (s - V - vax - lever * b2d))
         p = 0.0
-        for _ in range(8):          # beta depends weakly on p (f_n, the spin moment)
+        for _ in range(40):         # beta depends weakly on p (f_n, the spin moment)
             fn = E.normal_force(O, p)
             beta = E.beta_at(O, p, fn, bi, dphi, spin)
             beta -= mr * math.tanh(3.0 * (spin - yaw) * sc["r_bore"] / vst) / (r * fn)
-            fa = (-1.0 if s > 0 else 1.0) * E.share(O, s, abs(beta))
-            ms = (abs(spin_moment(O[E.O_MU], fn, O[E.O_A1], dphi + spin * p, vst))
-                  if tilt and O[E.O_SM] else 0.0)
-            pn = fa - row_axial(mq, k_row, s - V - vax, ms, sc["l_needle"]) / fn
-            if abs(pn - p) < 1e-13:
+            fa = (-1.0 if sg > 0 else 1.0) * E.share(O, sg, abs(beta))
+            pn = fa - row / fn
+            if abs(pn - p) < 1e-14:
                 break
             p = pn
-        return pn, fa, beta, fn, phi, V
+        return pn, fa, beta, fn, phi, row
 
-    h = 2 * math.pi / w / n
     s = E.drive_at(O, 0.0)[2]
-    p = at(0.0, s)[0]
+    b2 = 0.0
+    p = at(0.0, s, 0.0)[0]
     fz = []
     for i in range(cycles * n):
         x1 = w * h * (i + 1)
         rhs0 = rho * p + 0.5 * h * (s - E.drive_at(O, w * h * i)[2] - E.drive_at(O, x1)[2])
-        s = brentq(lambda z: rho * at(x1, z)[0] - 0.5 * h * z - rhs0, s - 1.0, s + 1.0,
-                   xtol=1e-15, rtol=1e-12)
-        p, fa, beta, fn, phi, V = at(x1, s)
+        if rock:
+            def residual(z):
+                pp, fa, _b, fn, _p, row = at(x1, z[0], (z[1] * 1e-3 - b2) / h)
+                return [(rho * pp - 0.5 * h * z[0] - rhs0) / (h * 1e-2),
+                        (kt2 * z[1] * 1e-3 + rim * fn * fa - lever * row) / (kt2 * 1e-3)]
+            z, info, _ier, msg = fsolve(residual, [s, b2 * 1e3], xtol=1e-12, full_output=True)
+            if max(abs(info["fvec"])) > 1e-6:      # (fsolve may stop short of xtol, not of this)
+                raise RuntimeError(f"the rocking step did not converge at {x1:.4f} rad: {msg}")
+            s, b2d = z[0], (z[1] * 1e-3 - b2) / h
+        else:
+            s = brentq(lambda z: rho * at(x1, z, 0.0)[0] - 0.5 * h * z - rhs0, s - 1.0, s + 1.0,
+                       xtol=1e-15, rtol=1e-12)
+            b2d = 0.0
+        p, fa, beta, fn, phi, _row = at(x1, s, b2d)
+        b2 += h * b2d
         if i >= (cycles - 1) * n:
             fz.append(-fn * (fa * math.sin(phi) + beta * math.cos(phi)))
     fz = np.array([fz[-1]] + fz[:-1])      # samples at 0, h w, ...: the cycle's end is its start
     return {k: phasor(order_component(fz, k)) for k in (1, 3)}
 
 
+def grid_table():
+    """The drive scenes of the envelope grid (harness.row_grid; coast needs the analytic model's
+    mirror, which this march lacks): the lumped row and the reduced model with both row terms,
+    without and with the rocking, against the needle-resolved row."""
+    from harness import row_grid as G
+    from reduced_model.joint import for_model, load_joint
+    print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | lumped: order 1, 3 off "
+          "| reduced + both: order 1, 3 off | + rocking: order 1, 3 off | wall |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    for i in range(1, 25):
+        path, theta, F, omega = G.scene(i)
+        if F < 0:
+            continue
+        t0 = time.perf_counter()
+        ref = G.contact_orders(path, theta, F, omega, 2)
+        lumped = G.contact_orders(path, theta, F, omega, 1)
+        sc = S.validate(dict(for_model(load_joint(path), "contact"), theta=theta, F_press=F,
+                             omega=omega), "contact")
+        cells = [f"{G.off(lumped, ref, 1):.1f} %, {G.off(lumped, ref, 3):.1f} %"]
+        for rock in (False, True):
+            z = reduced_orders(sc, True, True, rock)
+            o = {k: (abs(z[k]), math.degrees(np.angle(z[k]))) for k in (1, 3)}
+            cells.append(f"{G.off(o, ref, 1):.1f} %, {G.off(o, ref, 3):.1f} %")
+        print(f"| {i} | {path.stem} | {math.degrees(theta):.1f} | {F / 1e3:.2f} | "
+              f"{omega / 2 / math.pi:.1f} | {' | '.join(cells)} | "
+              f"{time.perf_counter() - t0:.0f} s |", flush=True)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0], allow_abbrev=False)
-    ap.add_argument("--tilt", action="store_true",
-                    help="also the spin moment held by the needles' friction alone")
-    args = ap.parse_args()
-    variants = VARIANTS + ((("+ both + tilt held by friction", True, True, True),)
-                           if args.tilt else ())
+    ap.add_argument("--grid", action="store_true",
+                    help="the envelope grid's drive scenes instead (about 8 min)")
+    if ap.parse_args().grid:
+        grid_table()
+        return
     print("| scene | model | order 1 | order 3 | order 1 off resolved | order 3 off resolved "
           "| wall |")
     print("|---|---|---|---|---|---|---|")
@@ -152,9 +172,9 @@ def main():
         print(f"| {scene} | needle-resolved row | {fmt(ref[1])} | {fmt(ref[3])} | reference | "
               f"reference | {time.perf_counter() - t0:.0f} s |", flush=True)
         sc = S.validate({"theta": theta, "F_press": F, "omega": omega}, "contact")
-        for name, slide, rolling, tilt in variants:
+        for name, slide, rolling, rock in VARIANTS:
             t0 = time.perf_counter()
-            z = reduced_orders(sc, slide, rolling, tilt)
+            z = reduced_orders(sc, slide, rolling, rock)
             off = {k: 100 * abs(z[k] - ref[k]) / abs(ref[k]) for k in (1, 3)}
             print(f"| {scene} | {name} | {fmt(z[1])} | {fmt(z[3])} | {off[1]:.1f} % | "
                   f"{off[3]:.1f} % | {time.perf_counter() - t0:.0f} s |", flush=True)
