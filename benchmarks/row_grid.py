@@ -6,19 +6,42 @@ the envelope"); "off" is the complex difference over the resolved row's amplitud
 
 Usage: python -m benchmarks.row_grid [--scenes N] [--first K]   (one resolved run is 7 s to
 a minute here: about 5 minutes for twelve scenes)
+       python -m benchmarks.row_grid --three-rollers   (the paper's joint at 8 deg, 45 kN a
+roller, 10 Hz: the three-roller joint against one roller, lumped and resolved; about 1 min)
 """
 import argparse
 import math
 import time
 
-from harness.row_grid import analytic_orders, contact_orders, off, scene
+from harness.row_grid import JOINTS, analytic_orders, contact_orders, joint_orders, off, scene
+
+
+def three_rollers():
+    """The three-roller joint (spider prescribed) against one roller, lumped and resolved."""
+    path = next(p for p in JOINTS if p.stem == "paper")
+    theta, F, omega = math.radians(8.0), 45000.0, 20 * math.pi
+    print("| bearing | Fz_joint: order 1, order 3 | roller 1: order 3 | joint's order 3 over "
+          "three rollers' | joint's order 3 off the resolved joint's |")
+    print("|---|---|---|---|---|")
+    runs = {b: joint_orders(path, theta, F, omega, b) for b in (2, 1)}
+    fmt = lambda o: f"{o[0]:.3g} N at {o[1]:.1f} deg"   # noqa: E731
+    for b, name in ((1, "lumped"), (2, "needle-resolved")):
+        j, r = runs[b]["joint"], runs[b]["roller"]
+        print(f"| {name} | {fmt(j[1])}, {fmt(j[3])} | {fmt(r[3])} | "
+              f"{j[3][0] / (3 * r[3][0]):.5f}, {j[3][1] - r[3][1]:+.2f} deg | "
+              f"{off(j, runs[2]['joint'], 3):.1f} % |", flush=True)
 
 
 def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("--scenes", type=int, default=12)
     ap.add_argument("--first", type=int, default=1, help="the Halton index of the first scene")
+    ap.add_argument("--three-rollers", action="store_true",
+                    help="the three-roller joint against one roller instead")
     args = ap.parse_args()
+    if args.three_rollers:
+        three_rollers()
+        return
     print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | resolved: order 1, order 3 "
           "[N] | ideal: order 1, 3 off | lumped: order 1, 3 off | analytic: order 1, 3 off | "
           "wall, resolved [s] |")

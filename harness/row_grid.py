@@ -62,6 +62,24 @@ def contact_orders(path, theta, F, omega, bearing):
     return last_cycle_orders(np.array(t), np.array(fz), np.array(x), (1, 3))
 
 
+def joint_orders(path, theta, F, omega, bearing):
+    """Orders 1 and 3 of Fz_joint and of roller 1's Fz (as contact_orders gives them) of the
+    three-roller joint, spider prescribed: {"joint": {...}, "roller": {...}}."""
+    from tripod_model.model import JointModel
+    m = JointModel(dict(for_model(load_joint(path), "contact"), bearing=bearing, theta=theta,
+                        omega=omega, F_press=F, n_rollers=3))
+    t, fj, f1, x = [], [], [], []
+    for _ in range(_steps(omega)):
+        o = m.step(DT, theta, omega, F)
+        t.append(m.rollers[0].time)
+        fj.append(o["Fz_joint"])
+        f1.append(o["Fz"])
+        x.append(m.rollers[0].whirl_angle)
+    t, x = np.array(t), np.array(x)
+    return {"joint": last_cycle_orders(t, np.array(fj), x, (1, 3)),
+            "roller": last_cycle_orders(t, np.array(f1), x, (1, 3))}
+
+
 def analytic_orders(path, theta, F, omega):
     """The same orders of the analytic model (one roller) in the scene."""
     from reduced_model.analytic_model import AnalyticModel
