@@ -15,7 +15,6 @@ from a state sizes or indexes an array.
 Views are made at run time (_at): a joint of ideal or lumped rollers as rows of one block each
 (kernel.step_joint), a needle-resolved roller's state with its needles.
 """
-import math
 
 from reduced_model import equations as RE
 from reduced_model.cfuncs import NOTE_ARGS, leave_note
@@ -34,7 +33,6 @@ IN_LEN = len(INPUT_NAMES)
 IN_LO = tuple(BY_NAME[n].lo for n in INPUT_NAMES)
 IN_HI = tuple(BY_NAME[n].hi for n in INPUT_NAMES)
 VST_HI = BY_NAME["v_st"].hi                  # (a state's transition velocity)
-WHIRL_HI = BY_NAME["shaft_angle"].hi + 2.0 * math.pi   # (a state's whirl angle)
 OUT_LEN = K.N_OUT
 # the analytic model's parameters (its traverse table starts the roller) as the contact FMU's
 ANALYTIC_SLOTS = tuple(PARAM_NAMES.index(n) for n in RE.PARAM_NAMES)

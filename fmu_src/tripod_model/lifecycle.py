@@ -21,7 +21,7 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
                          SHAFT_ANGLE, STATE_PROBLEMS, T_LEN, TABLE_N, TABLE_ROWS, THETA, TORQUE,
                          VST_HI, W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
-                         W_T, W_TKEY, W_X0, WHIRL_HI, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
+                         W_T, W_TKEY, W_X0, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
                          X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
 from .kernel import (_roller, derive_op, inputs_moved, joint_into, outputs_into, resolved_drive,
@@ -32,7 +32,9 @@ from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE,
                            T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
                            place_on_cycle, pressing_offset, start_needles, start_state,
                            uses_table)
-from .state_check import SPEED_MARGIN, spider_bounds
+# (SPEED_MARGIN and WHIRL_HI: globals of the compiled copies of state_check's functions)
+from .state_check import (SPEED_MARGIN, WHIRL_HI, roller_bound, speed_limit,  # noqa: F401
+                          spider_bounds)
 from reduced_model.scene import SPIDER_FREE
 
 
@@ -347,10 +349,6 @@ def end(T, IN, X, OUT, W):
 
 
 # --- a state a host sets ----------------------------------------------------------------------
-def within(v, bound):
-    return abs(v) <= bound
-
-
 def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
     """0 when roller i's state can be stepped (state_check.check_roller_state's bounds), else a
     code of STATE_PROBLEMS."""
@@ -386,30 +384,16 @@ def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
         return 4
     if not (0.0 <= hs[K.H_SUB] <= 1.0) or hs[K.H_TAKEN] < 0.0 or not 0.0 <= hs[K.H_JUMPW] <= 1.0:
         return 4
-    # the speeds the driven motion makes (state_check.speed_bound), at the larger of the
-    # inputs and the key
-    theta = max(abs(IN[THETA]), abs(OP[K.OP_KEY]))
-    omega = max(abs(IN[OMEGA]), abs(OP[K.OP_KEY + 1]))
-    vp = max(abs(IN[PLUNGE_SPEED]), abs(OP[K.OP_KEY + 5]))
-    kin = (T[T_S] + T[T_R_ROLLER]) * omega * (1.0 + abs(math.tan(min(theta, math.pi / 4)))) + vp
-    v = SPEED_MARGIN * max(kin, 1.0)
-    tilt = math.atan(T[T_D_NEEDLE] / (0.5 * T[T_L_NEEDLE]))
+    # the speeds the driven motion makes, at the larger of the inputs and the key
+    v = speed_limit(T[T_S], T[T_R_ROLLER], max(abs(IN[THETA]), abs(OP[K.OP_KEY])),
+                    max(abs(IN[OMEGA]), abs(OP[K.OP_KEY + 1])),
+                    max(abs(IN[PLUNGE_SPEED]), abs(OP[K.OP_KEY + 5])))
     for k in range(2):
         Y = X[(X_Y if k == 0 else X_Y2) + i * ys:(X_Y if k == 0 else X_Y2) + i * ys + ny]
-        if not within(Y[K.Y_X], WHIRL_HI):
-            return 5
-        if not within(Y[K.Y_U], 0.5 * T[T_L_NEEDLE]):
-            return 6
-        if not (within(Y[K.Y_UD], v) and within(Y[K.Y_OM], v / T[T_R_ROLLER])):
-            return 7
-        if T[T_BEARING] == K.BEAR_IDEAL:
-            continue
-        if not (within(Y[K.Y_E], T[T_D_NEEDLE]) and within(Y[K.Y_W], T[T_D_NEEDLE])
-                and within(Y[K.Y_B1], tilt) and within(Y[K.Y_B2], tilt)):
-            return 8
-        if not (within(Y[K.Y_ED], v) and within(Y[K.Y_WD], v)
-                and within(Y[K.Y_B1D], v / T[T_R_BORE]) and within(Y[K.Y_B2D], v / T[T_R_BORE])):
-            return 7
+        code = roller_bound(Y, T[T_BEARING] != K.BEAR_IDEAL, T[T_L_NEEDLE], T[T_D_NEEDLE],
+                            T[T_R_ROLLER], T[T_R_BORE], v)[0]
+        if code != 0:
+            return code
     return 0
 
 
@@ -449,7 +433,8 @@ def spider_problem(T, IN, X):
 # what the FMU's binary compiles of this module (c_functions), callees first
 COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
-            "step_resolved", "step", "end", "within", "roller_problem", "spider_bounds",
+            "step_resolved", "step", "end", "speed_limit", "roller_bound", "roller_problem",
+            "spider_bounds",
             "spider_problem", "state_problem")
 
 

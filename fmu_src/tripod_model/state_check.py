@@ -23,6 +23,20 @@ from reduced_model.scene import BY_NAME
 from . import layout as K
 
 SPEED_MARGIN = 10.0
+WHIRL_HI = BY_NAME["shaft_angle"].hi + 2.0 * math.pi   # a state's whirl angle [rad]
+# what each roller value roller_bound checks is called in a refusal: name, unit, why the bound
+Y_WORDS = {K.Y_X: ("whirl angle", "rad", "the shaft angle's range"),
+           K.Y_U: ("slide u", "m", "half the needle length: the roller off its needles"),
+           K.Y_UD: ("slide speed", "m/s", "the scene's speeds"),
+           K.Y_OM: ("spin", "rad/s", "the scene's speeds"),
+           K.Y_E: ("radial offset e", "m", "the needle diameter"),
+           K.Y_W: ("radial offset w", "m", "the needle diameter"),
+           K.Y_B1: ("tilt b1", "rad", "half a needle across the row"),
+           K.Y_B2: ("tilt b2", "rad", "half a needle across the row"),
+           K.Y_ED: ("radial speed e'", "m/s", "the scene's speeds"),
+           K.Y_WD: ("radial speed w'", "m/s", "the scene's speeds"),
+           K.Y_B1D: ("tilt rate b1'", "rad/s", "the scene's speeds"),
+           K.Y_B2D: ("tilt rate b2'", "rad/s", "the scene's speeds")}
 
 
 class BadState(ValueError):
@@ -35,15 +49,50 @@ def _finite(name, v):
         raise BadState(f"{name} holds a non-finite value")
 
 
-def speed_bound(p: dict, theta: float, omega: float, vp: float) -> float:
-    """The fastest a roller's point may move [m/s] at these inputs (module docstring)."""
-    kin = (p["s"] + p["r_roller"]) * abs(omega) * (1.0 + abs(math.tan(theta))) + abs(vp)
+def speed_limit(s, r_roller, theta, omega, vp):
+    """The fastest a roller's point may move [m/s] at joint angle theta [rad] (at most pi/4
+    counted), whirl omega [rad/s] and plunge speed vp [m/s] on a joint of trunnion offset s and
+    roller radius r_roller [m] (module docstring).  Scalar: the compiled state check
+    (lifecycle.roller_problem) compiles it."""
+    kin = ((s + r_roller) * abs(omega) * (1.0 + abs(math.tan(min(abs(theta), math.pi / 4.0))))
+           + abs(vp))
     return SPEED_MARGIN * max(kin, 1.0)
 
 
-def _within(name, value, bound, unit, why):
-    if not abs(value) <= bound:
-        raise BadState(f"{name} = {value:.4g} {unit} is outside +-{bound:.4g} {unit} ({why})")
+def speed_bound(p: dict, theta: float, omega: float, vp: float) -> float:
+    """speed_limit [m/s] for the parameters p."""
+    return speed_limit(p["s"], p["r_roller"], theta, omega, vp)
+
+
+def roller_bound(Y, row, l_needle, d_needle, r_roller, r_bore, v):
+    """The first value of a roller's state Y beyond its bound (module docstring), in Y_WORDS'
+    order: (code of fmu_arrays.STATE_PROBLEMS, its index in Y, the bound), (0, -1, 0.0) when
+    every one is within.  row: the bearing has a row (not the ideal one); l_needle, d_needle,
+    r_roller, r_bore [m]; v: speed_limit [m/s].  NaN is beyond.  Scalar: the compiled state
+    check (lifecycle.roller_problem) compiles it."""
+    if not abs(Y[K.Y_X]) <= WHIRL_HI:
+        return 5, K.Y_X, WHIRL_HI
+    if not abs(Y[K.Y_U]) <= 0.5 * l_needle:
+        return 6, K.Y_U, 0.5 * l_needle
+    if not abs(Y[K.Y_UD]) <= v:
+        return 7, K.Y_UD, v
+    if not abs(Y[K.Y_OM]) <= v / r_roller:
+        return 7, K.Y_OM, v / r_roller
+    if row:
+        tilt = math.atan(d_needle / (0.5 * l_needle))
+        for i in (K.Y_E, K.Y_W):
+            if not abs(Y[i]) <= d_needle:
+                return 8, i, d_needle
+        for i in (K.Y_B1, K.Y_B2):
+            if not abs(Y[i]) <= tilt:
+                return 8, i, tilt
+        for i in (K.Y_ED, K.Y_WD):
+            if not abs(Y[i]) <= v:
+                return 7, i, v
+        for i in (K.Y_B1D, K.Y_B2D):
+            if not abs(Y[i]) <= v / r_bore:
+                return 7, i, v / r_bore
+    return 0, -1, 0.0
 
 
 def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float) -> None:
@@ -73,26 +122,14 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
         raise BadState(f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s")
     if not 0.0 <= hs[K.H_JUMPW] <= 1.0:
         raise BadState(f"the restart's weight {hs[K.H_JUMPW]:.4g} is outside [0, 1]")
-    v = speed_bound(p, min(theta, math.pi / 4), omega, vp)
-    rb = p["r_bore"]
-    tilt = math.atan(p["d_needle"] / (0.5 * p["l_needle"]))
+    v = speed_bound(p, theta, omega, vp)
     for label, Y in (("", st["Y"]), (" (previous step)", st["Y2"])):
-        _within("whirl angle" + label, Y[K.Y_X], BY_NAME["shaft_angle"].hi + 2 * math.pi,
-                "rad", "the shaft angle's range")
-        _within("slide u" + label, Y[K.Y_U], 0.5 * p["l_needle"], "m",
-                "half the needle length: the roller off its needles")
-        _within("slide speed" + label, Y[K.Y_UD], v, "m/s", "the scene's speeds")
-        _within("spin" + label, Y[K.Y_OM], v / p["r_roller"], "rad/s", "the scene's speeds")
-        if p["bearing"] == K.BEAR_IDEAL:
-            continue
-        for n, i in (("radial offset e", K.Y_E), ("radial offset w", K.Y_W)):
-            _within(n + label, Y[i], p["d_needle"], "m", "the needle diameter")
-        for n, i in (("tilt b1", K.Y_B1), ("tilt b2", K.Y_B2)):
-            _within(n + label, Y[i], tilt, "rad", "half a needle across the row")
-        for n, i in (("radial speed e'", K.Y_ED), ("radial speed w'", K.Y_WD)):
-            _within(n + label, Y[i], v, "m/s", "the scene's speeds")
-        for n, i in (("tilt rate b1'", K.Y_B1D), ("tilt rate b2'", K.Y_B2D)):
-            _within(n + label, Y[i], v / rb, "rad/s", "the scene's speeds")
+        code, i, bound = roller_bound(Y, p["bearing"] != K.BEAR_IDEAL, p["l_needle"],
+                                      p["d_needle"], p["r_roller"], p["r_bore"], v)
+        if code:
+            name, unit, why = Y_WORDS[i]
+            raise BadState(f"{name}{label} = {Y[i]:.4g} {unit} is outside +-{bound:.4g} {unit} "
+                           f"({why})")
 
 
 def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
