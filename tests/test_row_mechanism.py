@@ -1,6 +1,7 @@
 """The lumped needle row against the needle-resolved row it stands for (docs/model.md, "What
 the needle row does to the thrust"): the needle loads it shares, the thrust's orders, and the
 roller's rocking on the row."""
+import functools
 import math
 
 import numpy as np
@@ -69,7 +70,12 @@ FRICTION_OFF = {"friction_needle": False, "rolling_resistance": False}
 def _run(over, F, tilt_scale=1.0):
     """One roller on the paper's joint at 8 deg, 10 Hz, three cycles at 0.1 ms: orders of Fz
     over the last cycle, the tilt b2's peak there [rad] and f_n's [N]; the lumped row's tilt
-    stiffness (P_LT) scaled by tilt_scale."""
+    stiffness (P_LT) scaled by tilt_scale.  (Runs are shared between the tests.)"""
+    return _cached(tuple(sorted(over.items())), F, tilt_scale)
+
+
+@functools.lru_cache(maxsize=None)
+def _cached(over, F, tilt_scale):
     m = ContactModel(dict(over, theta=THETA, omega=OMEGA, F_press=F))
     m.P[K.P_LT] *= tilt_scale
     t, fz, x, b2, fn = [], [], [], [], []
