@@ -32,7 +32,6 @@ THETA, OMEGA, F_PRESS, TORQUE, PLUNGE_SPEED, SHAFT_ANGLE = map(INPUT_NAMES.index
 IN_LEN = len(INPUT_NAMES)
 IN_LO = tuple(BY_NAME[n].lo for n in INPUT_NAMES)
 IN_HI = tuple(BY_NAME[n].hi for n in INPUT_NAMES)
-VST_HI = BY_NAME["v_st"].hi                  # (a state's transition velocity)
 OUT_LEN = K.N_OUT
 # the analytic model's parameters (its traverse table starts the roller) as the contact FMU's
 ANALYTIC_SLOTS = tuple(PARAM_NAMES.index(n) for n in RE.PARAM_NAMES)

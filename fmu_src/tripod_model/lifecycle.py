@@ -20,7 +20,7 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          NOTE_SUMMARY_ADAPT, NOTE_SUMMARY_BDF, NOTE_SUMMARY_GA, NOTE_TEXT,
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
                          SHAFT_ANGLE, STATE_PROBLEMS, T_LEN, TABLE_N, TABLE_ROWS, THETA, TORQUE,
-                         VST_HI, W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
+                         W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
                          W_T, W_TKEY, W_X0, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
                          X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
@@ -32,9 +32,9 @@ from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE,
                            T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
                            place_on_cycle, pressing_offset, start_needles, start_state,
                            uses_table)
-# (SPEED_MARGIN and WHIRL_HI: globals of the compiled copies of state_check's functions)
-from .state_check import (SPEED_MARGIN, WHIRL_HI, roller_bound, speed_limit,  # noqa: F401
-                          spider_bounds)
+# (SPEED_MARGIN, VST_HI, WHIRL_HI: globals of the compiled copies of state_check's functions)
+from .state_check import (SPEED_MARGIN, VST_HI, WHIRL_HI, history_bound,  # noqa: F401
+                          roller_bound, speed_limit, spider_bounds)
 from reduced_model.scene import SPIDER_FREE
 
 
@@ -380,9 +380,7 @@ def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
             return 3
     if not (0.0 <= P[K.P_DF] <= 2.0) or OP[K.OP_NOSTEP] != 0.0:
         return 3
-    if not (0.0 < P[K.P_VST_OP] <= VST_HI):
-        return 4
-    if not (0.0 <= hs[K.H_SUB] <= 1.0) or hs[K.H_TAKEN] < 0.0 or not 0.0 <= hs[K.H_JUMPW] <= 1.0:
+    if history_bound(P[K.P_VST_OP], hs) != 0:
         return 4
     # the speeds the driven motion makes, at the larger of the inputs and the key
     v = speed_limit(T[T_S], T[T_R_ROLLER], max(abs(IN[THETA]), abs(OP[K.OP_KEY])),
@@ -433,9 +431,8 @@ def spider_problem(T, IN, X):
 # what the FMU's binary compiles of this module (c_functions), callees first
 COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
-            "step_resolved", "step", "end", "speed_limit", "roller_bound", "roller_problem",
-            "spider_bounds",
-            "spider_problem", "state_problem")
+            "step_resolved", "step", "end", "speed_limit", "history_bound", "roller_bound",
+            "roller_problem", "spider_bounds", "spider_problem", "state_problem")
 
 
 def compiled_namespace():

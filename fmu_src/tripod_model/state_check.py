@@ -24,6 +24,7 @@ from . import layout as K
 
 SPEED_MARGIN = 10.0
 WHIRL_HI = BY_NAME["shaft_angle"].hi + 2.0 * math.pi   # a state's whirl angle [rad]
+VST_HI = BY_NAME["v_st"].hi                             # a state's transition velocity [m/s]
 # what each roller value roller_bound checks is called in a refusal: name, unit, why the bound
 Y_WORDS = {K.Y_X: ("whirl angle", "rad", "the shaft angle's range"),
            K.Y_U: ("slide u", "m", "half the needle length: the roller off its needles"),
@@ -62,6 +63,23 @@ def speed_limit(s, r_roller, theta, omega, vp):
 def speed_bound(p: dict, theta: float, omega: float, vp: float) -> float:
     """speed_limit [m/s] for the parameters p."""
     return speed_limit(p["s"], p["r_roller"], theta, omega, vp)
+
+
+def history_bound(vst, hs):
+    """0 when a roller's transition velocity vst [m/s] and its integrators' history hs can be
+    stepped, else the first that cannot: 1 vst outside (0, VST_HI], 2 the carried substep
+    hs[H_SUB] outside [0, 1] s, 3 the restart's weight hs[H_JUMPW] outside [0, 1], 4 a negative
+    count of substeps taken.  NaN is outside.  Scalar: the compiled state check
+    (lifecycle.roller_problem) compiles it."""
+    if not 0.0 < vst <= VST_HI:
+        return 1
+    if not 0.0 <= hs[K.H_SUB] <= 1.0:
+        return 2
+    if not 0.0 <= hs[K.H_JUMPW] <= 1.0:
+        return 3
+    if not hs[K.H_TAKEN] >= 0.0:
+        return 4
+    return 0
 
 
 def roller_bound(Y, row, l_needle, d_needle, r_roller, r_bore, v):
@@ -114,14 +132,13 @@ def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float)
             max(abs(vp), abs(key[4]))
     if not (st["time"] >= 0.0 and st["substeps"] >= 0):
         raise BadState("its time or substep count is negative")
-    vst = BY_NAME["v_st"]
-    if not 0.0 < st["vst"] <= vst.hi:
-        raise BadState(f"v_st = {st['vst']:.4g} m/s is outside (0, {vst.hi:g}] m/s")
     hs = st["hs"]
-    if not 0.0 <= hs[K.H_SUB] <= 1.0:
-        raise BadState(f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s")
-    if not 0.0 <= hs[K.H_JUMPW] <= 1.0:
-        raise BadState(f"the restart's weight {hs[K.H_JUMPW]:.4g} is outside [0, 1]")
+    code = history_bound(st["vst"], hs)
+    if code:
+        raise BadState((f"v_st = {st['vst']:.4g} m/s is outside (0, {VST_HI:g}] m/s",
+                        f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s",
+                        f"the restart's weight {hs[K.H_JUMPW]:.4g} is outside [0, 1]",
+                        f"its count of substeps taken {hs[K.H_TAKEN]:.4g} is negative")[code - 1])
     v = speed_bound(p, theta, omega, vp)
     for label, Y in (("", st["Y"]), (" (previous step)", st["Y2"])):
         code, i, bound = roller_bound(Y, p["bearing"] != K.BEAR_IDEAL, p["l_needle"],
