@@ -59,7 +59,10 @@ def bare_native_fmu() -> Path:
     dest = ROOT / "build" / "BareNative.fmu"
     srcs = [ROOT / "benchmarks" / "bare_model.py", *b.NATIVE_FMU, *b.AOT]
     if not dest.exists() or any(dest.stat().st_mtime < f.stat().st_mtime for f in srcs):
-        b.build_module("native_fmu").package(bare_fmu(), dest, "benchmarks.bare_model:c_functions",
+        import zipfile
+        with zipfile.ZipFile(bare_fmu()) as z:
+            xml = z.read("modelDescription.xml")
+        b.build_module("native_fmu").package(xml, dest, "benchmarks.bare_model:c_functions",
                                              bare_model.native_layout(), b._fmi_headers(),
                                              targets=("linux64",))
     return dest

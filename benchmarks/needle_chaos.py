@@ -3,10 +3,10 @@
 and after omega +1 %.  Prints markdown tables:
 
 - references of ever finer substep (h/10 ... h/160, h the default's) against the finest, as
-  single samples and as their 1 ms running mean (harness.transients.MEAN_SAMPLES);
+  single samples and as their 1 ms running mean (harness.input_transients.MEAN_SAMPLES);
 - the same model from a state moved by 1e-15 or 1e-12 (the roller's spin): how far rounding
   alone moves it, and the e-folding time of that difference in the state;
-- with one Newton pass a substep (newton_passes = 1, harness.transients.ONE_PASS, the default
+- with one Newton pass a substep (newton_passes = 1, harness.input_transients.ONE_PASS, the default
   before the second pass), settled with it: how far rounding moves its single samples.
 
     python benchmarks/needle_chaos.py [--md FILE]       (about 1 min)
@@ -21,7 +21,7 @@ from pathlib import Path
 
 import numpy as np
 
-from harness import transients as T
+from harness import input_transients as T
 from reduced_model.scene import BY_NAME
 
 REFINES = (10, 20, 40, 80, 160)

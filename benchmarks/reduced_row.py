@@ -123,10 +123,10 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
 
 
 def grid_table():
-    """The drive scenes of the envelope grid (harness.row_grid; coast needs the analytic model's
+    """The drive scenes of the envelope grid (harness.envelope_grid; coast needs the analytic model's
     mirror, which this march lacks): the lumped row and the reduced model with both row terms,
     without and with the rocking, against the needle-resolved row."""
-    from harness import row_grid as G
+    from harness import envelope_grid as G
     from reduced_model.joint import for_model, load_joint
     print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | lumped: order 1, 3 off "
           "| reduced + both: order 1, 3 off | + rocking: order 1, 3 off | wall |")

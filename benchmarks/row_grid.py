@@ -1,6 +1,6 @@
 """The fast models against the full one over the driveline envelope (issue 67 point 5): the
 ideal and lumped bearings of the contact model and the analytic model, each against the
-needle-resolved row, one roller, over harness/row_grid.py's quasi-random grid of scenes.
+needle-resolved row, one roller, over harness/envelope_grid.py's quasi-random grid of scenes.
 Prints the Markdown table of docs/validation.md ("The fast models against the full one over
 the envelope"); "off" is the complex difference over the resolved row's amplitude.
 
@@ -13,7 +13,7 @@ import argparse
 import math
 import time
 
-from harness.row_grid import JOINTS, analytic_orders, contact_orders, joint_orders, off, scene
+from harness.envelope_grid import JOINTS, analytic_orders, contact_orders, joint_orders, off, scene
 
 
 def three_rollers():

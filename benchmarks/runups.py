@@ -11,7 +11,7 @@ from __future__ import annotations
 
 import time
 
-from harness.transients import runup, settle
+from harness.input_transients import runup, settle
 
 RUNS = ((0.5, 1e-4), (0.5, 2e-5), (0.5, 1e-3), (3.0, 1e-4), (3.0, 2e-5), (3.0, 1e-3))
 TARGETS = (5.0, 10.0, 20.0, 35.0)

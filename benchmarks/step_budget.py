@@ -1,4 +1,4 @@
-"""How far the adaptive substeps run from their budget in ordinary scenes (harness/step_budget.py
+"""How far the adaptive substeps run from their budget in ordinary scenes (harness/budget_use.py
 says what is run).  Prints a markdown table.
 
     python -m benchmarks.step_budget [--md FILE]
@@ -7,7 +7,7 @@ from __future__ import annotations
 
 import argparse
 
-from harness.step_budget import table
+from harness.budget_use import table
 
 
 def main(argv=None):

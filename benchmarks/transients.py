@@ -1,6 +1,6 @@
 """Input steps under a driveline master: how far Fz_joint strays from a converged reference in
 the 20 communication steps after a step of +-1 % or +-10 % in omega, theta or torque
-(harness/transients.py says how the reference is made).  Prints a markdown table.
+(harness/input_transients.py says how the reference is made).  Prints a markdown table.
 
     python benchmarks/transients.py [--quick] [--no-resolved] [--md FILE] [--realizations K]
 
@@ -15,7 +15,7 @@ import sys
 import time
 from pathlib import Path
 
-from harness.transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,
+from harness.input_transients import (DT, INPUTS, LAUNCH_ROW, LAUNCH_THETA, LAUNCH_TORQUE,
                                 MEAN_SAMPLES, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
                                 RESOLVED_ROWS, RESOLVED_ONE_PASS, SIZES, case, checked_case,
                                 cycle_case, deviation, settle, step_runs)

@@ -4,26 +4,21 @@ import math
 
 import numpy as np
 
-from pythonfmu import DefaultExperiment, Fmi2Slave
+from pythonfmu import Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from driveline.powertrain import INPUTS, OUTPUTS, TABLE, PowertrainModel
+from driveline.powertrain import INPUTS, TABLE, PowertrainModel
 from reduced_model.scene import check_param
-from slavekit import DataState, Guarded, StateError, register_params, same_layout
+from slavekit import DataState, Guarded, StateError, describe, register, same_layout
 
 
+@describe
 class Powertrain(Guarded, DataState, Fmi2Slave):
-    author = "tripod-thrust"
-    description = ("A transverse powertrain on its mounts (lateral, fore-aft, vertical, roll) "
-                   "driving one tripod joint through a vehicle launch: it gives the joint its "
-                   "angle, plunge speed, whirl speed and torque and takes the joint's forces "
-                   "on the housing.")
-    default_experiment = DefaultExperiment(start_time=0.0, stop_time=2.5, step_size=1e-4)
     STRUCTURAL = tuple(p.name for p in TABLE if p.causality != "input")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        register_params(self, TABLE, OUTPUTS)
+        register(self)
         self.model = None
 
     def _values(self, params):

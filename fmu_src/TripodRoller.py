@@ -6,14 +6,14 @@ Variables are generated from the parameter table (reduced_model.scene) and the o
 import math
 import sys
 
-from pythonfmu import DefaultExperiment, Fmi2Slave
+from pythonfmu import Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from fmi2bridge import requirements
 from reduced_model import switches
 from reduced_model.scene import BY_NAME, check_value, params_for
-from slavekit import (DataState, FastStep, Guarded, StateError, omega_by_angle,
-                      register_table, same_layout)
+from slavekit import (DataState, FastStep, Guarded, StateError, describe, omega_by_angle,
+                      register, same_layout)
 from tripod_model import native
 from tripod_model.layout import H_TAKEN, OP_FP, OP_THETA, OP_TQ, OP_VP, OP_W
 from tripod_model.model import JointModel, fast_argv
@@ -38,20 +38,15 @@ def _have_numba():
 _NUMBA_ON = switches.NUMBA   # off: plain Python on purpose
 
 
+@describe
 class TripodRoller(Guarded, DataState, Fmi2Slave):
-    author = "tripod-thrust"
-    description = ("One roller of a tripod constant-velocity joint in its groove (Sugiura et al.): "
-                   "trunnion motions as driving constraints, Hertz contact, tanh friction, "
-                   "spin moment, ideal, lumped or needle-resolved bearing. Thrust Fz and modified thrust "
-                   "Fz_mod.")
-    # two whirl cycles of the paper's scene (10 Hz)
-    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
     # a state belongs to the parameters it was taken with (the model's layout follows them)
     STRUCTURAL = tuple(p.name for p in params_for("contact") if p.causality != "input")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self._params = register_table(self, "contact")
+        register(self)
+        self._params = params_for("contact")
         self.model = None
         self._checked = None
         self._fast = None          # the compiled step offered to the native layer (kernel.step)

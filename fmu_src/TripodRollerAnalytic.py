@@ -1,39 +1,31 @@
 """pythonfmu slave of the reduced (analytic) thrust model, numpy only: an adapter over
 reduced_model.analytic_model.AnalyticModel (reduced_model/kernel.py's init, step and end as
 Python).  The analytic FMU ships the same kernel compiled, under the native FMI layer, without
-Python (fmu_src/native_fmu.py); this slave describes it (its model description) and is the
-reference the tests hold it to (build/reference/TripodRollerAnalytic.fmu).
+Python (fmu_src/native_fmu.py); this slave is the reference the tests hold it to (build/reference/TripodRollerAnalytic.fmu).
 
 Same variable names as TripodRoller.fmu where the meaning is the same, so it can replace the
 contact FMU when only the thrust excitation is needed.
 """
 import numpy as np
 
-from pythonfmu import DefaultExperiment, Fmi2Slave
+from pythonfmu import Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
 from reduced_model import kernel as K
 from reduced_model.analytic_model import AnalyticModel, state_problem
 from reduced_model.scene import check_value, params_for
-from slavekit import DataState, Guarded, StateError, register_table, same_layout
-
-# outputs the reduced model defines (no contact point, no roller spin state)
-_OUT = K.OUTPUT_NAMES[:-1]
+from slavekit import DataState, Guarded, StateError, describe, register, same_layout
 
 
+@describe
 class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
-    author = "tripod-thrust"
-    description = ("Reduced (analytic) thrust model of one tripod-joint roller: sliding "
-                   "velocities v1 + v2 (Eqs. 18-24), tanh friction, ftz = ft sin(phi), the "
-                   "roller spin-inertia thrust and (traverse = true) the roller's slide across "
-                   "the groove with micro-slip. Compiled: needs nothing on the host.")
-    default_experiment = DefaultExperiment(start_time=0.0, stop_time=0.2, step_size=1e-4)
     # a state belongs to the parameters it was taken with
     STRUCTURAL = tuple(p.name for p in params_for("analytic") if p.causality != "input")
 
     def __init__(self, **kwargs):
         super().__init__(**kwargs)
-        self._params = register_table(self, "analytic", _OUT)
+        register(self)
+        self._params = params_for("analytic")
         self.model = None
 
     def _say(self, text, warning=False):

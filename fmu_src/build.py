@@ -1,10 +1,13 @@
 """Build the FMUs into build/.
 
-pythonfmu writes the model description and bundles the Python sources; the binary is ours
-(fmu_src/native/fmi2_python.c, compiled here with the system C compiler) in place of
-pythonfmu's, whose teardown corrupts the host's heap (docs/native-layer.md).  Units, ranges
-and display units are added to modelDescription.xml from the parameter table (pythonfmu has
-no unit attributes).
+Each FMU is its model compiled under the native FMI layer (native_fmu.py) and a
+modelDescription.xml written from the parameter table (description.py, then the units,
+ranges and identity here).  Neither pythonfmu nor Python is on the way.
+
+The tests' reference FMUs (build/reference/, ``reference``) are the pythonfmu slaves of the
+same models over the Python layer (fmu_src/native/fmi2_python.c, compiled here with the system
+C compiler, in place of pythonfmu's, whose teardown corrupts the host's heap:
+docs/native-layer.md), with the same model description.
 """
 from __future__ import annotations
 
@@ -32,10 +35,12 @@ SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
           "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py",
           "Powertrain": FMU_SRC / "Powertrain.py"}     # the driveline example's (driveline/)
 # the analytic FMU needs the reduced model only
-KIT = FMU_SRC / "slavekit.py"      # what both slaves share
-BUNDLE = {"TripodRoller": PACKAGES + (KIT,),
-          "TripodRollerAnalytic": (ROOT / "reduced_model", KIT),
-          "Powertrain": (ROOT / "driveline", ROOT / "reduced_model", KIT)}
+DESCRIPTION = FMU_SRC / "description.py"    # what each FMU is: its model description
+KIT = (FMU_SRC / "slavekit.py", DESCRIPTION)   # what the slaves share
+# the Python each model is made of (compiled into its FMU; bundled into its reference)
+MODEL_PACKAGES = {"TripodRoller": PACKAGES,
+                  "TripodRollerAnalytic": (ROOT / "reduced_model",),
+                  "Powertrain": (ROOT / "driveline", ROOT / "reduced_model")}
 # what each FMU needs in the Python it runs in (versions from pyproject.toml): the FMU's log
 # names them when they are missing
 RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("numpy",),
@@ -60,13 +65,18 @@ NATIVE_LIB = BUILD / "native" / "fmi2_python.so"
 PLATFORM = "linux64"
 
 
+def _py_files(paths):
+    return [f for p in paths for f in (sorted(p.rglob("*.py")) if p.is_dir() else [p])]
+
+
 def _sources(name):
-    files = [SLAVES[name], Path(__file__), NATIVE_SRC, BRIDGE]
-    if name in COMPILED:
-        files += list(AOT) + list(NATIVE_FMU)
-    for pkg in BUNDLE[name]:
-        files += list(pkg.rglob("*.py")) if pkg.is_dir() else [pkg]
-    return files
+    """What the FMU ``name`` is built from."""
+    return [Path(__file__), DESCRIPTION, *AOT, *NATIVE_FMU, *_py_files(MODEL_PACKAGES[name])]
+
+
+def _reference_sources(name):
+    """What its reference FMU is built from besides: the slave, the kit, the Python layer."""
+    return _sources(name) + [SLAVES[name], NATIVE_SRC, BRIDGE, *KIT]
 
 
 def _fmi_headers() -> Path:
@@ -253,27 +263,30 @@ def fmu_path(name="TripodRoller") -> Path:
     return BUILD / f"{name}.fmu"
 
 
-def sources_hash(name="TripodRoller") -> str:
-    """Content hash of the FMU's sources (their paths and bytes)."""
+def sources_hash(name="TripodRoller", reference=False) -> str:
+    """Content hash of the FMU's sources (their paths and bytes); reference: its reference
+    FMU's."""
     h = hashlib.sha256()
-    for s in sorted(_sources(name)):
+    for s in sorted((_reference_sources if reference else _sources)(name)):
         h.update(str(s).encode() + b"\0" + s.read_bytes())
     return h.hexdigest()
 
 
-def _stamp(name) -> Path:
+def _stamp(name, reference=False) -> Path:
     """build/<name>.fmu.sources: the sources' hash the FMU was built from."""
-    return BUILD / f"{name}.fmu.sources"
+    fmu = reference_path(name) if reference else fmu_path(name)
+    return fmu.with_name(fmu.name + ".sources")
 
 
-def is_stale(name="TripodRoller") -> bool:
-    """True when the FMU is missing or was built from other sources than today's (by content:
-    a source edited while a build ran, after it was read, leaves the FMU stale, which the
-    files' times could not tell)."""
-    f, stamp = fmu_path(name), _stamp(name)
+def is_stale(name="TripodRoller", reference=False) -> bool:
+    """True when the FMU (reference: its reference FMU) is missing or was built from other
+    sources than today's (by content: a source edited while a build ran, after it was read,
+    leaves the FMU stale, which the files' times could not tell)."""
+    f = reference_path(name) if reference else fmu_path(name)
+    stamp = _stamp(name, reference)
     if not f.exists() or not stamp.exists():
         return True
-    return stamp.read_text().strip() != sources_hash(name)
+    return stamp.read_text().strip() != sources_hash(name, reference)
 
 
 def _table(name):
@@ -364,6 +377,13 @@ def _initial_unknowns(root):
             ET.SubElement(iu, "Unknown", index=i)
 
 
+def model_description(name) -> bytes:
+    """The FMU's modelDescription.xml: description.py's variables with the table's units and
+    ranges, named by its content."""
+    return _identity(_units_and_ranges(build_module("description").raw_xml(name),
+                                       *_table(name)), name)
+
+
 def build(name="TripodRoller", force=False) -> Path:
     """Build build/<name>.fmu if missing or stale (or forced); returns its path."""
     with _exclusive(name):
@@ -375,30 +395,55 @@ def _build(name, force):
     if not force and not is_stale(name):
         return dest
     built_from = sources_hash(name)    # before anything is read
-    if force:
-        native_library(force=True)
-    extra = ()
-    if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
-        extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
-    table = _table(name)
-    ref = reference_path(name) if name in COMPILED else dest
-    out = package(SLAVES[name], ref, BUNDLE[name], _requirements(RUNTIME_DEPS[name]),
-                  lambda xml: _identity(_units_and_ranges(xml, *table), name), extra)
-    if name in COMPILED:    # the same model description over the compiled model
-        import importlib
-        native_fmu = build_module("native_fmu")
-        spec, layout = COMPILED[name]
-        module, fn = layout.split(":")
-        out = native_fmu.package(ref, dest, spec, getattr(importlib.import_module(module), fn)(),
-                                 _fmi_headers())
+    import importlib
+    native_fmu = build_module("native_fmu")
+    spec, layout = COMPILED[name]
+    module, fn = layout.split(":")
+    out = native_fmu.package(model_description(name), dest, spec,
+                             getattr(importlib.import_module(module), fn)(), _fmi_headers())
     _stamp(name).write_text(built_from + "\n")
     return out
 
 
 def reference_path(name) -> Path:
-    """build/reference/<name>.fmu: the pythonfmu slave's FMU of a model that ships compiled
-    (COMPILED), which the tests hold the compiled FMU to."""
+    """build/reference/<name>.fmu: the pythonfmu slave's FMU of the model (``reference``)."""
     return BUILD / "reference" / f"{name}.fmu"
+
+
+def _same_variables(theirs: bytes, ours: bytes, name) -> bytes:
+    """ours, once the slave's own model description (pythonfmu's) is found to declare the same
+    variables (names, value references, causality, variability, type, start)."""
+    def rows(xml):
+        return [(sv.get("name"), sv.get("valueReference"), sv.get("causality"),
+                 sv.get("variability"), sv[0].tag, sv[0].get("start"))
+                for sv in ET.fromstring(xml).iter("ScalarVariable")]
+    if rows(theirs) != rows(ours):
+        from itertools import zip_longest
+        bad = next((a, b) for a, b in zip_longest(rows(theirs), rows(ours)) if a != b)
+        raise RuntimeError(f"the {name} slave's variables are not description.py's: "
+                           f"{bad[0]} against {bad[1]}")
+    return ours
+
+
+def reference(name="TripodRoller", force=False) -> Path:
+    """build/reference/<name>.fmu, built when missing or stale (or forced): the model's
+    pythonfmu slave over the Python layer, with the FMU's own model description (the same
+    GUID), which the tests hold the compiled FMU to.  Needs pythonfmu."""
+    with _exclusive(name):
+        dest = reference_path(name)
+        if not force and not is_stale(name, reference=True):
+            return dest
+        built_from = sources_hash(name, reference=True)
+        native_library(force=force)
+        extra = ()
+        if name == "TripodRoller":   # next to the bundled kernel's sources (native.py looks there)
+            extra = [(f, f"resources/tripod_model/{f.name}") for f in prebuilt_kernel(force)]
+        xml = model_description(name)
+        out = package(SLAVES[name], dest, MODEL_PACKAGES[name] + KIT,
+                      _requirements(RUNTIME_DEPS[name]), lambda theirs: _same_variables(
+                          theirs, xml, name), extra)
+        _stamp(name, reference=True).write_text(built_from + "\n")
+        return out
 
 
 if __name__ == "__main__":

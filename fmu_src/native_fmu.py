@@ -2,8 +2,7 @@
 numba cfuncs retargeted per platform) under the native FMI layer (native/fmi2_native.c), its
 variables generated from the model description and the parameter table.  One binary a
 platform: binaries/linux64/<id>.so (the system C compiler) and binaries/win64/<id>.dll
-(mingw-w64).  The pythonfmu slave stays what the FMU is described by (its model description)
-and the reference the tests hold this FMU to (build/reference/<id>.fmu).
+(mingw-w64).  Its model description: build.model_description.
 """
 from __future__ import annotations
 
@@ -148,12 +147,10 @@ def _member(z: zipfile.ZipFile, arc: str, data: bytes) -> None:
     z.writestr(info, data, zipfile.ZIP_DEFLATED)
 
 
-def package(reference: Path, dest: Path, spec: str, layout: dict, headers: Path,
+def package(xml: bytes, dest: Path, spec: str, layout: dict, headers: Path,
             targets=("linux64", "win64")) -> Path:
-    """The native FMU at dest from the reference FMU's model description (the same GUID and
-    variables): one binary per target, no Python and no resources."""
-    with zipfile.ZipFile(reference) as z:
-        xml = z.read("modelDescription.xml")
+    """The native FMU at dest with the model description ``xml``: one binary per target, no
+    Python and no resources."""
     model_id = ET.fromstring(xml).find("CoSimulation").get("modelIdentifier")
     for target in targets:
         aot.compiler(target)     # (a missing cross compiler said before the compile)

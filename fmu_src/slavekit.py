@@ -1,4 +1,4 @@
-"""What both pythonfmu slaves share: variables generated from the parameter table, the error
+"""What the pythonfmu slaves share: their description and variables (description.py), the error
 contract, and the serialised FMU state (data only).  Bundled into each FMU's resources/."""
 import json
 import math
@@ -9,10 +9,12 @@ from typing import NamedTuple
 
 import numpy as np
 
-from pythonfmu import Boolean, Fmi2Causality, Fmi2Initial, Fmi2Variability, Integer, Real
+from pythonfmu import (Boolean, DefaultExperiment, Fmi2Causality, Fmi2Initial, Fmi2Variability,
+                       Integer, Real)
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model.scene import INT_OUTPUTS, OUTPUTS, StepRefused, params_for
+from description import AUTHOR, MODELS, variables
+from reduced_model.scene import StepRefused
 
 _TYPES = {"real": Real, "int": Integer, "bool": Boolean}
 
@@ -44,41 +46,31 @@ class FastStep(NamedTuple):
     #                       sets omega by omega_by_angle before each step
 
 
-def register_table(slave, model, outputs=None):
-    """Register the ``model``'s parameters (inputs continuous, parameters fixed) with their
-    defaults, and the outputs named in ``outputs`` (all of OUTPUTS if None), on ``slave``.
-    Returns the parameter declarations."""
-    params = register_params(slave, params_for(model),
-                             [o for o in OUTPUTS if outputs is None or o[0] in outputs])
-    for name, desc, owner in INT_OUTPUTS:
-        if owner == model:
-            setattr(slave, name, 0)
-            slave.register_variable(Integer(name, causality=Fmi2Causality.output,
-                                            variability=Fmi2Variability.discrete,
-                                            initial=Fmi2Initial.calculated, description=desc))
-    return params
+def describe(cls):
+    """Class decorator: the slave ``cls`` (named as its FMU) described as description.py says."""
+    m = MODELS[cls.__name__]
+    cls.author, cls.description = AUTHOR, m.description
+    cls.default_experiment = DefaultExperiment(start_time=0.0, stop_time=m.stop_time,
+                                               step_size=m.step_size)
+    return cls
 
 
-def register_params(slave, params, outputs):
-    """Register ``params`` (a parameter table's entries: inputs continuous, parameters fixed)
-    with their defaults, and the Real ``outputs`` ((name, unit, description)), on ``slave``.
-    Returns ``params``."""
-    for p in params:
-        setattr(slave, p.name, p.default)
-        if p.causality == "input":
-            caus, var = Fmi2Causality.input, Fmi2Variability.continuous
+def register(slave):
+    """Register the slave's FMU's variables (description.variables: inputs continuous,
+    parameters fixed, with their defaults; outputs calculated) on ``slave``."""
+    for v in variables(type(slave).__name__):
+        setattr(slave, v.name, 0.0 if v.start is None else v.start)
+        if v.causality == "output":
+            kw = dict(causality=Fmi2Causality.output, initial=Fmi2Initial.calculated,
+                      variability=Fmi2Variability.continuous if v.kind == "real" else
+                      Fmi2Variability.discrete)
+            if v.kind == "int":
+                setattr(slave, v.name, 0)
+        elif v.causality == "input":
+            kw = dict(causality=Fmi2Causality.input, variability=Fmi2Variability.continuous)
         else:
-            caus, var = Fmi2Causality.parameter, Fmi2Variability.fixed
-        slave.register_variable(_TYPES[p.kind](p.name, causality=caus, variability=var,
-                                               description=p.description))
-    # outputs are calculated at initialisation (the model's values at the start time; the
-    # build lists them as InitialUnknowns), so they declare no start value
-    for name, _unit, desc in outputs:
-        setattr(slave, name, 0.0)
-        slave.register_variable(Real(name, causality=Fmi2Causality.output,
-                                     variability=Fmi2Variability.continuous,
-                                     initial=Fmi2Initial.calculated, description=desc))
-    return params
+            kw = dict(causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed)
+        slave.register_variable(_TYPES[v.kind](v.name, description=v.description, **kw))
 
 
 class Guarded:

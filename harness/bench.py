@@ -361,12 +361,12 @@ def work_precision(out, runs=5, fresh=True, log=print):
         log(f"{label:34s} {rows[-1]['setting']:34s} {r['wall']:.4f} s  err3 {err[3]:.2e}")
     # the generalized-alpha step stepped from Python (an engine with force callbacks), in this
     # process after a warm-up: the same ideal-bearing model, so the same reference
-    from . import genalpha
-    genalpha.simulate(1e-4, cycles=0.1)
+    from . import multibody_engine
+    multibody_engine.simulate(1e-4, cycles=0.1)
     for h in GA_PYTHON_STEPS:
         walls = []
         for _ in range(runs):
-            t, y, st, wall = genalpha.simulate(h)
+            t, y, st, wall = multibody_engine.simulate(h)
             walls.append(wall)
         err = rel_err(orders_of(y, t[0]), refs["contact bearing 0"])
         rows.append({"model": GA_PYTHON, "setting": f"h={h:g}, dt={t[0]:g}", "default": False,

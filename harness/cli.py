@@ -216,7 +216,7 @@ def cmd_stress(args) -> int:
 
 
 def cmd_runup(args) -> int:
-    from harness import transients as T
+    from harness import input_transients as T
     sv = dict(T.RUNUP_START, **overrides_from(args))
     _dt(args)
     if args.input:

@@ -15,7 +15,7 @@ from reduced_model.orders import last_cycle_orders
 
 from .fmus import ensure_fmu
 from .runs import default_dt, run_fmu, run_settled, settle_line
-from .spider import format_spider, spider_comparison
+from .spider_superposition import format_spider, spider_comparison
 
 # Tolerances and their physical reason (docs/validation.md, "compare's tolerances").
 TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
@@ -156,7 +156,7 @@ def _add_joint(r, contact_sc, ra, rc, angle):
 
 def _spider_block(contact_sc, rc, dt, max_cycles, rel_tol):
     """spider = 1: the prescribed joint on the same scene, run until periodic, and the free
-    one against it (harness.spider.spider_comparison); else None."""
+    one against it (harness.spider_superposition.spider_comparison); else None."""
     if contact_sc["spider"] != scene_mod.SPIDER_FREE:
         return None
     rp = run_settled(ensure_fmu("TripodRoller"), dict(contact_sc, spider=0),

@@ -256,7 +256,7 @@ def _needle_chaos_rows():
 
 
 def _transients_rows():
-    from harness.transients import (LAUNCH_ROW, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
+    from harness.input_transients import (LAUNCH_ROW, RESOLVED_CYCLE_ROW, RESOLVED_LAUNCH,
                                     RESOLVED_ONE_PASS, RESOLVED_ROWS)
     return (["ideal"] * 6 + ["lumped"] * 6 + [LAUNCH_ROW] * 3 + list(RESOLVED_ROWS)
             + [RESOLVED_CYCLE_ROW]
@@ -265,7 +265,7 @@ def _transients_rows():
 
 
 def _step_budget_rows():
-    from harness.step_budget import SCENES
+    from harness.budget_use import SCENES
     return [label for label, *_ in SCENES]
 
 

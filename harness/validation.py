@@ -386,7 +386,7 @@ def damping_markdown(rows) -> str:
     return "\n".join(out)
 
 
-# the free spider against the prescribed one (spider = 1 against 0; harness.spider): the paper's
+# the free spider against the prescribed one (spider = 1 against 0; harness.spider_superposition): the paper's
 # scene and the first SPIDER_N scenes of the grid without plunge, each bearing the free spider
 # takes, three rollers pressed by F_press each
 SPIDER_N = 10
@@ -413,8 +413,8 @@ def joint_run(overrides: dict, per_cycle: int = 1000, max_cycles: int = 3 * MAX_
 
 def spider_rows(scenes: dict | None = None) -> list[dict]:
     """One row a scene and bearing: the free spider against the prescribed one
-    (harness.spider.spider_comparison)."""
-    from .spider import spider_comparison
+    (harness.spider_superposition.spider_comparison)."""
+    from .spider_superposition import spider_comparison
     rows = []
     for label, ov in (scenes or spider_scenes()).items():
         for bearing in SPIDER_BEARINGS:

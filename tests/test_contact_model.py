@@ -100,10 +100,10 @@ def test_generalized_alpha_converges_to_the_extrapolated_euler():
 
 
 def test_python_stepped_generalized_alpha_is_the_default_step():
-    # the bench's engine stand-in (harness/genalpha.py: the step run as Python, forces compiled)
+    # the bench's engine stand-in (harness/multibody_engine.py: the step run as Python, forces compiled)
     # must be the very method of integrator 4, or the side-by-side compares two methods: at the
     # same fixed step both give the same Fz' to rounding (1e-9 relative, a tenth of a cycle)
-    from harness import genalpha
+    from harness import multibody_engine as genalpha
     t, y, counts, _ = genalpha.simulate(5e-5, cycles=0.1)
     r = simulate({"max_substep": 5e-5}, duration=t[-1])
     assert counts == {"steps": 200, "failed": 0}

@@ -8,7 +8,7 @@ import pytest
 
 from harness.fmus import ensure_fmu
 from harness.runs import run_fmu
-from harness.transients import RUNUP_START, revolution_orders
+from harness.input_transients import RUNUP_START, revolution_orders
 
 DT, T = 1e-4, 0.3
 

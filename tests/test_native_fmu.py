@@ -16,7 +16,7 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
-from harness.fmus import builder, ensure_fmu
+from harness.fmus import builder, ensure_fmu, reference_fmu
 
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
@@ -58,7 +58,7 @@ WINE_BOUND = {"TripodRoller-lumped-three": 1e-8}
 def fmus(request):
     name = request.param.split("-")[0]
     native = ensure_fmu(name)
-    return native, builder().reference_path(name), request.param
+    return native, reference_fmu(name), request.param
 
 
 # a state resumed in a fresh instance of another process (test_a_state_resumes_...): the joint

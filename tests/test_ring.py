@@ -6,7 +6,7 @@ import math
 import numpy as np
 import pytest
 
-from harness import transients as T
+from harness import input_transients as T
 
 from tripod_model import layout as LY, oppoint  # noqa: E402
 

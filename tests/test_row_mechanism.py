@@ -7,7 +7,7 @@ import math
 import numpy as np
 import pytest
 
-from harness.row_grid import JOINTS, contact_orders, off, scene
+from harness.envelope_grid import JOINTS, contact_orders, off, scene
 from reduced_model.orders import last_cycle_orders
 from tripod_model import contact, layout as K, oppoint
 from tripod_model.model import ContactModel
@@ -52,7 +52,7 @@ def test_lumped_row_thrust_follows_the_resolved_row(F, bound3):
 @pytest.mark.slow   # (six resolved rows: about 2 minutes)
 @pytest.mark.parametrize("i", range(13, 19))
 def test_lumped_row_follows_the_resolved_row_over_the_envelope(i):
-    """Scenes 13-18 of the envelope's grid (harness/row_grid.py: the three joints, 2.7-23.6
+    """Scenes 13-18 of the envelope's grid (harness/envelope_grid.py: the three joints, 2.7-23.6
     deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md): order 3 of one
     roller's Fz on the lumped row within the issue's 3 % of the needle-resolved row's (complex),
     order 1 within 5 %.  Measured 0.3-2.1 % and 0.5-3.4 %; the resolved row's realizations

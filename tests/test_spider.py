@@ -244,7 +244,7 @@ def test_compare_sets_the_free_spider_beside_the_prescribed_one():
     assert abs(math.radians(ob["phase_deg"])) <= 1.1 * ob["off_circle"] / ob["e"]
     assert ob["off_circle"] < 10e-6
     assert -0.05 < sp["loads"]["low_rel"] < 0.0 < sp["loads"]["high_rel"] < 0.05
-    from harness.spider import format_spider
+    from harness.spider_superposition import format_spider
     assert "superposition" in format_spider(sp) and "spider orbit at 2x" in format_spider(sp)
 
 

@@ -90,7 +90,7 @@ def test_work_precision_pipeline_on_a_small_ladder(tmp_path, monkeypatch):
     """The bench's work-precision pass end to end (timing, orders, fronts, re-timing, tables,
     plot) on two cheap analytic settings: `make docs` runs it for about 30 min, so a slip in the
     plumbing must show here first."""
-    from harness import bench, genalpha
+    from harness import bench, multibody_engine as genalpha
     monkeypatch.setattr(bench, "REFERENCES", {
         "analytic": ("TripodRollerAnalytic", {}, 5e-4),
         "contact bearing 2": ("TripodRollerAnalytic", {}, 5e-4)})   # the detail line's anchor

@@ -4,7 +4,7 @@ import math
 
 import pytest
 
-from harness import transients as T
+from harness import input_transients as T
 
 
 @pytest.fixture(scope="module")
