@@ -162,7 +162,8 @@ def test_the_flanks_sit_the_running_clearance_apart(c):
     the Hertz approach (f_n / K)^(2/3) past it: its distance from the arc centre is r_groove
     plus that, to rounding (1e-12 m).  The pressing load in use is carried either way
     (Fx's mean +-F within the traverse's 10 %)."""
-    from tripod_model import hertz, layout
+    from reduced_model import hertz
+    from tripod_model import layout
     from tripod_model.model import ContactModel
     Rg, r = 0.0192, 0.019
     K = hertz.hertz_point(r, Rg, 206e9, 0.3)[0]

@@ -444,7 +444,7 @@ def compiled_namespace():
     from reduced_model.cfuncs import compile_over
     from reduced_model.kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import fmu_arrays, hertz, kernel, roller_setup
+    from . import fmu_arrays, kernel, line_contact, roller_setup
 
     def jit(f):
         return nb.njit(f)
@@ -454,7 +454,7 @@ def compiled_namespace():
     for name in ("operating_point", "traverse_table", "table_state_at", "hertz_point",
                  "pressing_load", "same_step"):
         g[name] = red[name]
-    for f in (spin_inertia, hertz.needle_line_stiffness):
+    for f in (spin_inertia, line_contact.needle_line_stiffness):
         g[f.__name__] = jit(f)
     # (the kernel's copies: lumped_offset calls row_sums, compiled beside it there)
     g["groove_offset"], g["lumped_offset"] = kernel._op.groove_offset, kernel._op.lumped_offset

@@ -8,11 +8,12 @@ floats).  SI units throughout.
 """
 import math
 
+from reduced_model.hertz import hertz_point
 from reduced_model.scene import params_for
 from reduced_model.table import table_state_at
 from reduced_model.thrust import spin_inertia
 from . import layout as K
-from .hertz import hertz_point, needle_line_stiffness
+from .line_contact import needle_line_stiffness
 from .oppoint import groove_offset, lumped_offset
 
 PARAM_NAMES = tuple(p.name for p in params_for("contact") if p.causality != "input")

@@ -1,9 +1,7 @@
-"""Contact law coefficients from the geometry, Eq. (13)-(17) and Table 1.
-
-The roller-groove point contact lives in reduced_model.hertz (the reduced traverse model needs
-it too); the needle line contact, Eq. (17), is here.  SI units throughout.
+"""The needle's line contact coefficient from its length, Eq. (17) and Table 1 (the
+roller-groove point contact, Eqs. (13)-(16), is reduced_model.hertz).  SI units; plain Python
+(the set-up imports it where numba is not loaded).
 """
-from reduced_model.hertz import groove_curvature_radii, hertz_point  # noqa: F401 (re-exported)
 
 
 def needle_line_stiffness(l_needle):
