@@ -12,8 +12,10 @@ row's stiffness left), its tilt stiffness (both tilts: P_LT, l^2 / 12) as built 
 10 and 100; the lumped row as built; the needle-resolved row (the reference). Columns: orders 1
 and 3, the tilt about e2 (peak over the cycle, its order 2 amplitude), the groove contact's travel
 r_roller b2 against the slide u (peaks), with the row's friction off the tilt stiffness fitted
-over the last cycle against the lumped row's k_r l^2 / 12 at its mean offset, order 3 off the
-resolved row's (complex).
+over the last cycle against the lumped row's k_r l^2 / 12 at its mean offset, and for the
+resolved row again with the moment of its load shifted along the trunnion (the needles float
+axially within their clearance: harness/row_rocking.py), order 3 off the resolved row's
+(complex).
 Usage: python -m benchmarks.row_tilt [--loads 4500,45000] [--theta-deg 8,3] (about 1 min a
 scene)
 """
@@ -23,11 +25,10 @@ import time
 
 import numpy as np
 
+from harness.row_rocking import (C_B2, C_FZ, C_SHIFT, C_T, C_U, C_X, FRICTION_OFF, run,
+                                  tilt_stiffness)
 from reduced_model.orders import last_cycle_orders
-from tripod_model import contact, layout as K
-from tripod_model.model import ContactModel
 
-FRICTION_OFF = {"friction_needle": False, "rolling_resistance": False}
 RUNS = (   # name, overrides, the tilt stiffness's scale
     ("ideal", {"bearing": 0}, 1.0),
     ("lumped, row friction off", dict(FRICTION_OFF, bearing=1), 1.0),
@@ -40,71 +41,40 @@ RUNS = (   # name, overrides, the tilt stiffness's scale
 )
 
 
-def groove_moment_e2(m, omega, theta, L):
-    """The groove's moment on the roller of ContactModel m about e2 = a x e1 [N m] now (e1 the
-    pressing direction x made normal to the trunnion axis a)."""
-    L[K.L_KX] = math.nan
-    contact.line_kinematics(m.Y[K.Y_X], omega, theta, m.P, L)
-    a = np.array([L[K.L_AX], L[K.L_AY], L[K.L_AZ]])
-    e1 = np.array([1.0, 0.0, 0.0]) - a[0] * a
-    e2 = np.cross(a, e1 / np.linalg.norm(e1))
-    r = m._res
-    return float(np.dot([r[K.R_MX], r[K.R_MY], r[K.R_MZ]], e2))
-
-
-def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
-    """One run: per sample the time [s], whirl angle [rad], Fz [N], the tilt about e2 [rad],
-    the slide along the trunnion [m] and the groove's moment about e2 [N m]; the lumped row's
-    tilt stiffness scaled by tilt_scale."""
-    m = ContactModel(dict(over, theta=theta, omega=omega, F_press=F))
-    m.P[K.P_LT] *= tilt_scale
-    L = np.full(K.L_LEN, np.nan)
-    rows = []
-    for _ in range(int(round(cycles * 2 * math.pi / omega / dt))):
-        o = m.step(dt, theta, omega, F)
-        rows.append((m.time, m.whirl_angle, o["Fz"], m.Y[K.Y_B2], m.Y[K.Y_U],
-                     groove_moment_e2(m, omega, theta, L)))
-    Fr, kr, kw, q = contact.row_load(m.P, m.Y[K.Y_E])
-    return np.array(rows), m.P[K.P_R_ROLLER], kr * m.P[K.P_LT] / tilt_scale
-
-
-def tilt_stiffness(a):
-    """The tilt stiffness about e2 [N m/rad] fitted as b2 = b0 + M2 / k over the rows a (run's),
-    with the residual's rms over the tilt's: what holds the roller when the groove's moment
-    is the only one (the row's friction off)."""
-    A = np.column_stack([a[:, 5], np.ones(len(a))])
-    c, res, *_ = np.linalg.lstsq(A, a[:, 3], rcond=None)
-    return 1.0 / c[0], math.sqrt(res[0] / len(a)) / a[:, 3].std()
-
-
 def scene_table(F, theta, omega):
     lines = [f"Load {F / 1e3:g} kN, theta {math.degrees(theta):g} deg, "
              f"{omega / 2 / math.pi:g} Hz (orders of Fz on the groove, last of three cycles):",
              "",
              "| run | order 1 | order 3 | tilt about e2 (peak, order 2) | groove contact's travel "
              "r b2 / slide u (peaks) | tilt stiffness fitted / k_r l^2/12 (residual) "
-             "| order 3 off resolved | wall |",
-             "|---|---|---|---|---|---|---|---|"]
+             "| the same with the row load's shift (its amplitude) | order 3 off resolved "
+             "| wall |",
+             "|---|---|---|---|---|---|---|---|---|"]
     out = []
     for name, over, scale in RUNS:
         t0 = time.perf_counter()
-        a, r, k_lumped = run(over, scale, F, theta, omega)
+        a, r, k_lumped, _m = run(over, scale, F, theta, omega)
         wall = time.perf_counter() - t0
-        last = a[:, 1] >= a[-1, 1] - 2 * math.pi
-        fit = "-"
+        last = a[:, C_X] >= a[-1, C_X] - 2 * math.pi
+        fit = shifted = "-"
         if over.get("friction_needle") is False and scale == 1.0:
             k, res = tilt_stiffness(a[last])
             fit = f"{k / k_lumped:.3f} ({100 * res:.0f} %)"
-        o = last_cycle_orders(a[:, 0], a[:, 2], a[:, 1])
-        b2 = last_cycle_orders(a[:, 0], a[:, 3], a[:, 1], orders=(2,))[2][0]
+            if over["bearing"] == 2:
+                k, res = tilt_stiffness(a[last], shift=True)
+                shifted = (f"{k / k_lumped:.3f} ({100 * res:.0f} %; "
+                           f"{np.ptp(a[last, C_SHIFT]) * 1e6:.0f} um peak to peak)")
+        o = last_cycle_orders(a[:, C_T], a[:, C_FZ], a[:, C_X])
+        b2 = last_cycle_orders(a[:, C_T], a[:, C_B2], a[:, C_X], orders=(2,))[2][0]
         z3 = o[3][0] * np.exp(1j * math.radians(o[3][1]))
-        out.append((name, o, np.abs(a[last, 3]).max(), b2, r * np.abs(a[last, 3]).max(),
-                    np.abs(a[last, 4]).max(), fit, z3, wall))
-    ref = out[-1][7]
+        peak = np.abs(a[last, C_B2]).max()
+        out.append((name, o, peak, b2, r * peak, np.abs(a[last, C_U]).max(), fit, shifted, z3,
+                    wall))
+    ref = out[-1][8]
     fmt = lambda v: f"{v[0]:.1f} N at {v[1]:.1f} deg"   # noqa: E731
-    for name, o, peak, b2, travel, slide, fit, z3, wall in out:
+    for name, o, peak, b2, travel, slide, fit, shifted, z3, wall in out:
         lines.append(f"| {name} | {fmt(o[1])} | {fmt(o[3])} | {peak:.2e} rad, {b2:.2e} rad | "
-                     f"{travel * 1e6:.1f} um / {slide * 1e6:.1f} um | {fit} | "
+                     f"{travel * 1e6:.1f} um / {slide * 1e6:.1f} um | {fit} | {shifted} | "
                      f"{100 * abs(z3 - ref) / abs(ref):.1f} % | {wall:.0f} s |")
     return "\n".join(lines)
 

@@ -400,9 +400,16 @@ def _build(name, force):
     spec, layout = COMPILED[name]
     module, fn = layout.split(":")
     out = native_fmu.package(model_description(name), dest, spec,
-                             getattr(importlib.import_module(module), fn)(), _fmi_headers())
+                             getattr(importlib.import_module(module), fn)(), _fmi_headers(),
+                             generated=generated_path(name))
     _stamp(name).write_text(built_from + "\n")
     return out
+
+
+def generated_path(name) -> Path:
+    """build/generated/<name>/: what the build generated for the FMU's binaries, kept for a
+    reader (<target>/model_data.c: its variables table, sizes, notes and functions)."""
+    return BUILD / "generated" / name
 
 
 def reference_path(name) -> Path:

@@ -113,14 +113,18 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
 
 
 def binary(objs: dict, xml: bytes, layout: dict, target: str, dest: Path,
-           headers: Path) -> Path:
+           headers: Path, generated: Path | None = None) -> Path:
     """dest: the FMU's binary for ``target``: the model's C functions (objs: {NAME: (object,
     symbol)} from aot.compile_functions for this target) linked with the native layer and the
-    generated data."""
+    generated data (model_data.c, kept in the folder ``generated`` when one is given: what a
+    reader of the binary opens)."""
     cc = aot.compiler(target)
     with tempfile.TemporaryDirectory() as tmp:
         data = Path(tmp) / "model_data.c"
         data.write_text(model_data(xml, symbols={k: v[1] for k, v in objs.items()}, **layout))
+        if generated is not None:
+            generated.mkdir(parents=True, exist_ok=True)
+            shutil.copyfile(data, generated / "model_data.c")
         # every symbol resolved when linked (-z defs: on Linux too, as Windows demands)
         # (no link time stamp in the PE header, and no image base hashed from the temporary
         # folder's name: the same sources give the same DLL)
@@ -148,9 +152,10 @@ def _member(z: zipfile.ZipFile, arc: str, data: bytes) -> None:
 
 
 def package(xml: bytes, dest: Path, spec: str, layout: dict, headers: Path,
-            targets=("linux64", "win64")) -> Path:
+            targets=("linux64", "win64"), generated: Path | None = None) -> Path:
     """The native FMU at dest with the model description ``xml``: one binary per target, no
-    Python and no resources."""
+    Python and no resources; each target's generated model_data.c kept in generated/<target>/
+    when ``generated`` is given."""
     model_id = ET.fromstring(xml).find("CoSimulation").get("modelIdentifier")
     for target in targets:
         aot.compiler(target)     # (a missing cross compiler said before the compile)
@@ -163,7 +168,7 @@ def package(xml: bytes, dest: Path, spec: str, layout: dict, headers: Path,
             for target in targets:
                 name = BINARY[target].format(id=model_id)
                 lib = binary(objs[target], xml, layout, target, Path(tmp) / target / name,
-                             headers)
+                             headers, generated and generated / target)
                 _member(z, f"binaries/{target}/{name}", lib.read_bytes())
         dest.parent.mkdir(parents=True, exist_ok=True)
         shutil.move(str(out), dest)

@@ -110,3 +110,17 @@ def test_the_model_description_is_written_without_pythonfmu(name):
         assert z.read("modelDescription.xml") == p.stdout
     with zipfile.ZipFile(reference_fmu(name)) as z:
         assert z.read("modelDescription.xml") == p.stdout
+
+
+def test_the_generated_variables_table_is_kept_for_a_reader():
+    """What the build generates for each binary (model_data.c: the variables, sizes, notes and
+    the compiled functions' names) is kept in build/generated/<FMU>/<platform>/, for this
+    build: it names the FMU's GUID."""
+    fmu = ensure_fmu("TripodRollerAnalytic")
+    with zipfile.ZipFile(fmu) as z:
+        guid = re.search(rb'guid="([^"]+)"', z.read("modelDescription.xml"))[1].decode()
+    for target in ("linux64", "win64"):
+        text = (builder().generated_path("TripodRollerAnalytic") / target /
+                "model_data.c").read_text()
+        assert f'const char MODEL_GUID[] = "{guid}";' in text
+        assert "const ModelVar MODEL_VARS[]" in text

@@ -1,0 +1,77 @@
+"""The roller's rocking on the needle row about e2 (docs/model.md, "The roller rocks on the
+row"), measured in process: a run's tilt, slide and the groove's moment about e2, the tilt
+stiffness fitted from them, and for the needle-resolved row the axial shift of its load along
+the trunnion, whose moment adds to the groove's.  benchmarks/row_tilt.py prints the tables;
+tests/test_row_mechanism.py holds the mechanisms to their balances."""
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from tripod_model import contact, layout as K
+from tripod_model.model import ContactModel
+
+FRICTION_OFF = {"friction_needle": False, "rolling_resistance": False}
+# the columns of run's rows
+(C_T, C_X, C_FZ, C_B2, C_U, C_M2, C_FN, C_FR, C_SHIFT) = range(9)
+
+
+def groove_moment_e2(m, omega, theta, L):
+    """The groove's moment on the roller of ContactModel m about e2 = a x e1 [N m] now (e1 the
+    pressing direction x made normal to the trunnion axis a); L (layout's L_ slots) is left
+    holding the trunnion's line at m's state."""
+    L[K.L_KX] = math.nan
+    contact.line_kinematics(m.Y[K.Y_X], omega, theta, m.P, L)
+    a = np.array([L[K.L_AX], L[K.L_AY], L[K.L_AZ]])
+    e1 = np.array([1.0, 0.0, 0.0]) - a[0] * a
+    e2 = np.cross(a, e1 / np.linalg.norm(e1))
+    r = m._res
+    return float(np.dot([r[K.R_MX], r[K.R_MY], r[K.R_MZ]], e2))
+
+
+def row_load_shift(m, L):
+    """A needle-resolved row's radial load on the roller along e1, F_r1 = sum of the needles'
+    [N], and where along the trunnion axis it acts, its needles' centres weighted by their
+    bore loads, from the roller's centre, d [m]: its moment about e2 is d F_r1 (e1 x e2 = a).
+    L: the trunnion's line at m's state (groove_moment_e2 leaves it)."""
+    n = m.n_needle_bodies
+    q = K.Y_LEN + K.N_F * np.arange(n)
+    load = np.abs(m.NW.ND[:n, K.D_BORE])
+    centre = m.Y[K.Y_U] + m.Y[K.Y_E] * L[K.L_AX]       # the roller's along a (resolved_forces)
+    d = float((load * m.Y[q + 2]).sum() / load.sum()) - centre
+    return float(m.NW.ND[:n, K.D_R1].sum()), d
+
+
+def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
+    """One run of one roller at the pressing load F [N], joint angle theta [rad] and whirl
+    omega [rad/s] (over: parameters besides): per communication step of dt [s] the time [s],
+    whirl angle [rad], Fz [N], the tilt b2 about e2 [rad], the slide u along the trunnion [m],
+    the groove's moment about e2 [N m], its normal force f_n [N] and, with the needles resolved, the row's radial load
+    F_r1 [N] and its axial shift d [m] (row_load_shift; else NaN), as columns C_*.  The lumped
+    row's tilt stiffness is scaled by tilt_scale.  Returns (rows, r_roller [m], the lumped
+    row's k_r l^2 / 12 at the last offset over tilt_scale [N m/rad], the model)."""
+    m = ContactModel(dict(over, theta=theta, omega=omega, F_press=F))
+    m.P[K.P_LT] *= tilt_scale
+    L = np.full(K.L_LEN, np.nan)
+    resolved = m.NW is not None
+    rows = []
+    for _ in range(int(round(cycles * 2 * math.pi / omega / dt))):
+        o = m.step(dt, theta, omega, F)
+        m2 = groove_moment_e2(m, omega, theta, L)
+        fr, d = row_load_shift(m, L) if resolved else (math.nan, math.nan)
+        rows.append((m.time, m.whirl_angle, o["Fz"], m.Y[K.Y_B2], m.Y[K.Y_U], m2,
+                     m._res[K.R_FN], fr, d))
+    _Fr, kr, _kw, _q = contact.row_load(m.P, m.Y[K.Y_E])
+    return np.array(rows), m.P[K.P_R_ROLLER], kr * m.P[K.P_LT] / tilt_scale, m
+
+
+def tilt_stiffness(a, shift=False):
+    """The tilt stiffness about e2 [N m/rad] fitted over the rows a (run's) as the balance
+    k (b2 - b0) = M2 (+ d F_r1 with shift: the resolved row's load acting off the roller's
+    centre), with the residual's rms over the moment's: what holds the roller when those are
+    the only moments about e2 (the row's friction off)."""
+    m = a[:, C_M2] + (a[:, C_SHIFT] * a[:, C_FR] if shift else 0.0)
+    A = np.column_stack([a[:, C_B2], np.ones(len(a))])
+    c, res, *_ = np.linalg.lstsq(A, m, rcond=None)
+    return c[0], math.sqrt(res[0] / len(a)) / m.std()
