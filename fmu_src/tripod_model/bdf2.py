@@ -64,7 +64,7 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
     and hs[H_SUB] the previous substep from call to call, hs[H_GA] whether they are valid (0:
     not; 1, BDF_RESTART or a step input's countdown: valid), hs[H_TAKEN] counts substeps.
     drive.x0 is the pressing offset at the step's end; with drive.x0_rate it ramps there over
-    the n substeps."""
+    the n substeps.  Returns True: it always finishes (the integrators' one call)."""
     ny = Y.shape[0]
     Y2, hs = W.Y2, W.hs
     if hs[H_GA] < 0.0:     # a step input's countdown (BDF_STEP_IN)
@@ -98,6 +98,7 @@ def bdf2_steps(Y, P, drive, h, n, W, NW):
             bdf2_substep(Y, P, drive, h, hs[H_SUB], W, NW)
         hs[H_SUB] = h
         hs[H_TAKEN] += 1.0
+    return True
 
 
 @njit

@@ -27,10 +27,9 @@ from .budget import MAX_SUBSTEPS
 from . import bdf2, genalpha
 from .bdf2 import bdf2_steps
 from .contact import groove_contact, line_kinematics, roller_motion
-from .steplib import adaptive_steps, extrapolated_step, substep
+from .steplib import adaptive_run, fixed_steps
 from .genalpha import ga_steps
-from .layout import (BEAR_IDEAL, BEAR_RESOLVED, H_TAKEN, INT_ADAPTIVE, INT_DEFAULT,
-    INT_EXTRAPOLATED, O_CY, O_CZ, O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEARING,
+from .layout import (BEAR_IDEAL, BEAR_RESOLVED, INT_ADAPTIVE, INT_DEFAULT, O_CY, O_CZ, O_FN, O_FX, O_FY, O_FZ, O_PL, O_SLIP, O_SPIN, O_X, P_BEARING,
     P_INTEGRATOR, P_VP, R_FN, R_FX, R_FY, R_FZ, R_PY, R_PZ, R_SLIP, Y_OM, Y_PL, Y_X)
 from .layout import (OP_DT, OP_F, OP_FP, OP_H, OP_LEN, OP_N, OP_NOSTEP, OP_NROLL, OP_THETA, OP_TQ,
     OP_VP, OP_W, OP_X0, N_OUT, OUT_FX_2, OUT_FZ_2, OUT_FZ_3, OUT_FZ_JOINT, OUT_PLUNGE,
@@ -80,11 +79,12 @@ def advance(Y, P, drive, h, n, W, NW):
     roller's work arrays (layout.Work); NW: the needle work arrays (layout.NeedleWork) with the
     resolved bearing, else None.
 
-    The integrator P[P_INTEGRATOR] names (layout.py): INT_EULER, INT_EXPLICIT: n plain
-    substeps (steplib.substep); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h
-    and two of h/2 (second order, L-stable: the scheme of LIMEX/SEULEX with two stages);
-    INT_ADAPTIVE: the same with its substep chosen by its own error estimate
-    (steplib.adaptive_steps); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
+    The integrator P[P_INTEGRATOR] names (layout.py), each behind one call
+    steps(Y, P, drive, h, n, W, NW) -> finished: INT_EULER, INT_EXPLICIT: n plain substeps
+    (steplib.fixed_steps); INT_EXTRAPOLATED: each Richardson-extrapolated from one step of h and
+    two of h/2 (second order, L-stable: the scheme of LIMEX/SEULEX with two stages; the same
+    call); INT_ADAPTIVE: the same with its substep chosen by its own error estimate
+    (steplib.adaptive_run); INT_DEFAULT: generalized-alpha with the ideal or lumped bearing
     (genalpha.ga_steps), BDF2 with the needle-resolved one (bdf2.bdf2_steps).
 
     Returns False where the step is longer than MAX_SUBSTEPS substeps (refused before it
@@ -97,26 +97,16 @@ def advance(Y, P, drive, h, n, W, NW):
         hs[K.H_FAIL], hs[K.H_FAIL_DONE], hs[K.H_FAIL_H] = K.FAIL_LONG, h * n, h
         return False
     Y[Y_PL] += P[P_VP] * (h * n)     # the plunge: the held plunge speed's exact integral
-    if P[P_INTEGRATOR] == INT_DEFAULT and P[P_BEARING] != BEAR_RESOLVED:
-        if not ga_steps(Y, P, drive, h, n, W, NW):
-            return False
-        n = 0
-    elif P[P_INTEGRATOR] == INT_DEFAULT:   # the needle-resolved bearing: BDF2, roller and row in one system
+    # every integrator behind one call: steps(Y, P, drive, h, n, W, NW) -> finished
+    if P[P_INTEGRATOR] == INT_DEFAULT:
+        if P[P_BEARING] != BEAR_RESOLVED:
+            return ga_steps(Y, P, drive, h, n, W, NW)
         if NW is not None:    # (always, here; the test lets numba drop it from the others)
-            bdf2_steps(Y, P, drive, h, n, W, NW)
-        n = 0
-    elif P[P_INTEGRATOR] >= INT_ADAPTIVE:
-        if not adaptive_steps(Y, P, drive, h * n, h, W, NW):
-            return False
-        n = 0
-    extrap = P[P_INTEGRATOR] == INT_EXTRAPOLATED
-    for _ in range(n):
-        if extrap:
-            extrapolated_step(Y, P, drive, h, W, NW)
-        else:
-            substep(Y, P, drive, h, W, NW)
-        hs[H_TAKEN] += 1.0   # substeps taken, as the adaptive ones count theirs
-    return True
+            return bdf2_steps(Y, P, drive, h, n, W, NW)
+        return True
+    if P[P_INTEGRATOR] >= INT_ADAPTIVE:
+        return adaptive_run(Y, P, drive, h, n, W, NW)
+    return fixed_steps(Y, P, drive, h, n, W, NW)
 
 
 @njit

@@ -15,7 +15,7 @@ from .assembly import advance_roller, hold_slide, lumped_radial_step, lumped_row
 from .contact import groove_stiffness_x, row_damping, tilt_drag
 from .layout import (BEAR_IDEAL, BEAR_LUMPED, BEAR_RESOLVED, FAIL_ESTIMATE, FAIL_FLOOR, FAIL_NONE,
     FAIL_TRIES, H_FAIL, H_FAIL_DONE, H_FAIL_H, H_REJECTED, H_SUB, H_TAKEN, H_USE_FLOOR,
-    H_USE_TRIES, P_BEARING, P_HMAX, P_IT, P_M_ROLLER, P_R_ROLLER, P_STEP_TOLERANCE, P_TRAVERSE,
+    H_USE_TRIES, INT_EXTRAPOLATED, P_BEARING, P_HMAX, P_INTEGRATOR, P_IT, P_M_ROLLER, P_R_ROLLER, P_STEP_TOLERANCE, P_TRAVERSE,
     P_VST_OP, R_FX, Y_B1D, Y_B2D, Y_ED, Y_OM, Y_UD, Y_WD, Y_X)
 
 
@@ -154,6 +154,28 @@ def adaptive_steps(Y, P, drive, T, h0, W, NW):
             hc = hh * fac
     hs[H_SUB] = hc
     hs[H_USE_TRIES] = max(hs[H_USE_TRIES], tries / budget)
+    return True
+
+
+@njit
+def adaptive_run(Y, P, drive, h, n, W, NW):
+    """Integrator 3 behind the integrators' one call (kernel.advance): the span of n substeps
+    of h [s] by adaptive_steps, from a first substep of h.  Returns whether it finished."""
+    return adaptive_steps(Y, P, drive, h * n, h, W, NW)
+
+
+@njit
+def fixed_steps(Y, P, drive, h, n, W, NW):
+    """Integrators 0, 1 and 2 behind the integrators' one call (kernel.advance): n substeps of
+    h [s], each a substep or, with P[P_INTEGRATOR] = INT_EXTRAPOLATED, an extrapolated_step;
+    hs[H_TAKEN] counts them, as the adaptive ones count theirs.  Returns True (finished)."""
+    extrap = P[P_INTEGRATOR] == INT_EXTRAPOLATED
+    for _ in range(n):
+        if extrap:
+            extrapolated_step(Y, P, drive, h, W, NW)
+        else:
+            substep(Y, P, drive, h, W, NW)
+        W.hs[H_TAKEN] += 1.0
     return True
 
 
