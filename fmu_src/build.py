@@ -29,12 +29,11 @@ from xml.etree import ElementTree as ET
 ROOT = Path(__file__).resolve().parents[1]
 FMU_SRC = ROOT / "fmu_src"
 BUILD = ROOT / "build"
-# what goes into resources/: the model packages (numpy/scipy/numba come from the host)
+# the contact model's packages (its reference FMU bundles them; numpy/numba come from the host)
 PACKAGES = (FMU_SRC / "tripod_model", ROOT / "reduced_model")
 SLAVES = {"TripodRoller": FMU_SRC / "TripodRoller.py",
           "TripodRollerAnalytic": FMU_SRC / "TripodRollerAnalytic.py",
           "Powertrain": FMU_SRC / "Powertrain.py"}     # the driveline example's (driveline/)
-# the analytic FMU needs the reduced model only
 DESCRIPTION = FMU_SRC / "description.py"    # what each FMU is: its model description
 KIT = (FMU_SRC / "slavekit.py", DESCRIPTION)   # what the slaves share
 # the Python each model is made of (compiled into its FMU; bundled into its reference)
