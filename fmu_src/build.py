@@ -119,12 +119,23 @@ def _exclusive(what="shared"):
         return
     BUILD.mkdir(parents=True, exist_ok=True)
     with open(BUILD / f".lock-{what}", "w") as f:
-        fcntl.flock(f, fcntl.LOCK_EX)
+        try:
+            fcntl.flock(f, fcntl.LOCK_EX | fcntl.LOCK_NB)
+        except BlockingIOError:
+            _tell(f"waiting for another process's build ({what}) ...")
+            fcntl.flock(f, fcntl.LOCK_EX)
         _HELD[what] = 1
         try:
             yield
         finally:
             _HELD[what] = 0
+
+
+def _tell(line):
+    """One line to a user at a terminal (a first build takes minutes and would look hung);
+    nothing when stderr is captured, so a run's captured output is the same built or not."""
+    if sys.stderr.isatty():
+        print(line, file=sys.stderr, flush=True)
 
 
 def _fresh(lib: Path, src: Path) -> bool:
@@ -394,6 +405,7 @@ def _build(name, force):
     if not force and not is_stale(name):
         return dest
     built_from = sources_hash(name)    # before anything is read
+    _tell(f"building {dest.relative_to(ROOT)} from its sources (a few minutes) ...")
     import importlib
     native_fmu = build_module("native_fmu")
     spec, layout = COMPILED[name]
