@@ -12,9 +12,9 @@ row's stiffness left), its tilt stiffness (both tilts: P_LT, l^2 / 12) as built 
 10 and 100; the lumped row as built; the needle-resolved row (the reference). Columns: orders 1
 and 3, the tilt about e2 (peak over the cycle, its order 2 amplitude), the groove contact's travel
 r_roller b2 against the slide u (peaks), with the row's friction off the tilt stiffness fitted
-over the last cycle against the lumped row's k_r l^2 / 12 at its mean offset, and for the
-resolved row again with the moment of its load shifted along the trunnion (the needles float
-axially within their clearance: harness/row_rocking.py), order 3 off the resolved row's
+over the last cycle against the lumped row's k_r l^2 / 12 at its mean offset, and again with
+the moment of the row's load shifted along the trunnion (the needles ride the trunnion's stroke
+and, resolved, float axially within their clearance: harness/row_rocking.py), order 3 off the resolved row's
 (complex).
 Usage: python -m benchmarks.row_tilt [--loads 4500,45000] [--theta-deg 8,3] (about 1 min a
 scene)
@@ -60,7 +60,7 @@ def scene_table(F, theta, omega):
         if over.get("friction_needle") is False and scale == 1.0:
             k, res = tilt_stiffness(a[last])
             fit = f"{k / k_lumped:.3f} ({100 * res:.0f} %)"
-            if over["bearing"] == 2:
+            if over["bearing"] in (1, 2):
                 k, res = tilt_stiffness(a[last], shift=True)
                 shifted = (f"{k / k_lumped:.3f} ({100 * res:.0f} %; "
                            f"{np.ptp(a[last, C_SHIFT]) * 1e6:.0f} um peak to peak)")

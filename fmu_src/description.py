@@ -45,6 +45,17 @@ class Variable(NamedTuple):
     start: object           # the table's default (None for an output: calculated)
     description: str
 
+    @property
+    def fmi(self) -> dict:
+        """Its FMI 2.0 causality, variability and initial: inputs continuous, parameters fixed,
+        outputs calculated at initialisation (continuous Reals, discrete Integers)."""
+        if self.causality == "output":
+            return dict(causality="output",
+                        variability="continuous" if self.kind == "real" else "discrete",
+                        initial="calculated")
+        return dict(causality=self.causality,
+                    variability="continuous" if self.causality == "input" else "fixed")
+
 
 def variables(name) -> tuple[Variable, ...]:
     """The FMU's variables in value-reference order: the parameter table's entries the model
@@ -95,14 +106,9 @@ def raw_xml(name) -> bytes:
     mv = ET.SubElement(root, "ModelVariables")
     outputs = []
     for vr, v in enumerate(variables(name)):
+        attrs = v.fmi
         if v.causality == "output":     # calculated at initialisation: no start value
-            attrs = dict(causality="output",
-                         variability="continuous" if v.kind == "real" else "discrete",
-                         initial="calculated")
             outputs.append(vr + 1)
-        else:
-            attrs = dict(causality=v.causality,
-                         variability="continuous" if v.causality == "input" else "fixed")
         sv = ET.SubElement(mv, "ScalarVariable", dict(name=v.name, valueReference=str(vr),
                                                       description=v.description, **attrs))
         ET.SubElement(sv, _TYPE[v.kind], {} if v.start is None else {"start": _start(v)})

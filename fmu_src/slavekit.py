@@ -56,20 +56,17 @@ def describe(cls):
 
 
 def register(slave):
-    """Register the slave's FMU's variables (description.variables: inputs continuous,
-    parameters fixed, with their defaults; outputs calculated) on ``slave``."""
+    """Register the slave's FMU's variables (description.variables, with their defaults and
+    FMI attributes, Variable.fmi) on ``slave``."""
     for v in variables(type(slave).__name__):
         setattr(slave, v.name, 0.0 if v.start is None else v.start)
-        if v.causality == "output":
-            kw = dict(causality=Fmi2Causality.output, initial=Fmi2Initial.calculated,
-                      variability=Fmi2Variability.continuous if v.kind == "real" else
-                      Fmi2Variability.discrete)
-            if v.kind == "int":
-                setattr(slave, v.name, 0)
-        elif v.causality == "input":
-            kw = dict(causality=Fmi2Causality.input, variability=Fmi2Variability.continuous)
-        else:
-            kw = dict(causality=Fmi2Causality.parameter, variability=Fmi2Variability.fixed)
+        a = v.fmi
+        kw = dict(causality=Fmi2Causality[a["causality"]],
+                  variability=Fmi2Variability[a["variability"]])
+        if "initial" in a:
+            kw["initial"] = Fmi2Initial[a["initial"]]
+        if v.kind == "int" and v.start is None:
+            setattr(slave, v.name, 0)
         slave.register_variable(_TYPES[v.kind](v.name, description=v.description, **kw))
 
 

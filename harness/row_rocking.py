@@ -1,7 +1,7 @@
 """The roller's rocking on the needle row about e2 (docs/model.md, "The roller rocks on the
 row"), measured in process: a run's tilt, slide and the groove's moment about e2, the tilt
-stiffness fitted from them, and for the needle-resolved row the axial shift of its load along
-the trunnion, whose moment adds to the groove's.  benchmarks/row_tilt.py prints the tables;
+stiffness fitted from them, and the axial shift of the row's load along the trunnion, whose
+moment adds to the groove's.  benchmarks/row_tilt.py prints the tables;
 tests/test_row_mechanism.py holds the mechanisms to their balances."""
 from __future__ import annotations
 
@@ -43,12 +43,25 @@ def row_load_shift(m, L):
     return float(m.NW.ND[:n, K.D_R1].sum()), d
 
 
+def lumped_row_shift(m, theta, L):
+    """A lumped row's radial load on the roller F_r [N] (contact.row_load) and where along the
+    trunnion axis the row puts it, from the roller's centre, d [m]: the trunnion's axial stroke
+    (Eq. 7) relative to the roller, the whole of it with the row's friction off, else
+    contact.ROW_CARRY of it.  L as in row_load_shift."""
+    Y, P = m.Y, m.P
+    stroke = (contact.trunnion_axial(Y[K.Y_X], theta, P[K.P_S], P[K.P_AXIAL] > 0.5)
+              - Y[K.Y_U] - Y[K.Y_E] * L[K.L_AX])
+    carry = contact.ROW_CARRY if P[K.P_FRICTION_NEEDLE] > 0.5 else 1.0
+    return float(contact.row_load(P, Y[K.Y_E])[0]), carry * stroke
+
+
 def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
     """One run of one roller at the pressing load F [N], joint angle theta [rad] and whirl
     omega [rad/s] (over: parameters besides): per communication step of dt [s] the time [s],
     whirl angle [rad], Fz [N], the tilt b2 about e2 [rad], the slide u along the trunnion [m],
-    the groove's moment about e2 [N m], its normal force f_n [N] and, with the needles resolved, the row's radial load
-    F_r1 [N] and its axial shift d [m] (row_load_shift; else NaN), as columns C_*.  The lumped
+    the groove's moment about e2 [N m], its normal force f_n [N] and the row's radial load
+    F_r1 [N] and its axial shift d [m] (row_load_shift, lumped_row_shift; NaN for the ideal
+    bearing), as columns C_*.  The lumped
     row's tilt stiffness is scaled by tilt_scale.  Returns (rows, r_roller [m], the lumped
     row's k_r l^2 / 12 at the last offset over tilt_scale [N m/rad], the model)."""
     m = ContactModel(dict(over, theta=theta, omega=omega, F_press=F))
@@ -59,7 +72,12 @@ def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
     for _ in range(int(round(cycles * 2 * math.pi / omega / dt))):
         o = m.step(dt, theta, omega, F)
         m2 = groove_moment_e2(m, omega, theta, L)
-        fr, d = row_load_shift(m, L) if resolved else (math.nan, math.nan)
+        if resolved:
+            fr, d = row_load_shift(m, L)
+        elif m.P[K.P_BEARING] == K.BEAR_LUMPED:
+            fr, d = lumped_row_shift(m, theta, L)
+        else:
+            fr, d = math.nan, math.nan
         rows.append((m.time, m.whirl_angle, o["Fz"], m.Y[K.Y_B2], m.Y[K.Y_U], m2,
                      m._res[K.R_FN], fr, d))
     _Fr, kr, _kw, _q = contact.row_load(m.P, m.Y[K.Y_E])
@@ -68,8 +86,7 @@ def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
 
 def tilt_stiffness(a, shift=False):
     """The tilt stiffness about e2 [N m/rad] fitted over the rows a (run's) as the balance
-    k (b2 - b0) = M2 (+ d F_r1 with shift: the resolved row's load acting off the roller's
-    centre), with the residual's rms over the moment's: what holds the roller when those are
+    k (b2 - b0) = M2 (+ d F_r1 with shift: the row's load acting off the roller's centre), with the residual's rms over the moment's: what holds the roller when those are
     the only moments about e2 (the row's friction off)."""
     m = a[:, C_M2] + (a[:, C_SHIFT] * a[:, C_FR] if shift else 0.0)
     A = np.column_stack([a[:, C_B2], np.ones(len(a))])

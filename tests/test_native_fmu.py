@@ -46,12 +46,18 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
                                       ("mu_groove", 0.07), 0.5)}
 
 
-# the win64 run against the linux64 one [of each output's scale]: 1e-9, but where the lumped
+# the win64 run resumed from a state (0.25 s) against the linux64 one [of each output's
+# scale]: 1e-9, but where the lumped
 # row's friction holds a roller's slide and lets go (roller 3 at 0.284 s: its slide's
 # acceleration from 1.5 to 300 m/s2 in one step, Fz_3 from -74.8 to -90.3 N) the moment of
 # letting go takes the last bit: the runs part there by 3.6e-9 of Fz_3's scale for three
 # samples, 1e-13 before and after (measured)
 WINE_BOUND = {"TripodRoller-lumped-three": 1e-8}
+# runs in which a last bit grows: the needle-resolved row's impacts; the three rollers on the
+# lumped row, where roller slides let go (at 0.193 s the moment of letting go moves with a
+# last bit: 1 ulp of theta, 4 ulps and the win64 libm part the Linux run there by 3.1e-7,
+# 1.4e-7 and 4.6e-7 of an output's scale, which decays to 1e-11 within 0.1 s; measured 2026-11-29)
+LAST_BIT_GROWS = {"TripodRoller-resolved", "TripodRoller-lumped-three"}
 
 
 @pytest.fixture(scope="module", params=sorted(CASES))
@@ -225,10 +231,11 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     folder named 'jürgen x' under wine64 (the path as a UTF-16 Windows path): checks pass, no
     Python in the process, the outputs within 1e-9 of each output's scale of the Linux run
     (the two C runtimes' sin, cos, pow and tanh may differ in the last bit; the mounts and the
-    joint's groove contact are damped, so a last bit stays a last bit).  The needle-resolved
-    row is not: its impacts grow a last bit (benchmarks/needle_chaos.py), so there the first
-    step agrees within 1e-9 and the run within ten times the Linux run's own spread when
-    theta moves by 4 ulps (what another libm's last bit grows into)."""
+    joint's groove contact are damped, so a last bit stays a last bit).  Where a last bit
+    grows (LAST_BIT_GROWS: the needle-resolved row's impacts, benchmarks/needle_chaos.py; a
+    lumped roller's slide letting go) the first step agrees within 1e-9 and the run within ten
+    times the Linux run's own spread when theta moves by 4 ulps (what another libm's last bit
+    grows into)."""
     assert shutil.which("x86_64-w64-mingw32-gcc") and os.path.exists(WINE), \
         "mingw-w64 and wine64 missing: make test installs them (make cross-tools)"
     aot = builder().build_module("aot")
@@ -249,8 +256,8 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     assert "FAILED" not in pw.stdout and "check rollback bit for bit ok" in pw.stdout
     assert "python-in-process no" in pw.stdout
     scale = np.abs(rl).max(axis=0)
-    if not fmus[2].endswith("resolved"):
-        assert (np.abs(rw - rl).max(axis=0) <= WINE_BOUND.get(fmus[2], 1e-9) * scale).all()
+    if fmus[2] not in LAST_BIT_GROWS:
+        assert (np.abs(rw - rl).max(axis=0) <= 1e-9 * scale).all()
         return
     assert (np.abs(rw[0] - rl[0]) <= 1e-9 * scale).all()
     _, rp = _run([str(lin), str(d / f"binaries/linux64/{mid}.so")], fmus, tmp_path / "p.bin",

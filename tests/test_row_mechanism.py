@@ -38,12 +38,12 @@ def test_lumped_row_shares_the_load_as_the_resolved_row(F):
 
 
 @pytest.mark.slow   # (two resolved rows: about 40 s)
-@pytest.mark.parametrize("F, bound3", [(4500.0, 0.03), (45000.0, 0.06)])
+@pytest.mark.parametrize("F, bound3", [(4500.0, 0.03), (45000.0, 0.05)])
 def test_lumped_row_thrust_follows_the_resolved_row(F, bound3):
     """One roller, 8 deg, 10 Hz: order 3 of Fz, complex (amplitude and phase), against the
-    resolved row's: within 3 % at 4.5 kN (the paper's kind of load; measured 0.7 %) and 6 % at
-    45 kN, a launch (measured 5.0 %; the 3 % the issue asks for is not reached there, docs/model.md
-    says what is left); order 1 within 5 % (measured 1.5 % and 3.8 %).  The resolved row's
+    resolved row's: within 3 % at 4.5 kN (the paper's kind of load; measured 0.5 %) and 5 % at
+    45 kN, a launch (measured 4.1 %; the 3 % the issue asks for is not reached there, docs/model.md
+    says what is left); order 1 within 5 % (measured 1.7 % and 2.9 %).  The resolved row's
     realizations spread by about 0.2 % here; the ideal bearing is 10 % and 19 % off."""
     res, lum = (contact_orders(PAPER, THETA, F, OMEGA, b) for b in (2, 1))
     assert off(lum, res, 3) < 100 * bound3
@@ -78,21 +78,30 @@ def _cached(over, F, tilt_scale):
     a, _r, _k, m = R.run(dict(over), tilt_scale, F, THETA, OMEGA)
     last = a[:, R.C_X] >= a[-1, R.C_X] - 2 * math.pi
     orders = last_cycle_orders(a[:, R.C_T], a[:, R.C_FZ], a[:, R.C_X], (1, 3))
-    return m, orders, np.abs(a[last, R.C_B2]).max(), a[last, R.C_FN].max()
+    return m, orders, np.abs(a[last, R.C_B2]).max(), a[last, R.C_FN].max(), a[last]
 
 
-def test_the_roller_rocks_on_the_row_as_far_as_the_groove_friction_tilts_it():
-    """docs/model.md, "The roller rocks on the row": with the row's friction off the only
-    moment about e2 is the groove friction's at the roller's rim, so the tilt's balance
-    k_t2 b2 = -r_roller f_a bounds the rocking by r_roller mu_groove f_n / k_t2, and at 8 deg,
-    45 kN the friction slides in full at the tilt's peak: the peak is that bound.  k_t2 =
-    k_r l^2 / 12 from the row's load law (contact.row_load) at the roller's offset.  Within 3 %:
-    f_n and the row's stiffness move by about 1 % over the cycle, and tanh(3 v / v_st) at the
-    peak slip is within 1 % of 1."""
-    m, _o, peak, fn = _run(dict(R.FRICTION_OFF, bearing=1), 45000.0)
+def test_the_roller_rocks_on_the_row_as_far_as_its_moments_tilt_it():
+    """docs/model.md, "The roller rocks on the row" and "Why the resolved row rocks more": with
+    the row's friction off two moments about e2 tilt the roller, the groove friction's at the
+    roller's rim, M2 = -r_roller f_a, and the row's radial load F_r acting where the needles
+    are, d from the roller's centre along the trunnion (they ride the trunnion's stroke, Eq. 7,
+    relative to the roller).  The tilt's balance k_t2 b2 = M2 + F_r d is quasi-static (the
+    roller's tilt mode on the row, about 10 kHz, is far above the whirl's orders), so the stiffness fitted
+    to it over the last cycle (harness.row_rocking.tilt_stiffness: M2 from the groove's forces,
+    d from Eq. 7) is the row's k_t2 = k_r l^2 / 12 (contact.row_load at the roller's offset)
+    within 3 %: k_r moves by about 1 % over the cycle (measured 0.9999, the residual 0.1 % of
+    the moments' spread).  Without F_r d the fit misses by more than 5 % (measured 8.6 %).  At 8 deg, 45 kN the
+    groove's friction slides in full at its peak: |M2| peaks at r_roller mu_groove f_n within
+    3 % (tanh(3 v / v_st) there within 1 % of 1, f_n moves by about 1 %)."""
+    m, _o, peak, fn, a = _run(dict(R.FRICTION_OFF, bearing=1), 45000.0)
     _Fr, kr, _kw, _q = contact.row_load(m.P, m.Y[K.Y_E])
-    bound = m.P[K.P_R_ROLLER] * m.P[K.P_MU_GROOVE] * fn / (kr * m.P[K.P_LT])
-    assert peak == pytest.approx(bound, rel=0.03)
+    kt2 = kr * m.P[K.P_LT]
+    k, res = R.tilt_stiffness(a, shift=True)
+    assert k == pytest.approx(kt2, rel=0.03) and res < 0.03
+    assert abs(R.tilt_stiffness(a)[0] / kt2 - 1.0) > 0.05
+    rim = m.P[K.P_R_ROLLER] * m.P[K.P_MU_GROOVE] * fn
+    assert np.abs(a[:, R.C_M2]).max() == pytest.approx(rim, rel=0.03)
     # at 45 kN its travel at the groove, r_roller b2, is more than the slide's (16 um)
     assert m.P[K.P_R_ROLLER] * peak > 20e-6
 

@@ -17,10 +17,11 @@ from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
     L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
     P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_LT,
-    P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE, P_R_GROOVE, P_ROLL, P_S,
+    P_FRICTION_NEEDLE, P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE,
+    P_R_GROOVE, P_ROLL, P_S,
     P_SPIN_MOMENT, P_VP, P_VST_OP, P_YAW, P_ROW_DAMPING, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
     R_MY, R_MZ, R_NX, R_NY, R_PX, R_PY, R_PZ, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1D, Y_B2D,
-    Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
+    Y_E, Y_ED, Y_OM, Y_U, Y_UD, Y_W, Y_WD, Y_X)
 
 
 # --- driving motions ---
@@ -371,6 +372,22 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
     # the slip along the trunnion is sa = ud - lever b2d: the chain rule for b2d
     return (fa, f1, -lever * fa, h * jaa, h * ja1, -h * lever * jaa, h * j11,
             -h * lever * ja1, h * lever * lever * jaa)
+
+
+# with the row's friction on, the needles roll between a race that strokes (the trunnion) and
+# one that stays (the bore) and go half its way; off, they ride the trunnion's stops
+ROW_CARRY = 0.5
+
+
+@inline
+def row_load_moment(Y, P, Fr, theta, ax):
+    """Lumped row: the moment [N m] about e2 of its radial load F_r [N] acting off the roller's
+    centre, at the loaded needles' mean place along the trunnion: ROW_CARRY of the trunnion's
+    axial stroke (Eq. 7, joint angle theta [rad]) relative to the roller (its slide and its
+    offset e along the trunnion axis, whose x component is ax), the whole stroke with the row's
+    friction off (docs/model.md, "Why the resolved row rocks more")."""
+    stroke = trunnion_axial(Y[Y_X], theta, P[P_S], P[P_AXIAL] > 0.5) - Y[Y_U] - Y[Y_E] * ax
+    return Fr * stroke * (ROW_CARRY if P[P_FRICTION_NEEDLE] > 0.5 else 1.0)
 
 
 @inline

@@ -8,8 +8,8 @@ import math
 from .jit import inline, njit
 from .linalg import solve_small
 from .contact import (groove_contact, groove_stiffness_x, line_kinematics, roller_motion,
-    row_damping, row_lever, row_load, row_rolling_resistance, row_sliding_friction, row_stiffness,
-    tilt_drag)
+    row_damping, row_lever, row_load, row_load_moment, row_rolling_resistance,
+    row_sliding_friction, row_stiffness, tilt_drag)
 from .oppoint import JUMP_FULL, JUMP_RELAX, JUMP_STEP, LOAD_RELAX
 from .steplib import adaptive_steps
 from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_JUMPW, H_RING, H_TAKEN, L_AAX, L_AAY,
@@ -127,7 +127,8 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         Q[3] = (mx * e1x + my * e1y + mz * e1z - kt1 * Y[Y_B1] - drag1
                 - row_damping(P, kt1, It) * Y[Y_B1D] - f1)
         Q[4] = (mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
-                - row_damping(P, kt2, It) * Y[Y_B2D] - f2)
+                - row_damping(P, kt2, It) * Y[Y_B2D] - f2
+                + row_load_moment(Y, P, Fr, drive.theta, ax))
         Q[5] = fx + Fr - row_damping(P, kx, m) * Y[Y_ED]
         M[2] = m
         M[3] = It
