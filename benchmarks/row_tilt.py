@@ -14,8 +14,8 @@ and 3, the tilt about e2 (peak over the cycle, its order 2 amplitude), the groov
 r_roller b2 against the slide u (peaks), with the row's friction off the tilt stiffness fitted
 over the last cycle against the lumped row's k_r l^2 / 12 at its mean offset, and again with
 the moment of the row's load shifted along the trunnion (the needles ride the trunnion's stroke
-and, resolved, float axially within their clearance: harness/row_rocking.py), order 3 off the resolved row's
-(complex).
+and, resolved, float axially within their clearance: harness/row_rocking.py), order 3 off the
+resolved row's (complex).
 Usage: python -m benchmarks.row_tilt [--loads 4500,45000] [--theta-deg 8,3] (about 1 min a
 scene)
 """

@@ -1,5 +1,5 @@
 """pythonfmu slave of the reduced (analytic) thrust model, numpy only: an adapter over
-reduced_model.analytic_model.AnalyticModel (reduced_model/kernel.py's init, step and end as
+reduced_model.analytic_model.AnalyticModel (reduced_model/analytic_kernel.py's init, step and end as
 Python).  The analytic FMU ships the same kernel compiled, under the native FMI layer, without
 Python (fmu_src/native_fmu.py); this slave is the reference the tests hold it to (build/reference/TripodRollerAnalytic.fmu).
 
@@ -11,7 +11,7 @@ import numpy as np
 from pythonfmu import Fmi2Slave
 from pythonfmu.enums import Fmi2Status
 
-from reduced_model import kernel as K
+from reduced_model import analytic_kernel as K
 from reduced_model.analytic_model import AnalyticModel, state_problem
 from reduced_model.scene import check_value, params_for
 from slavekit import DataState, Guarded, StateError, describe, register, same_layout
@@ -51,7 +51,7 @@ class TripodRollerAnalytic(Guarded, DataState, Fmi2Slave):
 
     def _check_state(self, st):
         """A state fits this instance: its layout, its parameters, a model state the kernel
-        can step (reduced_model.kernel.state_problem), every number finite."""
+        can step (reduced_model.analytic_kernel.state_problem), every number finite."""
         if not isinstance(st, dict) or set(st) != {"vars", "X", "IN"}:
             raise StateError("expected the keys ['IN', 'X', 'vars']")
         vars_now = super()._get_fmu_state()

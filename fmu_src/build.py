@@ -48,8 +48,8 @@ RUNTIME_DEPS = {"TripodRoller": ("numpy", "numba"), "TripodRollerAnalytic": ("nu
 # FMUs whose binary runs the model compiled, without Python (native_fmu.py): the C functions
 # (module:factory) and where the variables live (a function of the model's package)
 COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain:native_layout"),
-            "TripodRollerAnalytic": ("reduced_model.kernel:c_functions",
-                                     "reduced_model.kernel:native_layout"),
+            "TripodRollerAnalytic": ("reduced_model.analytic_kernel:c_functions",
+                                     "reduced_model.analytic_kernel:native_layout"),
             "TripodRoller": ("tripod_model.lifecycle:c_functions",
                              "tripod_model.lifecycle:native_layout")}
 NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "exports.map",

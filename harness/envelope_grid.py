@@ -83,7 +83,7 @@ def joint_orders(path, theta, F, omega, bearing):
 def analytic_orders(path, theta, F, omega):
     """The same orders of the analytic model (one roller) in the scene."""
     from reduced_model.analytic_model import AnalyticModel
-    from reduced_model.kernel import INPUT_NAMES
+    from reduced_model.analytic_kernel import INPUT_NAMES
     values = dict(defaults("analytic"), **for_model(load_joint(path), "analytic"), theta=theta,
                   omega=omega, F_press=F, n_rollers=1)
     m = AnalyticModel(values)

@@ -1,8 +1,8 @@
 """The roller's rocking on the needle row about e2 (docs/model.md, "The roller rocks on the
 row"), measured in process: a run's tilt, slide and the groove's moment about e2, the tilt
 stiffness fitted from them, and the axial shift of the row's load along the trunnion, whose
-moment adds to the groove's.  benchmarks/row_tilt.py prints the tables;
-tests/test_row_mechanism.py holds the mechanisms to their balances."""
+moment adds to the groove's.  benchmarks/row_tilt.py prints the tables; tests/test_row_mechanism.py
+holds the mechanisms to their balances."""
 from __future__ import annotations
 
 import math
@@ -61,9 +61,9 @@ def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
     whirl angle [rad], Fz [N], the tilt b2 about e2 [rad], the slide u along the trunnion [m],
     the groove's moment about e2 [N m], its normal force f_n [N] and the row's radial load
     F_r1 [N] and its axial shift d [m] (row_load_shift, lumped_row_shift; NaN for the ideal
-    bearing), as columns C_*.  The lumped
-    row's tilt stiffness is scaled by tilt_scale.  Returns (rows, r_roller [m], the lumped
-    row's k_r l^2 / 12 at the last offset over tilt_scale [N m/rad], the model)."""
+    bearing), as columns C_*.  The lumped row's tilt stiffness is scaled by tilt_scale.
+    Returns (rows, r_roller [m], the lumped row's k_r l^2 / 12 at the last offset over
+    tilt_scale [N m/rad], the model)."""
     m = ContactModel(dict(over, theta=theta, omega=omega, F_press=F))
     m.P[K.P_LT] *= tilt_scale
     L = np.full(K.L_LEN, np.nan)
@@ -86,8 +86,9 @@ def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
 
 def tilt_stiffness(a, shift=False):
     """The tilt stiffness about e2 [N m/rad] fitted over the rows a (run's) as the balance
-    k (b2 - b0) = M2 (+ d F_r1 with shift: the row's load acting off the roller's centre), with the residual's rms over the moment's: what holds the roller when those are
-    the only moments about e2 (the row's friction off)."""
+    k (b2 - b0) = M2 (+ d F_r1 with shift: the row's load acting off the roller's centre), with
+    the residual's rms over the moment's: what holds the roller when those are the only moments
+    about e2 (the row's friction off)."""
     m = a[:, C_M2] + (a[:, C_SHIFT] * a[:, C_FR] if shift else 0.0)
     A = np.column_stack([a[:, C_B2], np.ones(len(a))])
     c, res, *_ = np.linalg.lstsq(A, m, rcond=None)

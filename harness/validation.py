@@ -224,7 +224,7 @@ def size_grid() -> dict:
 def size_rows(scenes: dict | None = None) -> list[dict]:
     """One row a scene of the size grid: its groups (kernel.CHECKED_RANGES), the contact model
     and the traverse model, order 3 of Fz_mod."""
-    from reduced_model import kernel
+    from reduced_model import analytic_kernel as kernel
     from reduced_model.traverse import operating_point, params_array
     rows = []
     for label, ov in (scenes or size_grid()).items():
@@ -248,14 +248,14 @@ def size_rows(scenes: dict | None = None) -> list[dict]:
 
 def kernel_outside(P, O) -> list:
     """The checked groups (kernel.CHECKED_RANGES) the scene at (P, O) leaves."""
-    from reduced_model import kernel
+    from reduced_model import analytic_kernel as kernel
     return [name for k, (name, *_) in enumerate(kernel.CHECKED_RANGES)
             if not kernel.inside(k, kernel.checked_value(P, O, k),
                                  kernel.checked_value(P, O, k))]
 
 
 def size_markdown(rows) -> str:
-    from reduced_model import kernel
+    from reduced_model import analytic_kernel as kernel
     names = [c[0] for c in kernel.CHECKED_RANGES if c[0] not in ("theta", "mu_groove",
                                                                   "plunge speed")]
     out = ["| scene | pitch circle [mm] | theta [deg] | whirl [Hz] | F_press [N] | "

@@ -12,7 +12,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from . import kernel as K
+from . import analytic_kernel as K
 from .scene import StepRefused, check_value, validate
 from .traverse import params_array
 

@@ -1,5 +1,5 @@
-"""What the models written as scalar functions over flat arrays share (reduced_model/kernel.py,
-driveline/mounts.py): writing their outputs only when every one is finite, and, at build time
+"""What the models written as scalar functions over flat arrays share
+(reduced_model/analytic_kernel.py, driveline/mounts.py): writing their outputs only when every one is finite, and, at build time
 (fmu_src/aot.py), their compiled functions as the C functions the native FMI layer calls
 (fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH)."""
 import math

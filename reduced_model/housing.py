@@ -6,7 +6,7 @@ a_i = 2 pi i / 3 (its whirl phase, model.md "Three rollers"); its groove frame i
 y_i (trunnion axis, radial) = (cos a_i, sin a_i), x_i (pressing) = y_i x Z = (sin a_i, -cos a_i).
 
 Plain Python on scalars: the contact FMU's compiled step takes it through numba
-(tripod_model/kernel.py), the analytic FMU's through reduced_model/kernel.py, compiled the
+(tripod_model/kernel.py), the analytic FMU's through reduced_model/analytic_kernel.py, compiled the
 same way: one implementation.
 """
 import math

@@ -36,9 +36,9 @@ import math
 import numpy as np
 
 from . import equations as E
-from . import kernel as K
+from . import analytic_kernel as K
 from . import table as TB
-from .kernel import CHECKED_AT_DEFAULT, CHECKED_RANGES, INERTIA, INERTIA_LIMIT
+from .analytic_kernel import CHECKED_AT_DEFAULT, CHECKED_RANGES, INERTIA, INERTIA_LIMIT
 from .table import (FULL_SLIP_REL, MAX_CYCLES, MICRO_SLIP_G, N_PER_CYCLE, PERIODIC_TOL,
                     SETTLED_TOL, STALL)
 from .orders import order_spectrum

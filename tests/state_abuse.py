@@ -203,7 +203,7 @@ CRAFTED = {   # name: an edit of the decoded header (then re-sealed with a valid
     "array-object-dtype": lambda h: _first_array(h).__setitem__(0, "|O"),
     "nested-200-deep": _deep,
     "string-for-number": lambda h: h["state"]["vars"].update(Fx="1.0"),
-    # the analytic FMU's arrays (reduced_model/kernel.py's X): cut short, or not an array
+    # the analytic FMU's arrays (reduced_model/analytic_kernel.py's X): cut short, or not an array
     "X-cut-short": lambda h: h["state"]["X"]["@array"].__setitem__(1, [10]),
     "X-a-number": lambda h: h["state"].update(X=0.5),
 }

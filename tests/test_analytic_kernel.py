@@ -1,12 +1,12 @@
-"""reduced_model/kernel.py, the analytic FMU's one source: run as Python (the reference FMU, the
-reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
+"""reduced_model/analytic_kernel.py, the analytic FMU's one source: run as Python (the
+reference FMU, the reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
 the Python reports and the table's checks word; its state check refuses what it cannot step."""
 import math
 
 import numpy as np
 import pytest
 
-from reduced_model import kernel as K
+from reduced_model import analytic_kernel as K
 from reduced_model import scene as sc
 from reduced_model.traverse import outside_checked
 

@@ -1,5 +1,5 @@
 """Compiled steps against Python's.  Both joint FMUs run compiled throughout, without Python
-(fmu_src/tripod_model/lifecycle.py and reduced_model/kernel.py under
+(fmu_src/tripod_model/lifecycle.py and reduced_model/analytic_kernel.py under
 fmu_src/native/fmi2_native.c): every output bit for bit their reference FMUs' (the pythonfmu
 slaves, build/reference/, stepping through Python: TRIPOD_FAST=0), also when the inputs change
 during the run, and the same end-of-run log of how roller 1 was stepped."""

@@ -123,3 +123,15 @@ def test_every_contact_parameter_is_copied_derived_or_placed():
     every = copied + list(RS.DERIVED_FROM) + list(RS.NEEDLE_ROW) + list(RS.ELSEWHERE)
     assert len(every) == len(set(every)) and set(every) == set(RS.PARAM_NAMES), \
         sorted(set(RS.PARAM_NAMES) ^ set(every))
+
+
+def test_no_two_modules_share_a_name():
+    """One name, one module, across the project's folders (a reader, a traceback and an import
+    by name each find one file)."""
+    seen = {}
+    for folder in ("fmu_src", "reduced_model", "driveline", "harness", "benchmarks", "tests"):
+        for p in sorted((ROOT / folder).rglob("*.py")):
+            if p.name != "__init__.py" and "__pycache__" not in p.parts:
+                seen.setdefault(p.name, []).append(str(p.relative_to(ROOT)))
+    twice = {name: paths for name, paths in seen.items() if len(paths) > 1}
+    assert not twice, twice

@@ -1,9 +1,10 @@
 """The FMUs that need nothing on their host (fmu_src/native_fmu.py): the powertrain's model
-(driveline/mounts.py), the analytic joint's (reduced_model/kernel.py) and the contact joint's
-(fmu_src/tripod_model/lifecycle.py) compiled ahead of time under the native FMI layer
-(fmu_src/native/fmi2_native.c), binaries for linux64 and win64 and nothing else in them.  Each held to the pythonfmu slave's FMU of the same model
-(build/reference/), bit for bit; run by a plain C host with no Python reachable on Linux, and
-cross-compiled under wine64 from a folder named 'jürgen x'."""
+(driveline/mounts.py), the analytic joint's (reduced_model/analytic_kernel.py) and the contact
+joint's (fmu_src/tripod_model/lifecycle.py) compiled ahead of time under the native FMI layer
+(fmu_src/native/fmi2_native.c), binaries for linux64 and win64 and nothing else in them.  Each
+held to the pythonfmu slave's FMU of the same model (build/reference/), bit for bit; run by a
+plain C host with no Python reachable on Linux, and cross-compiled under wine64 from a folder
+named 'jürgen x'."""
 import os
 import shutil
 import subprocess

@@ -87,13 +87,14 @@ def test_the_roller_rocks_on_the_row_as_far_as_its_moments_tilt_it():
     roller's rim, M2 = -r_roller f_a, and the row's radial load F_r acting where the needles
     are, d from the roller's centre along the trunnion (they ride the trunnion's stroke, Eq. 7,
     relative to the roller).  The tilt's balance k_t2 b2 = M2 + F_r d is quasi-static (the
-    roller's tilt mode on the row, about 10 kHz, is far above the whirl's orders), so the stiffness fitted
-    to it over the last cycle (harness.row_rocking.tilt_stiffness: M2 from the groove's forces,
-    d from Eq. 7) is the row's k_t2 = k_r l^2 / 12 (contact.row_load at the roller's offset)
-    within 3 %: k_r moves by about 1 % over the cycle (measured 0.9999, the residual 0.1 % of
-    the moments' spread).  Without F_r d the fit misses by more than 5 % (measured 8.6 %).  At 8 deg, 45 kN the
-    groove's friction slides in full at its peak: |M2| peaks at r_roller mu_groove f_n within
-    3 % (tanh(3 v / v_st) there within 1 % of 1, f_n moves by about 1 %)."""
+    roller's tilt mode on the row, about 10 kHz, is far above the whirl's orders), so the
+    stiffness fitted to it over the last cycle (harness.row_rocking.tilt_stiffness: M2 from the
+    groove's forces, d from Eq. 7) is the row's k_t2 = k_r l^2 / 12 (contact.row_load at the
+    roller's offset) within 3 %: k_r moves by about 1 % over the cycle (measured 0.9999, the
+    residual 0.1 % of the moments' spread).  Without F_r d the fit misses by more than 5 %
+    (measured 8.6 %).  At 8 deg, 45 kN the groove's friction slides in full at its peak: |M2|
+    peaks at r_roller mu_groove f_n within 3 % (tanh(3 v / v_st) there within 1 % of 1, f_n
+    moves by about 1 %)."""
     m, _o, peak, fn, a = _run(dict(R.FRICTION_OFF, bearing=1), 45000.0)
     _Fr, kr, _kw, _q = contact.row_load(m.P, m.Y[K.Y_E])
     kt2 = kr * m.P[K.P_LT]

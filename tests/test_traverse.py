@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 
 from harness import validation
-from reduced_model import equations, kernel, table
+from reduced_model import analytic_kernel as kernel, equations, table
 from reduced_model import scene as sc
 from reduced_model.orders import order_spectrum
 from reduced_model.thrust import amplitudes, closed_form, transition_velocity

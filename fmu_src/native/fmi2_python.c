@@ -432,9 +432,9 @@ typedef struct {
     char *category, *message;
 } Msg;
 
-/* the slave's compiled step (slavekit.FastStep; fmu_src/tripod_model/kernel.py: step, or the analytic
-   FMU's reduced_model/kernel.py, compiled): its one argument the addresses of its arrays; 1 = outputs written,
-   anything else = failed (a non-finite output, or an exception) */
+/* the slave's compiled step (slavekit.FastStep; fmu_src/tripod_model/kernel.py: step, or the
+   analytic FMU's reduced_model/analytic_kernel.py, compiled): its one argument the addresses of
+   its arrays; 1 = outputs written, anything else = failed (a non-finite output, or an exception) */
 typedef int32_t (*FastStep)(double **);   /* slavekit.FastStep: step(args) */
 
 typedef struct {

@@ -1,5 +1,5 @@
-"""The contact FMU's lifecycle as scalar functions over flat arrays, as reduced_model/kernel.py
-keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``state_problem``, compiled ahead of
+"""The contact FMU's lifecycle as scalar functions over flat arrays, as
+reduced_model/analytic_kernel.py keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``state_problem``, compiled ahead of
 time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without Python.  They
 compose the model's own functions: roller_setup.py (the parameter vector, the needle row, the
 start on the settled cycle) and kernel.py (the step: the same functions the pythonfmu slave's
@@ -437,12 +437,12 @@ COMPILED = ("check_scene", "setup", "no_key",
 
 def compiled_namespace():
     """This module's and roller_setup's COMPILED functions as numba njit copies calling each
-    other, with the reduced model's (the traverse table: reduced_model.kernel's compiled
+    other, with the reduced model's (the traverse table: reduced_model.analytic_kernel's compiled
     namespace) and the kernel's; the modules themselves stay plain Python."""
     import numba as nb
 
     from reduced_model.cfuncs import compile_over
-    from reduced_model.kernel import compiled_namespace as reduced
+    from reduced_model.analytic_kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
     from . import fmu_arrays, kernel, line_contact, roller_setup
 
