@@ -57,7 +57,7 @@ WINE_BOUND = {"TripodRoller-lumped-three": 1e-8}
 # runs in which a last bit grows: the needle-resolved row's impacts; the three rollers on the
 # lumped row, where roller slides let go (at 0.193 s the moment of letting go moves with a
 # last bit: 1 ulp of theta, 4 ulps and the win64 libm part the Linux run there by 3.1e-7,
-# 1.4e-7 and 4.6e-7 of an output's scale, which decays to 1e-11 within 0.1 s; measured 2026-11-29)
+# 1.4e-7 and 4.6e-7 of an output's scale, which decays to 1e-11 within 0.1 s)
 LAST_BIT_GROWS = {"TripodRoller-resolved", "TripodRoller-lumped-three"}
 
 
