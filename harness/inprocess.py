@@ -282,6 +282,8 @@ class InProcess(FMU2Slave):
     def freeFMUState(self, state):
         pass
 
+    getFMUstate, setFMUstate, freeFMUstate = getFMUState, setFMUState, freeFMUState   # (FMPy's)
+
     def state_problem(self):
         """The model's own check of the state it holds (0: it can be stepped)."""
         fn = self.model.state_problem

@@ -1,17 +1,16 @@
 """Compiled steps against Python's.  Both joint FMUs run compiled throughout, without Python
 (fmu_src/tripod_model/lifecycle.py and reduced_model/analytic_kernel.py under
-fmu_src/native/fmi2_native.c): every output bit for bit their reference FMUs' (the pythonfmu
-slaves, build/reference/, stepping through Python: TRIPOD_FAST=0), also when the inputs change
-during the run, and the same end-of-run log of how roller 1 was stepped."""
+fmu_src/native/fmi2_native.c): every output bit for bit the same lifecycle's run as Python in
+process under the same FMPy master (harness/inprocess.py), also when the inputs change during
+the run, and the same end-of-run log of how roller 1 was stepped."""
 import json
-import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from harness.fmus import ensure_fmu, reference_fmu
+from harness.fmus import ensure_fmu
 
 _RUN = r'''
 import json, sys, numpy as np
@@ -36,9 +35,14 @@ if req["ramp"]:   # "steps": theta steps from 10 to 12 deg at 0.05 s, back at 0.
                            (0.2, np.radians(12), 22 * np.pi, 1100.0)],
                           dtype=[("time", float), ("theta", float), ("omega", float),
                                  ("F_press", float)])
-r = simulate_fmu(req["fmu"], stop_time=0.2, output_interval=1e-4, start_values=req["sv"],
-                 input=inputs, debug_logging=True,
-                 logger=lambda c, n, s, cat, msg: logs.append(msg.decode()))
+kw = dict(stop_time=0.2, output_interval=1e-4, start_values=req["sv"], input=inputs)
+if req["inprocess"]:   # the lifecycle as Python, here
+    from harness.inprocess import InProcess
+    r = simulate_fmu(req["fmu"], fmu_instance=InProcess(req["fmu"], lambda s, m: logs.append(m)),
+                     fmi_type="CoSimulation", **kw)
+else:
+    r = simulate_fmu(req["fmu"], debug_logging=True,
+                     logger=lambda c, n, s, cat, msg: logs.append(msg.decode()), **kw)
 np.save(req["out"], np.column_stack([r[n] for n in r.dtype.names]))
 print(json.dumps([m for m in logs if m.startswith("roller 1:")]))
 print(json.dumps(sum("compiled model, no Python" in m for m in logs)))
@@ -49,18 +53,14 @@ print(json.dumps([m for m in logs if m.startswith("communication steps:")]))
 ANALYTIC = "TripodRollerAnalytic"
 
 
-def _fmu(name, fast):
-    """The FMU a run takes: its reference (Python) for the slow run, the FMU itself (compiled)
-    for the fast one."""
-    return reference_fmu(name) if fast == "0" else ensure_fmu(name)
-
-
 def _run(tmp_path, sv, fast, ramp=False, fmu="TripodRoller"):
+    """A run of the FMU under FMPy in a fresh process: compiled (fast "1"), or its lifecycle as
+    Python in that process (fast "0")."""
     out = str(tmp_path / f"r{fast}.npy")
-    req = {"fmu": str(_fmu(fmu, fast)), "sv": sv, "out": out,
+    req = {"fmu": str(ensure_fmu(fmu)), "sv": sv, "out": out, "inprocess": fast == "0",
            "ramp": "steps" if ramp is True else ramp}
     p = subprocess.run([sys.executable, "-c", _RUN, json.dumps(req)], capture_output=True,
-                       text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
+                       text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
     lines = p.stdout.strip().splitlines()
     return np.load(out), json.loads(lines[-3]), json.loads(lines[-2]), json.loads(lines[-1])
@@ -92,9 +92,8 @@ def test_fast_path_is_bitwise_the_python_step(tmp_path, sv, ramp):
                          ids=["traverse-table", "eqs18-27-three-rollers", "theta-steps",
                               "master", "master-three-rollers", "master-torque",
                               "master-to-straight-and-rest"])
-def test_analytic_native_is_bitwise_its_reference(tmp_path, sv, ramp):
-    """The analytic FMU compiled, without Python, against its reference FMU (the same kernel
-    as Python): the table's interpolation and Eqs. (18)-(27) alike, across input changes, and
+def test_analytic_native_is_bitwise_its_lifecycle_in_python(tmp_path, sv, ramp):
+    """The analytic FMU compiled, without Python, against its kernel as Python in process: the table's interpolation and Eqs. (18)-(27) alike, across input changes, and
     the march under a master that moves the inputs every step, down to theta = 0, omega = 0
     and from no load."""
     slow, _, _, slow_steps = _run(tmp_path, sv, "0", ramp, ANALYTIC)
@@ -128,8 +127,13 @@ from fmpy import extract, read_model_description
 from fmpy.fmi2 import FMU2Slave
 md = read_model_description(sys.argv[1]); d = extract(sys.argv[1])
 vr = {v.name: v.valueReference for v in md.modelVariables}
-s = FMU2Slave(guid=md.guid, unzipDirectory=d, modelIdentifier=md.coSimulation.modelIdentifier,
-              instanceName="test")
+if sys.argv[-1] == "inprocess":   # the FMU's lifecycle as Python, here
+    from harness.inprocess import InProcess
+    s = InProcess(sys.argv[1], lambda status, msg: print(  # (as FMPy's default logger)
+        f"[{('OK', 'Warning', 'Discard', 'Error', 'Fatal', 'Pending')[status]}] {msg}"))
+else:
+    s = FMU2Slave(guid=md.guid, unzipDirectory=d,
+                  modelIdentifier=md.coSimulation.modelIdentifier, instanceName="test")
 s.instantiate(loggingOn=True); s.setupExperiment(startTime=0.0)
 s.enterInitializationMode()
 
@@ -146,6 +150,14 @@ def step_refused(set_bad, dt=1e-4):
     after = s.getReal([vr["Fz"], vr["Fx"], vr["whirl_angle"]])
     print(json.dumps({"status": status, "before": before, "after": after}))
 '''
+
+
+def _how(fast):
+    """The last argument of an _INSTANCE script: the compiled FMU (fast "1"), or its lifecycle
+    as Python in process (fast "0")."""
+    return "compiled" if fast == "1" else "inprocess"
+
+
 # ... initialised
 _SLAVE = _INSTANCE + "s.exitInitializationMode()\n"
 
@@ -255,10 +267,9 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     shaft angle set for each step's end), the layer derives omega as the slave's step does."""
     runs = {}
     for fast in ("0", "1"):
-        p = subprocess.run([sys.executable, "-c", _VARYING, str(_fmu(fmu, fast)),
-                            json.dumps({"ints": ints, "move": move, "angle": angle})],
-                           capture_output=True,
-                           text=True, env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
+        p = subprocess.run([sys.executable, "-c", _VARYING, str(ensure_fmu(fmu)),
+                            json.dumps({"ints": ints, "move": move, "angle": angle}),
+                            _how(fast)], capture_output=True, text=True, timeout=600)
         assert p.returncode == 0, p.stderr[-3000:]
         steps = [m for m in p.stdout.splitlines() if "communication steps:" in m]
         runs[fast] = (np.array(json.loads(p.stdout.strip().splitlines()[-1])), steps)
@@ -268,11 +279,8 @@ def test_a_varying_step_size_runs_compiled_bitwise_the_python_step(fmu, ints, mo
     if angle:   # the whirl follows the master's angle (to rounding: 1e-9 rad of up to 15 rad)
         tt = np.cumsum(np.random.default_rng(7).uniform(2e-5, 2e-4, 1500))
         assert np.allclose(fast[:, 3], 62.8 * (tt + tt ** 2), rtol=0, atol=1e-9)
-    if fmu == ANALYTIC:     # the reference runs the same functions: the same log
-        assert slow_steps == fast_steps and "communication steps: 1500" in fast_steps[0]
-        return
-    assert "communication steps: 0 compiled, 1500 through Python" in slow_steps[0], slow_steps
-    assert "communication steps: 1500, each compiled (no Python)" in fast_steps[0], fast_steps
+    # the same functions: the same log
+    assert slow_steps == fast_steps and "communication steps: 1500" in fast_steps[0]
 
 
 _ANGLE_JUMP = _INSTANCE + r'''
@@ -342,16 +350,15 @@ def test_a_rollback_every_step_runs_compiled_bitwise_the_python_step(fmu, ints, 
                                                                      hold):
     """An iterative master (get the state, a trial step, set the state back, the step again,
     every step): the repeated step equals the trial bit for bit, and the run equals the same
-    run through Python (the reference) and the run without rollback.  hold: the inputs move
+    run through Python (the lifecycle in process) and the run without rollback.  hold: the inputs move
     from that step on, so states are taken on the analytic FMU's settled table after steps
     were taken there."""
     runs = {}
     for fast, plain in (("0", False), ("1", False), ("1", True)):
-        p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(_fmu(fmu, fast)),
+        p = subprocess.run([sys.executable, "-c", _ROLLBACK, str(ensure_fmu(fmu)),
                             json.dumps({"ints": ints, "move": move, "angle": angle,
-                                        "plain": plain, "hold": hold})],
-                           capture_output=True, text=True, env=dict(os.environ, TRIPOD_FAST=fast),
-                           timeout=600)
+                                        "plain": plain, "hold": hold}), _how(fast)],
+                           capture_output=True, text=True, timeout=600)
         assert p.returncode == 0, p.stderr[-3000:]
         steps = [m for m in p.stdout.splitlines() if "communication steps:" in m]
         runs[fast, plain] = (np.array(json.loads(p.stdout.strip().splitlines()[-1])), steps)
@@ -400,14 +407,13 @@ print(json.dumps(out))
 def test_coast_and_reverse_run_compiled_bitwise_the_python_step(case):
     """Coast (torque or F_press below 0) and reverse whirl under a master that moves every
     input at a varying step, through a tip-out: the analytic FMU's compiled march runs them as
-    its reference's Python does, drive at the opposite whirl turned about the trunnion axis,
+    its kernel as Python does, drive at the opposite whirl turned about the trunnion axis,
     bit for bit."""
     runs = {}
     for fast in ("0", "1"):
         p = subprocess.run([sys.executable, "-c", _QUADRANTS,
-                            str(_fmu(ANALYTIC, fast)), json.dumps({"case": case})],
-                           capture_output=True, text=True,
-                           env=dict(os.environ, TRIPOD_FAST=fast), timeout=600)
+                            str(ensure_fmu(ANALYTIC)), json.dumps({"case": case}), _how(fast)],
+                           capture_output=True, text=True, timeout=600)
         assert p.returncode == 0, p.stderr[-3000:]
         steps = [m for m in p.stdout.splitlines() if "communication steps:" in m]
         runs[fast] = (np.array(json.loads(p.stdout.strip().splitlines()[-1])), steps)

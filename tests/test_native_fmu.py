@@ -2,7 +2,8 @@
 (driveline/mounts.py), the analytic joint's (reduced_model/analytic_kernel.py) and the contact
 joint's (fmu_src/tripod_model/lifecycle.py) compiled ahead of time under the native FMI layer
 (fmu_src/native/fmi2_native.c), binaries for linux64 and win64 and nothing else in them.  Each
-held to the pythonfmu slave's FMU of the same model (build/reference/), bit for bit; run by a
+held to the same model's functions run as Python in process (harness/inprocess.py) under the
+same FMPy master, bit for bit; run by a
 plain C host with no Python reachable on Linux, and cross-compiled under wine64 from a folder
 named 'jürgen x'."""
 import os
@@ -17,7 +18,8 @@ import pytest
 from fmpy import read_model_description, simulate_fmu
 from fmpy.validation import validate_fmu
 
-from harness.fmus import builder, ensure_fmu, reference_fmu
+from harness.fmus import builder, ensure_fmu
+from harness.inprocess import InProcess
 
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
@@ -64,8 +66,7 @@ LAST_BIT_GROWS = {"TripodRoller-resolved", "TripodRoller-lumped-three"}
 @pytest.fixture(scope="module", params=sorted(CASES))
 def fmus(request):
     name = request.param.split("-")[0]
-    native = ensure_fmu(name)
-    return native, reference_fmu(name), request.param
+    return ensure_fmu(name), None, request.param
 
 
 # a state resumed in a fresh instance of another process (test_a_state_resumes_...): the joint
@@ -120,17 +121,19 @@ def test_the_fmu_holds_two_binaries_and_nothing_to_run_python(fmus):
     assert validate_fmu(str(fmus[0])) == []
 
 
-def test_fmpy_runs_it_as_the_python_slave_bit_for_bit(fmus):
+def test_fmpy_runs_it_as_its_functions_in_python_bit_for_bit(fmus):
     """A master moving the inputs every step (FMPy's input table, interpolated), 0.5 s: every
-    output equal to the last bit to the pythonfmu slave's (one source, mounts.py or kernel.py;
-    the same libm)."""
+    output equal to the last bit to the same functions' run as Python in process (one source,
+    mounts.py, analytic_kernel.py or lifecycle.py; the same libm)."""
     md = read_model_description(str(fmus[0]))
     spec, ints, _, stop = _case(fmus)
     t = np.linspace(0.0, stop, 51)
     cols = [("time", t)] + [(v.name, o + a * np.sin(w * t)) for v, o, a, w in _signals(md, spec)]
     inp = np.array(list(zip(*[c for _, c in cols])), dtype=[(n, float) for n, _ in cols])
     kw = dict(stop_time=stop, output_interval=DT, input=inp, start_values=ints)
-    a, b = simulate_fmu(str(fmus[0]), **kw), simulate_fmu(str(fmus[1]), **kw)
+    a = simulate_fmu(str(fmus[0]), **kw)
+    b = simulate_fmu(str(fmus[0]), fmu_instance=InProcess(fmus[0]), fmi_type="CoSimulation",
+                     **kw)
     assert len(a) == len(b) == round(stop / DT) + 1
     for name in a.dtype.names:
         assert np.array_equal(a[name], b[name]), name

@@ -10,14 +10,13 @@ friction mu f_n tanh(3 v_p sin(phi) / v_st) acts along a: on the groove Fz = mu 
 sin(phi) along the plunge, Fy = mu Fx tanh(...) cos(phi)."""
 import json
 import math
-import os
 import subprocess
 import sys
 
 import numpy as np
 import pytest
 
-from harness.fmus import ensure_fmu, reference_fmu
+from harness.fmus import ensure_fmu
 
 _RUN = r'''
 import json, sys
@@ -30,19 +29,27 @@ if req.get("harmonic"):   # the plunge speed of 0.2 mm at 25 Hz, set every step 
     inputs = np.array(list(zip(t, 2 * np.pi * 25 * 2e-4 * np.cos(2 * np.pi * 25 * t))),
                       dtype=[("time", float), ("plunge_speed", float)])
 logs = []
-r = simulate_fmu(req["fmu"], stop_time=req.get("stop", 0.3), output_interval=1e-4,
-                 start_values=req["sv"], input=inputs, debug_logging=True,
-                 logger=lambda c, n, s, cat, msg: logs.append(msg.decode()))
+kw = dict(stop_time=req.get("stop", 0.3), output_interval=1e-4, start_values=req["sv"],
+          input=inputs)
+if req.get("inprocess"):   # the FMU's functions as Python, here
+    from harness.inprocess import InProcess
+    r = simulate_fmu(req["fmu"], fmu_instance=InProcess(req["fmu"], lambda s, m: logs.append(m)),
+                     fmi_type="CoSimulation", **kw)
+else:
+    r = simulate_fmu(req["fmu"], debug_logging=True,
+                     logger=lambda c, n, s, cat, msg: logs.append(msg.decode()), **kw)
 np.save(req["out"], r)
 print(json.dumps([m for m in logs if m.startswith("communication steps:")]))
 '''
 
 
-def run(sv, tmp_path, tag="r", env=None, name="TripodRoller", fmu=None, **req):
+def run(sv, tmp_path, tag="r", name="TripodRoller", **req):
+    """FMU ``name`` under FMPy in a fresh process (req: stop, harmonic, inprocess: its
+    functions run as Python there instead of its binary)."""
     out = tmp_path / f"{tag}.npy"
     p = subprocess.run([sys.executable, "-c", _RUN, json.dumps(
-        dict(req, fmu=str(fmu or ensure_fmu(name)), sv=sv, out=str(out)))],
-        capture_output=True, text=True, timeout=600, env=dict(os.environ, **(env or {})))
+        dict(req, fmu=str(ensure_fmu(name)), sv=sv, out=str(out)))],
+        capture_output=True, text=True, timeout=600)
     assert p.returncode == 0, p.stderr[-3000:]
     return np.load(out), json.loads(p.stdout.strip().splitlines()[-1])
 
@@ -75,11 +82,10 @@ def test_constant_plunge_at_rest_against_the_closed_form(vp, name, tmp_path):
 @pytest.mark.parametrize("name", ["TripodRoller", "TripodRollerAnalytic"])
 def test_harmonic_plunge_under_whirl_compiled_is_bitwise_python(name, tmp_path):
     """A master moves the plunge speed every step (0.2 mm at 25 Hz) on the paper's scene, three
-    rollers: the FMUs, compiled, take it bit for bit as their references' Python steps do; the
+    rollers: the FMUs, compiled, take it bit for bit as their functions run as Python do; the
     outputs stay finite and the plunge follows the held speed's integral."""
     sv = {"n_rollers": 3}
-    slow, _ = run(sv, tmp_path, "slow", env={"TRIPOD_FAST": "0"}, harmonic=True, stop=0.2,
-                  name=name, fmu=reference_fmu(name))
+    slow, _ = run(sv, tmp_path, "slow", harmonic=True, stop=0.2, name=name, inprocess=True)
     fast, _ = run(sv, tmp_path, "fast", harmonic=True, stop=0.2, name=name)
     names = slow.dtype.names
     assert all(np.array_equal(slow[n], fast[n]) for n in names)
