@@ -7,7 +7,7 @@ Per scene:
   limits), before initialisation and during the run;
 - state fuzzing (tests/state_abuse.py) under valgrind memcheck: every truncation of a good
   state, random bit flips, random tails, bytes changed with the checksum made valid again
-  (what reaches the decoder's own checks), two pickle payloads and the crafted states.
+  (what reaches the decoder's own checks) and two pickle payloads.
 
 A state case is clean when refused with fmi2Error, or taken and then stepped to finite outputs
 or refused at the step with a reason (a changed byte may leave a well-formed state); a defect is
@@ -48,11 +48,6 @@ CASE_SECONDS = 10.0
 DOC = ROOT / "docs" / "native-layer.md"
 
 
-def crafted(kind):
-    from tests.test_state_abuse import ARRAYS, COMMON
-    return COMMON + (ARRAYS if kind == "arrays" else ["three-angles-one-row", "nan-in-march"])
-
-
 def value_matrix(fmu, ints):
     p = subprocess.run([sys.executable, str(ROOT / "tests" / "value_matrix.py"), str(fmu),
                         json.dumps({"ints": ints})], capture_output=True, text=True,
@@ -68,7 +63,7 @@ def value_matrix(fmu, ints):
 def state_fuzz(fmu, name, ints, kind, args, log, base):
     spec = {"ints": ints, "moving": name.endswith("Analytic"), "every_truncation": True,
             "flips": args.flips, "random": args.random, "resealed": args.resealed,
-            "crafted": crafted(kind), "seed": 7,
+            "seed": 7,
             "marker": os.path.join(tempfile.mkdtemp(), "code-ran")}
     cmd = [sys.executable, str(ROOT / "tests" / "state_abuse.py"), str(fmu), json.dumps(spec)]
     env = dict(os.environ, PYTHONMALLOC="malloc")

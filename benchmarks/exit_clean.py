@@ -27,8 +27,7 @@ r = simulate_fmu(sys.argv[1], output_interval=1e-4)
 assert len(r) == 2001 and abs(r["Fz"][-1]) < 1e6, len(r)
 """
 
-# the needle-resolved bearing: numba-compiled at run time, not the prebuilt kernel (a short
-# run: the compiled kernel comes from the cache)
+# the needle-resolved bearing (a short run)
 SCRIPT_NEEDLES = """
 import sys
 from fmpy import simulate_fmu

@@ -2,8 +2,7 @@
 
 Two whirl cycles of the paper's scene at a 1e-4 s communication step; median of N runs for the
 ideal and the lumped bearing, with and without traverse; plus fresh `fmpy simulate` processes
-of the FMU (compiled, no Python in its model) and of its reference (Python: with the prebuilt
-kernel, and with numba compiling it).
+of the FMU (compiled, no Python in its model).
 Prints a Markdown table.  Usage: python benchmarks/fmu_speed.py [--runs N]
 """
 import argparse
@@ -13,7 +12,7 @@ import sys
 import time
 from pathlib import Path
 
-from harness.fmus import ensure_fmu, reference_fmu
+from harness.fmus import ensure_fmu
 
 CASES = [
     ("ideal bearing, traverse (default)", {}),
@@ -22,11 +21,7 @@ CASES = [
     ("lumped bearing, no traverse", {"bearing": 1, "traverse": False}),
 ]
 # rows of whole fresh processes, after the in-process CASES
-PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene: the FMU (compiled, no Python)",
-                "the same, its reference (Python, the prebuilt kernel, no numba)",
-                "the reference with numba compiling the kernel (TRIPOD_AOT=0), cache warm",
-                "the reference, numba, empty cache: first run (compiles)",
-                "the reference, numba, same cache: second run (FMPy extracts anew)")
+PROCESS_ROWS = ("fresh `fmpy simulate` process, default scene: the FMU (compiled, no Python)",)
 
 
 def main():
@@ -43,35 +38,20 @@ def main():
     res = time_runs(fmu, [{"sv": sv, "dt": 1e-4, "stop": 0.2} for _, sv in CASES],
                     runs=args.runs, read=outs)
     rows = [(name, r["wall"], min(r["walls"]), max(r["walls"])) for (name, _), r in zip(CASES, res)]
-    ref = str(reference_fmu("TripodRoller"))
-
-    def fresh_run(env=None, fmu=ref):
+    def fresh_run(fmu):
         t0 = time.perf_counter()
         subprocess.run([str(Path(sys.executable).parent / "fmpy"), "simulate", fmu,
                         "--output-interval", "1e-4", "--output-file", "/dev/null"],
-                       capture_output=True, env=env)
+                       capture_output=True)
         return time.perf_counter() - t0
 
-    import os
-    import tempfile
-    native = [fresh_run(fmu=fmu) for _ in range(args.runs)]
-    fresh = [fresh_run() for _ in range(args.runs)]
-    # numba instead of the prebuilt kernel (what the needle-resolved bearing, or a build
-    # without the prebuilt library, pays): a warm cache, then an empty one, where the first
-    # fresh process compiles and the second must not
-    jit_env = dict(os.environ, TRIPOD_AOT="0")
-    fresh_run(jit_env)
-    jit = [fresh_run(jit_env) for _ in range(args.runs)]
-    with tempfile.TemporaryDirectory() as cache:
-        env = dict(jit_env, TRIPOD_NUMBA_CACHE=cache)
-        cold, warm = fresh_run(env), fresh_run(env)
+    native = [fresh_run(fmu) for _ in range(args.runs)]
     lines = [f"Two whirl cycles (0.2 s) of the paper's scene, 1e-4 s communication step, "
              f"{args.runs} runs each, median [min-max]", "",
              "| case | wall time in one process after warm-up |", "|---|---|"]
     lines += [f"| {name} | {med:.3f} s [{lo:.3f}-{hi:.3f}] |" for name, med, lo, hi in rows]
-    lines += [f"| {PROCESS_ROWS[k]} | {statistics.median(x):.2f} s [{min(x):.2f}-{max(x):.2f}] |"
-              for k, x in enumerate((native, fresh, jit))]
-    lines += [f"| {PROCESS_ROWS[3]} | {cold:.2f} s |", f"| {PROCESS_ROWS[4]} | {warm:.2f} s |"]
+    lines += [f"| {PROCESS_ROWS[0]} | {statistics.median(native):.2f} s "
+              f"[{min(native):.2f}-{max(native):.2f}] |"]
     print("\n".join(lines))
     if args.md:
         Path(args.md).parent.mkdir(parents=True, exist_ok=True)

@@ -1,1 +1,1 @@
-"""The driveline example's powertrain model (its FMU: fmu_src/Powertrain.py)."""
+"""The driveline example's powertrain model (its FMU: build/Powertrain.fmu, mounts.py compiled)."""

@@ -1,13 +1,12 @@
-"""Build the prebuilt kernel (tripod_model/native.py): kernel.step compiled once, ahead of time,
-into a shared library that goes into the contact FMU, so a scene without resolved needles runs
-without numba at run time.
+"""Compile a model's functions ahead of time into object code for the FMUs' binaries
+(native_fmu.py links them with the native FMI layer).
 
-numba compiles the step in a fresh process (an empty cache, so the LLVM module is at hand; a
-generic x86-64 CPU, so the library runs on any machine the FMU goes to), llvmlite emits it as
-position-independent object code, and the C compiler links it with native/aot_stubs.c (the
-symbols of numba's error path) and libm.  About 20 s.  For win64 the same IR is retargeted to
-x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).  The compiled objects are kept by
-the content of their sources (AOT_CACHE, cache_key).
+numba compiles the functions in a fresh process (an empty cache, so the LLVM module is at
+hand; a generic x86-64 CPU, so the binary runs on any machine the FMU goes to) and llvmlite
+emits them as position-independent object code; the binary links them with
+native/aot_stubs.c (the symbols of numba's error path) and libm.  For win64 the same IR is
+retargeted to x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).  The compiled objects
+are kept by the content of their sources (AOT_CACHE, cache_key).
 """
 from __future__ import annotations
 
@@ -33,11 +32,11 @@ SOURCES = (FMU_SRC, FMU_SRC.parent / "reduced_model", FMU_SRC.parent / "drivelin
 # per target: the LLVM triple numba's IR is retargeted to (None: the host's), the C compiler
 # that links it, the library's name and the libraries it may import
 TARGETS = {
-    "linux64": {"triple": None, "cc": None, "lib": "_step.so"},
+    "linux64": {"triple": None, "cc": None},
     # mingw-w64: the -gnu triple, whose stack probe (___chkstk_ms) libgcc provides; linked with
     # -static-libgcc so the DLL imports only what every Windows has
     "win64": {"triple": "x86_64-w64-windows-gnu", "cc": "x86_64-w64-mingw32-gcc",
-              "lib": "_step.dll", "imports": ("KERNEL32.dll", "msvcrt.dll")},
+              "imports": ("KERNEL32.dll", "msvcrt.dll")},
 }
 
 # a module's C functions (its factory returns {name: numba cfunc}), compiled once, each emitted
@@ -150,34 +149,6 @@ def check_imports(lib: Path, target: str) -> None:
         bad = sorted(set(dll_imports(lib)) - set(allowed))
         if bad:
             raise RuntimeError(f"{lib.name} imports {bad}, beyond {list(allowed)}")
-
-
-def build_step_library(dest: Path, target: str = "linux64") -> tuple[Path, Path]:
-    """dest/_step.so (linux64) or dest/_step.dll (win64), and dest/_step.json (native.META),
-    from today's sources.  win64 is cross-compiled (mingw-w64): numba's LLVM IR retargeted to
-    Windows, emitted as a COFF object, linked with the stubs; its imports are checked."""
-    if sys.platform != "linux":
-        raise RuntimeError(f"the prebuilt kernel builds on Linux only, not {sys.platform}")
-    spec = TARGETS[target]
-    cc = compiler(target)
-    dest.mkdir(parents=True, exist_ok=True)
-    lib, meta = dest / spec["lib"], dest / "_step.json"
-    with tempfile.TemporaryDirectory() as tmp:
-        obj, symbol = compile_functions("tripod_model.kernel:c_functions", Path(tmp),
-                                        (target,))[target]["step"]
-        extra = ["-static-libgcc"] if spec["triple"] else ["-fPIC"]
-        cmd = cc.split()[:1] + ["-shared", "-O2", str(obj), str(STUBS), "-o", str(lib),
-                                "-lm"] + extra
-        p = subprocess.run(cmd, capture_output=True, text=True)
-        if p.returncode != 0:
-            raise RuntimeError(f"linking the prebuilt kernel failed:\n{p.stderr}")
-    check_imports(lib, target)
-    from importlib.metadata import version
-    from tripod_model import native
-    meta.write_text(json.dumps({"symbol": symbol, "hash": native.source_hash(),
-                                "numba": version("numba"), "cpu": "generic",
-                                "target": target}))
-    return lib, meta
 
 
 def dll_imports(lib: Path) -> list[str]:

@@ -1,6 +1,6 @@
 """What each FMU is, declared once: its description, default experiment and variables (from the
 parameter tables), and its modelDescription.xml written from them.  The build writes the XML;
-the Python slaves (the in-process adapters, build/reference) register the same variables."""
+the tests' in-process runs (harness/inprocess.py) read the same variables from it."""
 from __future__ import annotations
 
 from typing import NamedTuple

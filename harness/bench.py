@@ -1,5 +1,5 @@
 """Run time against error: the work-precision benchmark, the cost per doStep against the bare
-pythonfmu boundary, and where one run's time goes.  Measurements run in fresh subprocesses
+FMI boundary, and where one run's time goes.  Measurements run in fresh subprocesses
 that load the built FMUs, as a user's host would."""
 from __future__ import annotations
 
@@ -22,14 +22,17 @@ STOP = 0.2                      # two whirl cycles of the paper's scene [s]
 
 
 def bare_fmu() -> Path:
-    """build/BareSlave.fmu: the trivial slave on the FMUs' native layer (built when missing or
-    stale): what the FMI boundary alone costs."""
+    """build/BareSlave.fmu: a model that does nothing (harness/bare_model.py) compiled under
+    the FMUs' native layer, linux64 only (built when missing or older than its sources): what
+    the FMI boundary alone costs a step."""
+    from harness import bare_model
     b = builder()
     dest = BUILD / "BareSlave.fmu"
-    src = ROOT / "benchmarks" / "BareSlave.py"
-    if not dest.exists() or any(dest.stat().st_mtime < f.stat().st_mtime
-                                for f in (src, b.NATIVE_SRC, b.BRIDGE)):
-        b.package(src, dest)
+    srcs = [ROOT / "harness" / "bare_model.py", *b.NATIVE_FMU, *b.AOT]
+    if not dest.exists() or any(dest.stat().st_mtime < f.stat().st_mtime for f in srcs):
+        b.build_module("native_fmu").package(
+            bare_model.model_description(), dest, "harness.bare_model:c_functions",
+            bare_model.native_layout(), b._fmi_headers(), targets=("linux64",))
     return dest
 
 
@@ -182,17 +185,17 @@ def pareto(points, t_margin=0.0, e_margin=0.0):
 CHAOTIC = {"contact bearing 2": (0.20, 0.003)}
 
 
-# the step-cost table's rows: (label, FMU (None: the bare slave), start values, inputs the
+# the step-cost table's rows: (label, FMU (None: the bare model), start values, inputs the
 # master moves every step).  The master moves theta, omega and the torque (66 N m: the paper's
-# 1000 N per roller); its rows are compared with the bare slave under the same master (its
+# 1000 N per roller); its rows are compared with the bare model under the same master (its
 # setReal of three inputs a step is the master's cost, not the model's)
 MASTER_INPUTS = ("theta", "omega", "torque")
 MASTER_START = {"torque": 66.0}
 LAUNCH_START = {"n_rollers": 3, "torque": 3000.0, "theta": math.radians(25.0)}
-BARE_MASTER = "bare slave, theta, omega, torque set to new values every step (the boundary " \
+BARE_MASTER = "bare model, theta, omega, torque set to new values every step (the boundary " \
     "under a driveline master)"
 STEP_COST_CASES = {
-    "bare slave (the FMI boundary alone)": (None, {}, ()),
+    "bare model (the FMI boundary alone, compiled)": (None, {}, ()),
     BARE_MASTER: (None, {}, MASTER_INPUTS),
     "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}, ()),
     f"analytic FMU, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline "
@@ -226,8 +229,8 @@ STEP_COST_CASES = {
 
 
 def step_cost_ratio(name, us, costs) -> float:
-    """A row's cost over the bare boundary's: under the master, the bare slave under the same
-    master; else the bare slave alone.  costs: [(name, us)] in STEP_COST_CASES' order."""
+    """A row's cost over the bare boundary's: under the master, the bare model under the same
+    master; else the bare model alone.  costs: [(name, us)] in STEP_COST_CASES' order."""
     by = dict(costs)
     base = BARE_MASTER if STEP_COST_CASES[name][2] else next(iter(STEP_COST_CASES))
     return us / by[base]
@@ -474,13 +477,15 @@ def _write_wp(out, rows, detail):
     plt.close(fig)
 
 
-BREAKDOWN_PARTS = ("FMI boundary (bare slave)", "slave adapter (inputs, outputs, checks)",
-                   "model Python (per-step setup)", "numba kernel", "total through FMPy")
+BREAKDOWN_PARTS = ("FMI boundary (the bare model)", "the FMU's compiled lifecycle (the rest)",
+                   "total through FMPy",
+                   "in process (model.py): Python per-step setup", "in process: numba kernel")
 
 
 def breakdown(runs=5, dt=1e-4):
-    """Where the time of one two-cycle run of the default contact scene goes [s]:
-    FMI boundary (bare slave), the slave adapter, the model's Python, the numba kernel."""
+    """Where the time of one two-cycle run of the default contact scene goes [s]: through
+    FMPy, the FMI boundary (the bare model) and the FMU's compiled lifecycle; in process
+    (model.py, the harness's path), the model's Python and the numba kernel."""
     from tripod_model import kernel
     from tripod_model.model import JointModel
     n = int(round(STOP / dt))
@@ -496,8 +501,9 @@ def breakdown(runs=5, dt=1e-4):
 
         def timed(*a):
             t0 = time.perf_counter()
-            orig(*a)
+            ok = orig(*a)
             acc[0] += time.perf_counter() - t0
+            return ok
         kernel.run_substeps = timed
         try:
             t0 = time.perf_counter()
@@ -508,8 +514,8 @@ def breakdown(runs=5, dt=1e-4):
         finally:
             kernel.run_substeps = orig
     model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
-    return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - model - bare, 0.0), model - kernel,
-                                      kernel, fmu)))
+    return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - bare, 0.0), fmu, model - kernel,
+                                      kernel)))
 
 
 # --- peers on the same equations (tripod-thrust bench --peer) ------------------------------

@@ -37,7 +37,7 @@ def replace(text: str, name: str, content: str) -> str:
 
 def write_marked(path: Path, name: str, text: str) -> None:
     """Put text between <!-- NAME:begin --> and <!-- NAME:end --> in path: the tables the long
-    benchmarks write with their own runs (abuse.py, state_fuzz.py, native_fmu_speed.py), which
+    benchmarks write with their own runs (abuse.py), which
     make docs does not rerun."""
     begin, end = f"<!-- {name}:begin -->", f"<!-- {name}:end -->"
     doc = path.read_text()

@@ -23,12 +23,6 @@ def ensure_fmu(name: str = "TripodRoller", force: bool = False) -> Path:
     return builder().build(name, force=force)
 
 
-def reference_fmu(name: str) -> Path:
-    """build/reference/<name>.fmu, built first when missing or stale: the pythonfmu slave of
-    the model (its FMU ships compiled), which the tests hold the compiled FMU to."""
-    return builder().reference(name)
-
-
 def check_fmu(fmu: str | Path) -> tuple[bool, str]:
     """Whether ``fmu`` came from this checkout: this checkout's FMU of its model (built when
     missing or stale) holds the same files with the same bytes (the build is reproducible:

@@ -1,5 +1,5 @@
 """Transients under a driveline master, through the contact model in process (the kernel the
-FMU runs, bit for bit: tests/test_prebuilt.py): input steps against a converged reference, and
+FMU compiles): input steps against a converged reference, and
 order 3 per revolution along a run-up against the settled constant-speed value.  Used by
 benchmarks/transients.py (the table in docs/benchmarks.md) and tests/test_transients.py.
 """

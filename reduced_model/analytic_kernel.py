@@ -1,5 +1,5 @@
 """The analytic FMU's lifecycle as scalar functions over flat arrays: one source for the analytic
-FMU's model as Python (analytic_model, the reference FMU) and its binary, which compiles
+FMU's model as Python (analytic_model, harness/inprocess.py) and its binary, which compiles
 ``init``, ``step``, ``end`` and ``check_state`` with the equations they call (equations.py,
 table.py) ahead of time (c_functions, fmu_src/aot.py) and runs them without Python.
 

@@ -1,6 +1,6 @@
-"""The analytic FMU's model as Python (fmu_src/TripodRollerAnalytic.py is its adapter): kernel.py's
-init, step and end over its arrays, run as plain Python, numpy only.  The analytic FMU's binary
-compiles the same functions (fmu_src/native_fmu.py); this is the reference the tests hold it to.
+"""The analytic FMU's model as Python: analytic_kernel.py's init, step and end over its arrays,
+run as plain Python, numpy only.  The analytic FMU's binary compiles the same functions
+(fmu_src/native_fmu.py); the tests hold it to them (harness/inprocess.py).
 
 traverse = true (default): the reduced traverse model's periodic solution, tabulated over the
 whirl angle at the start; once a master moves the inputs, the roller's slide is stepped in time

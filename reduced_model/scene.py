@@ -320,9 +320,8 @@ def same_step(dt, dt0, t):
     """Whether a communication step of dt [s] at time t [s] is the step dt0 up to the rounding
     a master's t_{k+1} - t_k carries (FMPy: a few ulps of t): within 64 ulps of max(|t|, dt0).
     Both FMUs then take the step dt0 (the contact model reuses dt0's operating point; the
-    analytic FMU's kernel compiles this function); the contact FMU's fast path applies the
-    same rule (fmu_src/native/fmi2_python.c), so the compiled and the Python path take the
-    same steps."""
+    analytic FMU's kernel and the contact FMU's lifecycle compile this function), so the
+    compiled FMUs and their functions run as Python take the same steps."""
     return abs(dt - dt0) <= STEP_ROUNDING * max(abs(t), dt0)
 
 

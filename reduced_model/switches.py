@@ -2,9 +2,6 @@
 names the paths).  Every one defaults to on; "0" turns it off, for debugging and comparison.
 
 - TRIPOD_NUMBA=0: plain Python, no compiled kernel at all (the same source, slower).
-- TRIPOD_AOT=0: the contact FMU's prebuilt kernel is not used; numba compiles the step.
-- TRIPOD_FAST=0: every communication step goes through Python (no compiled step offered to
-  the FMUs' native layer).
 - TRIPOD_NUMBA_CACHE: where numba's on-disk cache goes (default: under ~/.cache).
 """
 import os
@@ -15,6 +12,4 @@ def _on(name):
 
 
 NUMBA = _on("TRIPOD_NUMBA")
-AOT = NUMBA and _on("TRIPOD_AOT")
-FAST = _on("TRIPOD_FAST")
 NUMBA_CACHE = os.environ.get("TRIPOD_NUMBA_CACHE") or None

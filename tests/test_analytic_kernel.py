@@ -1,5 +1,5 @@
 """reduced_model/analytic_kernel.py, the analytic FMU's one source: run as Python (the
-reference FMU, the reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
+in-process oracle, the reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
 the Python reports and the table's checks word; its state check refuses what it cannot step."""
 import math
 

@@ -1,7 +1,5 @@
-"""Each FMU runs its own code: the FMUs, compiled, carry no Python; a reference FMU's Python is
-a package of its own (resources/PKG/, PKG named after its sources' hash, fmu_src/build.py:
-own_package), so FMUs, and builds of one FMU, in one process never run each other's modules or
-an installed copy of the project."""
+"""Each FMU runs its own code: the FMUs, compiled, carry no Python, so FMUs in one process never
+run each other's modules or an installed copy of the project."""
 import json
 import subprocess
 import sys
@@ -9,7 +7,7 @@ import zipfile
 from pathlib import Path
 
 
-from harness.fmus import ensure_fmu, reference_fmu
+from harness.fmus import ensure_fmu
 
 SEQ = [("TripodRoller", {"bearing": 0}), ("TripodRoller", {"bearing": 1}),
        ("TripodRoller", {"bearing": 2, "n_needles": 12}), ("TripodRollerAnalytic", {}),
@@ -57,35 +55,3 @@ def test_any_sequence_of_both_fmus_in_one_process(tmp_path):
     for job, run in zip(jobs, together["runs"]):
         alone = _run(py, [job])["runs"][0]
         assert run["Fz"] == alone["Fz"], job
-
-
-def _second_build(fmu: Path, dest: Path, marker: str) -> Path:
-    """A copy of the FMU as another build would be: its package renamed (another hash) and
-    its slave logging ``marker`` at initialisation."""
-    with zipfile.ZipFile(fmu) as z:
-        files = {i.filename: z.read(i.filename) for i in z.infolist() if not i.is_dir()}
-    old = files["resources/slavemodule.txt"].decode().strip().rpartition(".")[0]
-    new = "tripod_fmu_000000000000"
-    out = {}
-    for arc, data in files.items():
-        arc = arc.replace(f"resources/{old}/", f"resources/{new}/")
-        if arc.endswith("/TripodRoller.py"):
-            data = data.replace(b"    def _initialise(self):\n",
-                                b"    def _initialise(self):\n        self.log(" +
-                                repr(marker).encode() + b")\n", 1)
-        if arc == "resources/slavemodule.txt":
-            data = data.replace(old.encode(), new.encode())
-        out[arc] = data
-    with zipfile.ZipFile(dest, "w") as z:
-        for arc, data in out.items():
-            z.writestr(arc, data)
-    return dest
-
-
-def test_two_builds_in_one_process_each_run_their_own_code(tmp_path):
-    a = reference_fmu("TripodRoller")
-    b = _second_build(a, tmp_path / "TripodRoller.fmu", "this is build B")
-    res = _run(sys.executable, [(str(a), {}), (str(b), {}), (str(a), {}), (str(b), {})])
-    said = ["this is build B" in "\n".join(r["log"]) for r in res["runs"]]
-    assert said == [False, True, False, True]
-    assert res["runs"][0]["Fz"] == res["runs"][1]["Fz"]     # the same model otherwise

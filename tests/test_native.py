@@ -1,8 +1,7 @@
 """The FMUs' native layers in the hosts that load them: a plain C host (dlopen, no libpython
 linked or preloaded, a clean environment), FMPy in fresh processes whose exit status must be 0,
 and the call sequence and status codes of FMI 2.0.  The FMUs run compiled
-(fmu_src/native/fmi2_native.c); the Python layer (fmi2_python.c) runs their references
-(build/reference/), whose Python it starts: what it says where that Python falls short."""
+(fmu_src/native/fmi2_native.c) and start no Python."""
 import os
 import subprocess
 import sys
@@ -12,12 +11,11 @@ import numpy as np
 import pytest
 from fmpy import extract, read_model_description
 
-from harness.fmus import ROOT, ensure_fmu, reference_fmu
+from harness.fmus import ROOT, ensure_fmu
 
 NAMES = ("TripodRoller", "TripodRollerAnalytic")
 HOST_SRC = Path(__file__).with_name("c_host") / "fmi2_host.c"
-# a C host's environment: no virtualenv, no PYTHONPATH, no LD_PRELOAD; the FMU finds its
-# Python itself (here: the interpreter that built it, recorded in resources/python.txt)
+# a C host's environment: no virtualenv, no PYTHONPATH, no LD_PRELOAD
 CLEAN_ENV = {"PATH": "/usr/bin:/bin", "HOME": os.environ.get("HOME", "/root")}
 
 
@@ -34,14 +32,14 @@ def c_host(tmp_path_factory):
     return exe
 
 
-def _unzipped(name, reference=False):
-    fmu = reference_fmu(name) if reference else ensure_fmu(name)
+def _unzipped(name):
+    fmu = ensure_fmu(name)
     md = read_model_description(str(fmu))
     return md, extract(str(fmu)), {v.name: v.valueReference for v in md.modelVariables}
 
 
-def _host(c_host, name, out, *ints, env=None, reference=False):
-    md, d, vr = _unzipped(name, reference)
+def _host(c_host, name, out, *ints, env=None):
+    md, d, vr = _unzipped(name)
     return subprocess.run([str(c_host), d, md.coSimulation.modelIdentifier, md.guid,
                            str(vr["Fz"]), "0.2", "1e-4", str(out)] + [f"{vr[k]}={v}" for k, v in ints],
                           capture_output=True, text=True, timeout=600, env=env or CLEAN_ENV)
@@ -72,43 +70,6 @@ def test_c_host_invalid_parameter_is_error_not_fatal(c_host, tmp_path):
     assert "invalid parameter: bearing = 7 is outside the allowed range" in p.stderr
 
 
-def test_c_host_says_what_python_lacks(c_host, tmp_path):
-    """A Python without numpy: the reference's instantiation fails with one line naming numpy
-    and how to get it (numba too), and the host carries on and exits cleanly."""
-    venv = tmp_path / "bare"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
-    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
-    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env, reference=True)
-    assert p.returncode == 1 and "first_round FAILED" in p.stdout       # no instance, no crash
-    lines = [ln for ln in p.stderr.splitlines() if "needs the Python package 'numpy'" in ln]
-    assert lines, p.stderr
-    assert "pip install 'numpy" in lines[0] and "numba" in lines[0] and "TRIPOD_THRUST_PYTHON" in lines[0]
-
-
-def test_c_host_warns_when_numba_is_missing(c_host, tmp_path):
-    """A Python with numpy but no numba: the contact FMU's reference runs, and says once what
-    it lacks."""
-    import numpy
-    venv, site = tmp_path / "numpy-only", tmp_path / "site"
-    subprocess.run([sys.executable, "-m", "venv", "--without-pip", str(venv)], check=True)
-    site.mkdir()
-    pkg = Path(numpy.__file__).parent
-    for d in (pkg, pkg.with_name("numpy.libs")):
-        if d.exists():
-            (site / d.name).symlink_to(d)
-    sp = next(venv.glob("lib/python3.*/site-packages"))
-    (sp / "numpy_only.pth").write_text(str(site) + "\n")
-    md, d, vr = _unzipped("TripodRoller", reference=True)
-    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(venv / "bin" / "python"))
-    # a short run: the kernel as plain Python is slow
-    p = subprocess.run([str(c_host), d, "TripodRoller", md.guid, str(vr["Fz"]), "0.002", "1e-4",
-                        str(tmp_path / "fz.txt")], capture_output=True, text=True, timeout=600,
-                       env=env)
-    warn = [ln for ln in p.stderr.splitlines() if "numba" in ln]
-    assert len(warn) >= 1 and "pip install 'numba" in warn[0] and "|1|" in warn[0], p.stderr
-    assert "first_round ok" in p.stdout, p.stdout + p.stderr
-
-
 def test_fresh_processes_exit_clean():
     """20 fresh Python processes of each FMU through fmpy.simulate_fmu and 5 through `fmpy
     simulate`: every exit status 0 (benchmarks/exit_clean.py runs the issue's 300 + 50)."""
@@ -123,9 +84,8 @@ def test_fresh_processes_exit_clean():
 
 @pytest.mark.parametrize("name", NAMES)
 def test_c_host_under_a_non_ascii_folder(c_host, tmp_path, name):
-    # a C host that never calls setlocale runs in the "C" locale; the Python the FMU starts runs
-    # in UTF-8 mode, so a resource folder named 'jürgen x' works (it failed with "'ascii' codec
-    # can't encode character" at fmi2Instantiate)
+    # a C host that never calls setlocale runs in the "C" locale: a resource folder named
+    # 'jürgen x' works
     import shutil
     md, d, vr = _unzipped(name)
     where = tmp_path / "jürgen x"
@@ -135,24 +95,6 @@ def test_c_host_under_a_non_ascii_folder(c_host, tmp_path, name):
                        capture_output=True, text=True, timeout=600, env=CLEAN_ENV)
     assert p.returncode == 0, p.stdout + p.stderr[-3000:]
     assert "check no_error_logged ok" in p.stdout
-
-
-def test_c_host_bounds_the_wait_for_its_python(c_host, tmp_path):
-    # TRIPOD_THRUST_PYTHON naming a program that never exits made fmi2Instantiate wait forever;
-    # now it is killed after TRIPOD_THRUST_PYTHON_TIMEOUT (default 60 s) and the instantiation
-    # fails with that reason
-    import time
-    hang = tmp_path / "hang"
-    hang.write_text("#!/bin/sh\nsleep 1000\n")
-    hang.chmod(0o755)
-    env = dict(CLEAN_ENV, TRIPOD_THRUST_PYTHON=str(hang), TRIPOD_THRUST_PYTHON_TIMEOUT="2")
-    t0 = time.monotonic()
-    p = _host(c_host, "TripodRoller", tmp_path / "fz.txt", env=env, reference=True)
-    assert time.monotonic() - t0 < 30
-    assert "did not answer within 2 s" in p.stdout + p.stderr, p.stdout + p.stderr[-2000:]
-    # the FMUs start no Python: the same environment does not touch them
-    p = _host(c_host, "TripodRoller", tmp_path / "fz2.txt", env=env)
-    assert p.returncode == 0 and "0 failed" in p.stdout, p.stdout + p.stderr[-2000:]
 
 
 _GET_EARLY = r'''

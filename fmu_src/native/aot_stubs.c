@@ -1,7 +1,7 @@
-/* What the prebuilt kernel (fmu_src/aot.py) references besides libm: numba's runtime and the
+/* What a model compiled ahead of time (fmu_src/aot.py) references besides libm: numba's runtime and the
    Python C API, on its error path only (a division by zero raising inside the compiled step).
    Stubbed here, hidden, so the library loads in any host, with or without Python symbols, and
-   an error makes the step return 0 (the native layer and model.py report it) instead of
+   an error makes the step return 0 (the native layer reports it) instead of
    raising.  Nothing on the normal path calls them.  (A Windows DLL must resolve every symbol
    when it is linked: the list is the cross-built object's undefined symbols but libm's.) */
 #include <stddef.h>

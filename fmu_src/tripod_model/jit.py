@@ -2,12 +2,10 @@
 
 Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
 
-numba keys its on-disk cache on the source file's folder, and FMPy extracts an FMU to a new
-temporary folder each run, so the bundled kernel would recompile (about 3 s) on every run.
-A cache locator keyed on the package's import name and the content hash of its sources keeps
-one cache for every copy of the same version under the same name (the source tree, or every
-extraction of one FMU build): ~/.cache/tripod-thrust/numba-pyXY/<name>-<hash>, or under
-TRIPOD_NUMBA_CACHE.
+numba keys its on-disk cache on the source file's folder.  A cache locator keyed on the
+package's import name and the content hash of its sources keeps one cache for every copy of the
+same version (a fresh clone, a test's copy of the tree):
+~/.cache/tripod-thrust/numba-pyXY/<name>-<hash>, or under TRIPOD_NUMBA_CACHE.
 """
 import os
 import sys
@@ -31,9 +29,8 @@ CACHE_DIR = switches.NUMBA_CACHE or os.path.join(
     f"numba-py{sys.version_info[0]}{sys.version_info[1]}")
 
 
-# this package's import name: tripod_model in the source tree, PKG.tripod_model inside an FMU
-# (PKG: the FMU's own package, fmu_src/build.py); its functions, and those of the reduced model
-# it compiles, are ours
+# this package's import name (tripod_model); its functions, and those of the reduced model it
+# compiles, are ours
 _PKG = __name__.rpartition(".")[0]
 _OURS = tuple(_PKG.rpartition(".")[0] + "." + n if "." in _PKG else n
               for n in ("tripod_model", "reduced_model"))
@@ -140,19 +137,6 @@ def inline(fn):
     if HAVE_NUMBA:
         return _compiled(fn, inline="always")
     return fn
-
-
-# numba.carray in a C function's body (kernel.step), which only numba runs
-carray = _nb.carray if HAVE_NUMBA else None
-
-
-def c_function(fn):
-    """fn compiled as a C function int32_t fn(double **args), the native layer's calling
-    convention (slavekit.FastStep): numba.cfunc, cached like njit; None without numba."""
-    if not HAVE_NUMBA:
-        return None
-    t = _nb.types
-    return _nb.cfunc(t.int32(t.CPointer(t.CPointer(t.float64))), nopython=True, cache=True)(fn)
 
 
 def compiled_copies(module, names, given=None):

@@ -1,16 +1,8 @@
 """The contact model's communication step: n substeps of the integrator the parameters name
-(layout.py names them), then the outputs; and the same step as a C function for the FMU's native
-layer (``step``, compiled by ``c_step``).  Scalar math only so that numba compiles it (jit.py).
-
-The C function: a step after the first (at any inputs in range and any step size: its operating
-point is derived again when they change) runs without entering Python, so a doStep costs what
-the kernel costs (the contact FMU near the bare FMI boundary).  Ideal and lumped bearing, one
-roller or a joint of three (JointModel: the rollers' arrays as rows of one array each); the
-needle-resolved bearing steps through Python.  ContactModel.step (model.py) keeps the operating
-point in OP and publishes the addresses of the arrays (at layout's FA_ places); the slave offers
-the compiled step with them as a slavekit.FastStep, the native layer
-(fmu_src/native/fmi2_python.c) calls it, and the slave (TripodRoller.py) reconciles its
-counters when Python is next entered.
+(layout.py names them), then the outputs: one roller (step_roller), a joint of ideal or lumped
+rollers in one call (step_joint: the rollers' arrays as rows of one array each), a
+needle-resolved roller's substeps (run_substeps).  Scalar math only so that numba compiles it
+(jit.py); lifecycle.py composes these into the FMU's step, and model.py calls them in process.
 
 Frame (model.md): groove fixed, groove axis = z axis through the origin, x = pressing
 direction, y = trunnion axis (nominal).  Forces are reported from the roller on the groove.
@@ -21,7 +13,7 @@ from reduced_model.housing import housing_forces
 from reduced_model.thrust import fz_mod
 from . import layout as K
 from . import oppoint, roller_setup, spider
-from .jit import c_function, carray, compiled_copies, inline, njit
+from .jit import compiled_copies, inline, njit
 from .assembly import resolved_forces
 from .budget import MAX_SUBSTEPS
 from . import bdf2, genalpha
@@ -224,7 +216,7 @@ def _roller(Y, P, OP, W, out, jump):
 
 @njit
 def step_roller(Y, P, OP, W, out, dst):
-    """One roller's communication step at the inputs in its own OP (kernel.step's n = 0): W its
+    """One roller's communication step at the inputs in its own OP (lifecycle.step: one roller): W its
     work arrays (layout.Work), out its output vector, dst the FMU's outputs (N_OUT).  Returns
     step's codes."""
     if not _roller(Y, P, OP, W, out, derive_op(P, OP)):
@@ -269,7 +261,7 @@ def joint_operating_points(n, P, OP):
 
 @njit
 def step_joint(n, Y, P, OP, Wn, out, dst):
-    """A joint of n rollers in one call (kernel.step's n > 0): OP a header row, whose inputs
+    """A joint of n rollers in one call (lifecycle.step: a joint): OP a header row, whose inputs
     every roller takes, over the rollers' own rows; every other array the rollers' arrays as
     rows (Wn: their layout.Work, each array one row a roller).  The outputs are roller 1's and
     the joint's (JointModel.step).  Returns step's codes."""
@@ -293,62 +285,6 @@ def step_joint(n, Y, P, OP, Wn, out, dst):
     dst[OUT_FZ_2] = out[1, K.O_FZ] if n > 1 else 0.0
     dst[OUT_FZ_3] = out[2, K.O_FZ] if n > 2 else 0.0
     return 1
-
-
-def step(args):
-    """One communication step at the inputs in OP (their operating point derived again when
-    they changed: oppoint.derive); 1: outputs written to OUT, 2: a non-finite output, 3: a
-    roller's adaptive substeps ran out of their budget (its hs[H_FAIL]; steplib.adaptive_steps)
-    (2, 3: nothing written; the state has moved, as in the Python step).  args: the arrays'
-    addresses in layout's FA_ places.
-
-    OP[OP_NROLL] = n > 0: a joint of n rollers (JointModel.fast_arrays, step_joint).  OP is
-    then a header row over the n rollers' own OP rows; every other array holds the rollers'
-    arrays one after the other.  n = 0: one roller (step_roller)."""
-    pY, pP, pOP, pOUT = args[K.FA_Y], args[K.FA_P], args[K.FA_OP], args[K.FA_OUT]
-    pL, pres, pY1, pY2 = args[K.FA_L], args[K.FA_RES], args[K.FA_Y1], args[K.FA_Y2]
-    pG, pA, pb, phs = args[K.FA_G], args[K.FA_A], args[K.FA_B], args[K.FA_HS]
-    pGW, pout = args[K.FA_GW], args[K.FA_OUTV]
-    head = carray(pOP, (OP_LEN,))
-    n = int(head[OP_NROLL])
-    dst = carray(pOUT, (N_OUT,))
-    if n == 0:
-        W = K.Work(carray(pL, (K.L_LEN,)), carray(pres, (K.R_LEN,)), carray(pY1, (K.Y_LEN,)),
-                   carray(pY2, (K.Y_LEN,)), carray(pG, (K.NV, 3)), carray(pA, (K.NV, K.NV)),
-                   carray(pb, (K.NV,)), carray(phs, (K.H_LEN,)), carray(pGW, (K.NV + 8, K.NV)))
-        P1 = carray(pP, (K.P_LEN,))
-        rc = step_roller(carray(pY, (K.Y_LEN,)), P1, head, W, carray(pout, (K.O_LEN,)), dst)
-        if rc != 1:
-            return rc
-        # (the same output array seen as one row: no reshape, whose helper the prebuilt
-        # library does not carry)
-        one = carray(pout, (1, K.O_LEN))
-        if not joint_into(one, 1, P1[K.P_S], head[OP_F], dst):
-            return 2
-        return 1 if spider_into(one, 1, head[OP_THETA], P1[K.P_S], head[OP_F], head, False,
-                                dst) else 2
-    Wn = K.Work(carray(pL, (n, K.L_LEN)), carray(pres, (n, K.R_LEN)),
-                carray(pY1, (n, K.Y_LEN)), carray(pY2, (n, K.Y_LEN)), carray(pG, (n, K.NV, 3)),
-                carray(pA, (n, K.NV, K.NV)), carray(pb, (n, K.NV)), carray(phs, (n, K.H_LEN)),
-                carray(pGW, (n, K.NV + 8, K.NV)))
-    return step_joint(n, carray(pY, (n, K.Y_LEN)), carray(pP, (n, K.P_LEN)),
-                      carray(pOP, (n + 1, OP_LEN)), Wn, carray(pout, (n, K.O_LEN)), dst)
-
-
-_C_STEP = []
-
-
-def c_step():
-    """``step`` compiled as the native layer's C function, int32_t step(double **args) (numba
-    cfunc; compiled, or loaded from numba's cache, at the first call); None without numba."""
-    if not _C_STEP:
-        _C_STEP.append(c_function(step))
-    return _C_STEP[0]
-
-
-def c_functions():
-    """{"step": the step as a C function}, what fmu_src/aot.py compiles ahead of time."""
-    return {"step": c_step()}
 
 
 # the free spider's joint step (spider = 1), which step_joint hands a joint to: imported last,

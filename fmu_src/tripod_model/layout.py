@@ -1,6 +1,6 @@
 """Array layouts shared by the compiled kernel and the Python around it: what each slot of the
 parameter, state, output and operating-point vectors holds.  Plain Python (no numba), so the
-model can be set up and stepped through a prebuilt kernel without importing numba.
+model's set-up reads them without importing numba.
 """
 from collections import namedtuple
 
@@ -101,18 +101,12 @@ N_F = 11   # floats per needle in the state vector
 # D_BORE, D_TRUN, D_NEIGH, D_FLANGE: summed normal loads [N] on the bore, trunnion, next
 # needle and flange/retainer; D_R1..3: force of the needle on the roller in T (e1, e2, e3) [N]
 
-# --- the communication step as a C function (kernel.step) ---
-# its one argument: the addresses of these arrays, at these places (the state Y, P, the
-# operating point OP, the FMU's outputs OUT, the roller's work arrays of layout.Work and its
-# output vector out; a joint: each array the rollers' rows stacked, JointModel.fast_arrays);
-# slavekit.FastStep offers it
-(FA_Y, FA_P, FA_OP, FA_OUT, FA_L, FA_RES, FA_Y1, FA_Y2, FA_G, FA_A, FA_B, FA_HS, FA_GW, FA_OUTV,
- FA_LEN) = range(15)
+# --- the communication step's operating point ---
 # the operating point it runs at (oppoint.derive): inputs theta, omega, F_press, torque, the
 # plunge speed OP_VP and the step dt; what they set (pressing load per roller, pressing offset,
 # substep and count); the inputs it was derived at (OP_KEY: six slots, theta, omega, F_press,
 # torque, dt, plunge speed); OP_NOSTEP > 0: outputs only, no substep;
-# OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (kernel.step)
+# OP_NROLL: 0 in a roller's own OP; n > 0 in the header row of a joint's n rollers (kernel.step_joint)
 (OP_THETA, OP_W, OP_F, OP_X0, OP_H, OP_N, OP_FP, OP_TQ, OP_DT, OP_NOSTEP, OP_VP,
  OP_KEY) = range(12)
 OP_NROLL = OP_KEY + 6

@@ -2,8 +2,8 @@
 reduced_model/analytic_kernel.py keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``state_problem``, compiled ahead of
 time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without Python.  They
 compose the model's own functions: roller_setup.py (the parameter vector, the needle row, the
-start on the settled cycle) and kernel.py (the step: the same functions the pythonfmu slave's
-prebuilt kernel runs), so the binary is held to the slave bit for bit
+start on the settled cycle) and kernel.py (the step), and run as Python in process
+(harness/inprocess.py) they are the oracle the binary is held to bit for bit
 (tests/test_native_fmu.py).  The arrays, their places and views: fmu_arrays.py.
 """
 import math
@@ -259,7 +259,7 @@ def refused(X, W, n):
 
 def step_resolved(T, X, W, n, nn, ns, ny, ys, OUT):
     """Each needle-resolved roller's step at its OP row's inputs (ContactModel._run), then the
-    joint's outputs.  Returns kernel.step's codes."""
+    joint's outputs.  Returns lifecycle.step's codes."""
     ramped = X[X_P + K.P_INTEGRATOR] == K.INT_DEFAULT   # (ContactModel.load_ramped)
     for i in range(n):
         Y = X[X_Y + i * ys:X_Y + i * ys + ny]
@@ -288,7 +288,7 @@ def step(T, IN, X, OUT, W, t, h):
     W[W_NOTES] = 0.0
     n, resolved, nn, ns, ny, ys = shape_of(T)
     if T[T_DRIVE_BY_ANGLE] != 0.0:   # the whirl reaches the master's angle at the step's end
-        w = (IN[SHAFT_ANGLE] - X[X_Y + K.Y_X]) / h    # (slavekit.omega_by_angle; roller 1)
+        w = (IN[SHAFT_ANGLE] - X[X_Y + K.Y_X]) / h    # (roller 1's whirl angle)
         IN[OMEGA] = w
         if not (IN_LO[OMEGA] <= w <= IN_HI[OMEGA]):
             return 5

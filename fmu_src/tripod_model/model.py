@@ -1,7 +1,9 @@
 """The one-roller contact model: parameters, state, step(dt) and outputs.
 
-What the FMU slave adapts.  Problem (parameters), integrator (kernel.run_substeps) and result
-(outputs) are kept apart: the model owns the state and advances it by communication steps.
+The contact model in process, for the harness, the benchmarks and the tests (the FMU's binary
+runs lifecycle.py, over the same kernel).  Problem (parameters), integrator
+(kernel.run_substeps) and result (outputs) are kept apart: the model owns the state and
+advances it by communication steps.
 """
 from __future__ import annotations
 
@@ -12,7 +14,7 @@ import numpy as np
 from reduced_model import scene as scene_mod
 
 # (numba only when needed)
-from . import layout as K, native, needle_setup, oppoint, roller_setup, start_slide
+from . import layout as K, needle_setup, oppoint, roller_setup, start_slide
 
 from reduced_model.scene import OUTPUTS  # noqa: F401  (declared once, with the parameters)
 from reduced_model.housing import housing_forces, spider_orbit
@@ -62,8 +64,6 @@ class ContactModel:
         self.substeps = 0
         self._OP = np.zeros(K.OP_LEN)   # inputs and operating point of a step (oppoint.py)
         self._OP[K.OP_KEY] = np.nan      # none derived yet
-        self._argv = None     # the prebuilt kernel's argument: its arrays' addresses (native.py)
-        self._fout = np.zeros(K.N_OUT)   # its output slot for the FMU (unused here)
         self._started = False
         # resolved bearing: the pressing offset, the load it is for, whether set (a cache)
         self._x0c = np.zeros(3)
@@ -162,8 +162,7 @@ class ContactModel:
     def set_inputs(self, dt, theta, omega, F_press, torque=0.0, plunge_speed=0.0):
         """The inputs and step dt [s] of the next step into OP; the compiled step derives their
         operating point (oppoint.derive) when they changed.  A dt within the rounding of the
-        master's times of the last one is that step (same_step), as on the native layer's
-        fast path."""
+        master's times of the last one is that step (same_step), as lifecycle.step does."""
         OP = self._OP
         if OP[K.OP_DT] > 0 and same_step(dt, OP[K.OP_DT], self.time):
             dt = OP[K.OP_DT]
@@ -211,22 +210,9 @@ class ContactModel:
         return self._L, self._res
 
     def _run(self):
-        """One step at OP's inputs: through the prebuilt kernel when the FMU ships one for
-        these sources (native.py: no numba needed), else through the kernel numba compiles;
-        the same compiled code, the same results.  Both derive the operating point first
-        (oppoint.derive); the resolved bearing's pressing offset is then the model's."""
-        fn = native.step_function() if self.NW is None else None
-        if fn is not None:
-            if self._argv is None:
-                arrays = self.fast_arrays()
-                self._argv = fast_argv(arrays[:3] + (self._fout,) + arrays[3:])
-            rc = fn(self._argv.ctypes.data)
-            if rc == 0:
-                raise FloatingPointError("the prebuilt kernel stopped on an arithmetic error "
-                                         "(a division by zero)")
-            if rc == 3:
-                raise StepRefused(refusal(self._hs, self.P))
-            return
+        """One step at OP's inputs through the kernel numba compiles: the operating point
+        derived first (oppoint.derive); the resolved bearing's pressing offset is then the
+        model's."""
         from . import kernel
         OP = self._OP
         # the load the last step ran at (none before the first: its key's theta is NaN)
@@ -243,23 +229,9 @@ class ContactModel:
             raise StepRefused(refusal(self._hs, self.P))
 
     def kernel_name(self) -> str:
-        """Which compiled kernel steps this roller (for the FMU's log)."""
-        if self.NW is None and native.step_function() is not None:
-            return "prebuilt (no numba at run time)"
+        """Which kernel steps this roller (for the log)."""
         from . import jit
         return "numba" if jit.HAVE_NUMBA else "plain Python (numba missing or off)"
-
-    def fast_arrays(self):
-        """The arrays kernel.step works on, in its argument order (after OUT, which the caller
-        owns); None where it cannot run (needle-resolved bearing)."""
-        if self.NW is not None:
-            return None
-        return tuple(getattr(self, name) for name in _FAST_ARRAYS)
-
-    def fast_synced(self, k, elapsed, hs1_before):
-        """Count k steps over elapsed [s] that kernel.step took (hs[H_TAKEN] was hs1_before)."""
-        self.time += elapsed
-        self.substeps += int(self._hs[K.H_TAKEN] - hs1_before)
 
     def get_state(self) -> dict:
         """A deep copy of everything a step depends on (for FMU state rollback)."""
@@ -300,15 +272,8 @@ def _probe(ctx):
     return ctx[0].probe(ctx[1], ctx[2], ctx[3], ctx[4])
 
 
-# the model's arrays at layout's FA_ places but OUT (the FMU's), in their order
-_FAST_ARRAYS = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "_hs", "_GW", "out")
-
-
-def fast_argv(arrays):
-    """kernel.step's argument for these arrays (at layout's FA_ places): their addresses in an
-    array the caller keeps alive as long as it calls the step with it."""
-    assert len(arrays) == K.FA_LEN
-    return np.array([a.ctypes.data for a in arrays], dtype=np.uintp)
+# the arrays a joint stacks (JointModel._stack)
+_STACKED = ("Y", "P", "_OP", "_L", "_res", "_Y1", "_Y2", "_G", "_A", "_b", "_hs", "_GW", "out")
 
 
 def _joint_outputs(outs, s, F, theta):
@@ -318,7 +283,7 @@ def _joint_outputs(outs, s, F, theta):
     contact_y [m]), the pressing load per roller F [N], the spider's centre on Eq. (5)'s orbit
     at the joint angle theta [rad] (kernel.spider_into) and each trunnion's load."""
     o = dict(outs[0])
-    total = 0.0   # left to right, as kernel.step (sum() compensates from Python 3.12 on)
+    total = 0.0   # left to right, as lifecycle.joint_outputs (sum() compensates from 3.12 on)
     for x in outs:
         total += x["Fz"]
     o["Fz_joint"] = total
@@ -356,15 +321,14 @@ class JointModel:
         self._stacks = (self._stack() if len(self.rollers) > 1 and p["bearing"] != K.BEAR_RESOLVED
                         else None)
         self.free = p["spider"] == scene_mod.SPIDER_FREE   # (validate: three rollers then)
-        self._dst = np.zeros(K.N_OUT)    # the free spider's outputs (kernel.step's OUT)
-        self._argv = None
+        self._dst = np.zeros(K.N_OUT)    # the free spider's outputs (the FMU's OUT)
 
     def _stack(self):
-        """The rollers' arrays as rows of one array each (kernel.step steps them as a joint in
-        one call), the OP array under a header row; each roller keeps views of its rows."""
+        """The rollers' arrays as rows of one array each (kernel.step_joint steps them as a
+        joint in one call), the OP array under a header row; each roller keeps views of its rows."""
         n = len(self.rollers)
         stacks = {}
-        for name in _FAST_ARRAYS:
+        for name in _STACKED:
             rows = [getattr(r, name) for r in self.rollers]
             head = 1 if name == "_OP" else 0
             st = np.zeros((n + head,) + rows[0].shape)
@@ -375,17 +339,10 @@ class JointModel:
         for r in self.rollers:
             r._bind_work()
         stacks["_OP"][0, K.OP_NROLL] = n
-        # kernel.step derives one operating point for all the rollers (oppoint.copy_derived):
+        # kernel.step_joint derives one operating point for all the rollers (oppoint.copy_derived):
         # they differ in their whirl phase, which P does not hold, and in nothing else
         assert all(np.array_equal(row, stacks["P"][0], equal_nan=True) for row in stacks["P"])
         return stacks
-
-    def fast_arrays(self):
-        """The arrays kernel.step works on (ContactModel.fast_arrays; for a joint the stacked
-        rows under the OP header), or None where it cannot run."""
-        if self._stacks is None:
-            return self.rollers[0].fast_arrays() if len(self.rollers) == 1 else None
-        return tuple(self._stacks[name] for name in _FAST_ARRAYS)
 
     @property
     def started(self):
@@ -403,7 +360,7 @@ class JointModel:
         out = _joint_outputs([r.step(dt, theta, omega, F_press, torque, plunge_speed)
                               for r in self.rollers], self.p["s"], self.pressing(F_press, torque),
                              theta)
-        if self._stacks is not None:   # the inputs and step a joint's kernel.step takes next
+        if self._stacks is not None:   # the inputs and step a joint's step takes next
             head, op = self._stacks["_OP"][0], self.rollers[0]._OP
             for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
                 head[j] = op[j]
@@ -416,8 +373,8 @@ class JointModel:
                               theta)
 
     def _step_free(self, dt, theta, omega, F_press, torque, plunge_speed):
-        """A step of the rollers on a floating spider (kernel.step_free_spider, through the
-        prebuilt kernel where there is one): all three rollers and the spider in one call."""
+        """A step of the rollers on a floating spider (kernel.step_joint hands it to
+        free_spider.step_free_spider): all three rollers and the spider in one call."""
         F = self.pressing(F_press, torque)
         for r in self.rollers:
             if not r._started:
@@ -427,18 +384,11 @@ class JointModel:
         for j in (K.OP_THETA, K.OP_W, K.OP_FP, K.OP_TQ, K.OP_DT, K.OP_VP):
             head[j] = op[j]
         taken = [r._hs[K.H_TAKEN] for r in self.rollers]
-        fn = native.step_function()
-        if fn is not None:
-            if self._argv is None:
-                arrays = self.fast_arrays()
-                self._argv = fast_argv(arrays[:3] + (self._dst,) + arrays[3:])
-            rc = fn(self._argv.ctypes.data)
-        else:
-            from . import kernel
-            st = self._stacks
-            rc = kernel.step_joint(3, st["Y"], st["P"], st["_OP"], K.Work(
-                st["_L"], st["_res"], st["_Y1"], st["_Y2"], st["_G"], st["_A"], st["_b"],
-                st["_hs"], st["_GW"]), st["out"], self._dst)
+        from . import kernel
+        st = self._stacks
+        rc = kernel.step_joint(3, st["Y"], st["P"], st["_OP"], K.Work(
+            st["_L"], st["_res"], st["_Y1"], st["_Y2"], st["_G"], st["_A"], st["_b"],
+            st["_hs"], st["_GW"]), st["out"], self._dst)
         if rc == 3:
             raise StepRefused(self.refusal())
         if rc != 1:

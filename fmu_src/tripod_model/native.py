@@ -1,22 +1,12 @@
-"""The prebuilt kernel: kernel.step compiled ahead of time into a shared library when the FMU is
-built (fmu_src/aot.py), loaded here with ctypes.  A scene without resolved needles then steps
-through it and never imports numba: a fresh process saves numba's import and start-up (about
-0.6 s of a 1.3 s `fmpy simulate`).  The library is used only when it was built from exactly
-these sources (their content hash); otherwise, or with TRIPOD_AOT=0, numba compiles the
-kernel (TRIPOD_NUMBA=0: plain Python, neither).
+"""The content hash of the contact model's sources, without importing numba: what numba's
+on-disk cache is keyed on (jit.py), so every copy of the same sources shares one cache.
 """
-import ctypes
 import hashlib
 import re
-import json
 import os
 
-from reduced_model import switches
-
 _DIR = os.path.dirname(os.path.abspath(__file__))
-LIB, META = "_step.so", "_step.json"     # next to this file, in the FMU only
 _HASH = None
-_STEP = False   # not looked up yet
 
 
 # modules of the reduced model the compiled kernel takes in (kernel.py: the housing frame and
@@ -39,9 +29,8 @@ def _compiled_elsewhere():
 
 
 def source_hash() -> str:
-    """Content hash of every .py file of this package and of _ELSEWHERE (the same in every
-    extracted copy, and in the source tree: the FMU's build makes its imports of the other
-    bundled packages relative, so the leading dots of imports are left out)."""
+    """Content hash of every .py file of this package and of _ELSEWHERE (the leading dots of
+    imports left out, so a copy whose imports are made relative hashes alike)."""
     global _HASH
     if _HASH is None:
         h = hashlib.sha256()
@@ -53,33 +42,3 @@ def source_hash() -> str:
             h.update(os.path.basename(path).encode() + b"\0" + text)
         _HASH = h.hexdigest()
     return _HASH
-
-
-def step_function():
-    """The prebuilt step as a ctypes function (kernel.step's C signature: int32_t f(double **)),
-    or None."""
-    global _STEP
-    if _STEP is False:
-        _STEP = _load()
-    return _STEP
-
-
-def _load():
-    if not switches.AOT:
-        return None   # (TRIPOD_NUMBA=0 asks for plain Python: no compiled kernel at all)
-    try:
-        with open(os.path.join(_DIR, META)) as f:
-            meta = json.load(f)
-        if meta["hash"] != source_hash():
-            return None
-        fn = ctypes.CDLL(os.path.join(_DIR, LIB))[meta["symbol"]]
-    except (OSError, KeyError, ValueError, AttributeError):
-        return None
-    fn.restype = ctypes.c_int32
-    fn.argtypes = [ctypes.c_void_p]   # kernel.step's one argument: its arrays' addresses
-    return fn
-
-
-def address(fn) -> int:
-    """The C address of a ctypes function (what the native layer calls)."""
-    return ctypes.cast(fn, ctypes.c_void_p).value

@@ -5,7 +5,7 @@ count, the largest adaptive substep, the pressing offset of the trunnion axis.
 Plain Python over the parameter vector P and the operating-point vector OP (layout.py), so the
 model derives it without numba (its log, the needle-resolved bearing), and numba compiles the
 same functions into the communication step (kernel.derive_op, by jit.compiled_copies), which derives it
-itself when a master sets new inputs (the native layer's fast path, kernel.step): one
+itself when a master sets new inputs (lifecycle.step): one
 implementation for both.
 """
 import math
@@ -322,7 +322,7 @@ def derive(P, OP):
 
 
 # what derive writes: a roller whose parameters and inputs are another's takes them by
-# copy_derived (a joint's rollers, kernel.step: one derive a joint)
+# copy_derived (a joint's rollers, kernel.step_joint: one derive a joint)
 OP_DERIVED = (OP_F, OP_N, OP_H, OP_X0, OP_KEY, OP_KEY + 1, OP_KEY + 2, OP_KEY + 3, OP_KEY + 4,
               OP_KEY + 5)
 P_DERIVED = (P_DF, P_VST_OP, P_VP, P_HMAX, P_HFREE, P_RINGA)

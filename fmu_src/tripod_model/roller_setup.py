@@ -45,7 +45,7 @@ DERIVED_FROM = ("E", "nu", "l_needle", "n_needles", "roller_width", "step_tolera
 NEEDLE_ROW = ("n_spheres", "d_needle", "r_trunnion", "needle_circ_clearance",
               "needle_axial_clearance", "rho_needle")
 ELSEWHERE = {"n_rollers": "the joint (model.JointModel, lifecycle.py)",
-             "drive_by_angle": "the step (slavekit.omega_by_angle, lifecycle.step)",
+             "drive_by_angle": "the step (lifecycle.step)",
              "spin_inertia": "the analytic model only: the contact model's roller always has "
                              "its spin inertia"}
 (T_S, T_R_ROLLER, T_R_GROOVE, T_R_BORE, T_M_ROLLER, T_E, T_NU, T_MU_GROOVE, T_BEARING,

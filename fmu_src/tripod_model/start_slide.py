@@ -10,8 +10,7 @@ trunnion axis start the roller where steady running has it (ideal and lumped bea
 the needle-resolved row the roller starts at the groove bottom).  The trunnion's line and the
 contact slip come from the kernel itself, probed at the start state without a step
 (roller_setup.place_on_cycle, which the FMU's binary compiles too).  This module gives the
-model the settled cycle (a Traverse, cached): no numba, so the prebuilt kernel's process never
-imports it.  How close the start is: docs/integrators.md, "The start".
+model the settled cycle (a Traverse, cached), without numba.  How close the start is: docs/integrators.md, "The start".
 """
 from __future__ import annotations
 
