@@ -479,21 +479,21 @@ def _write_wp(out, rows, detail):
 
 BREAKDOWN_PARTS = ("FMI boundary (the bare model)", "the FMU's compiled lifecycle (the rest)",
                    "total through FMPy",
-                   "in process (model.py): Python per-step setup", "in process: numba kernel")
+                   "in process (model.py): the lifecycle's Python", "in process: numba kernel")
 
 
 def breakdown(runs=5, dt=1e-4):
     """Where the time of one two-cycle run of the default contact scene goes [s]: through
     FMPy, the FMI boundary (the bare model) and the FMU's compiled lifecycle; in process
-    (model.py, the harness's path), the model's Python and the numba kernel."""
-    from tripod_model import kernel
+    (model.py, the harness's path), the lifecycle's Python and the numba kernel."""
+    from tripod_model import lifecycle
     from tripod_model.model import JointModel
     n = int(round(STOP / dt))
     bare = time_runs(bare_fmu(), [{"sv": {}, "dt": dt, "stop": STOP}], runs, read=("Fz",))[0]["wall"]
     fmu = time_runs(ensure_fmu("TripodRoller"), [{"sv": {}, "dt": dt, "stop": STOP}], runs,
                     read=("Fz",))[0]["wall"]
     model_t, kernel_t = [], []
-    orig = kernel.run_substeps
+    orig = lifecycle.step_roller     # (the compiled step a roller's lifecycle.step calls)
     for _ in range(runs + 1):
         m = JointModel({})
         p = m.p
@@ -504,7 +504,7 @@ def breakdown(runs=5, dt=1e-4):
             ok = orig(*a)
             acc[0] += time.perf_counter() - t0
             return ok
-        kernel.run_substeps = timed
+        lifecycle.step_roller = timed
         try:
             t0 = time.perf_counter()
             for _ in range(n):
@@ -512,10 +512,10 @@ def breakdown(runs=5, dt=1e-4):
             model_t.append(time.perf_counter() - t0)
             kernel_t.append(acc[0])
         finally:
-            kernel.run_substeps = orig
-    model, kernel = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
-    return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - bare, 0.0), fmu, model - kernel,
-                                      kernel)))
+            lifecycle.step_roller = orig
+    model, compiled = statistics.median(model_t[1:]), statistics.median(kernel_t[1:])
+    return dict(zip(BREAKDOWN_PARTS, (bare, max(fmu - bare, 0.0), fmu, model - compiled,
+                                      compiled)))
 
 
 # --- peers on the same equations (tripod-thrust bench --peer) ------------------------------

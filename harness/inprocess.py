@@ -19,7 +19,6 @@ from __future__ import annotations
 import importlib
 import inspect
 import math
-import re
 
 import numpy as np
 from fmpy import read_model_description
@@ -27,6 +26,7 @@ from fmpy.fmi1 import FMICallException
 from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2OK, fmi2Warning
 
 from harness.fmus import builder
+from reduced_model.cfuncs import worded_notes
 
 ARRAYS = ("P", "IN", "X", "OUT", "W")
 NO_NOTES = {"at": -1}     # (a model that leaves none: the powertrain)
@@ -85,24 +85,11 @@ class InProcess(FMU2Slave):
         raise FMICallException(fn, status)
 
     def _notes(self, prefix=""):
-        """The notes the last call left in W, worded as the native layer words them."""
+        """The notes the last call left in W, worded and logged as the native layer does."""
         notes = self.layout.get("notes", NO_NOTES)
         if notes["at"] < 0:
             return
-        W = self.a["W"][notes["at"]:]
-        n, msg, level = int(W[0]), "", 0
-        for k in range(min(n, notes["max"])):
-            note = W[1 + k * (1 + notes["args"]):1 + (k + 1) * (1 + notes["args"])]
-            lev, text = notes["text"][int(note[0])]
-            used = len(re.findall(r"%[^%]", text.replace("%%", "")))   # (printf ignores the rest)
-            part = text % tuple(note[1:1 + used])
-            if part.startswith("; ") and msg:
-                msg += part[2:] if msg.endswith(": ") else part
-                continue
-            if msg:
-                self._say_note(level, prefix, msg)
-            msg, level = part, lev
-        if msg:
+        for level, msg in worded_notes(self.a["W"], notes["at"], notes["text"]):
             self._say_note(level, prefix, msg)
 
     def _say_note(self, level, prefix, msg):

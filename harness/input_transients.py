@@ -62,7 +62,7 @@ def settle(params, n_rollers, f, cycles=2, theta=THETA, torque=TORQUE, nudge=0.0
 def _outputs(m, inputs, steps, sub=1, before=None):
     """The model's outputs at the end of each of ``steps`` communication steps DT at
     ``inputs``, taken in steps of DT / sub.  ``before``: the inputs before a step; where the
-    model ramps a load change over its step (ContactModel.load_ramped) the torque then follows
+    model ramps a load change over its step (model.Roller.load_ramped) the torque then follows
     that ramp over the first DT's sub steps, so a finer reference sees the same input history."""
     ramp = before is not None and sub > 1 and m.rollers[0].load_ramped
     for i in range(steps * sub):
@@ -107,9 +107,10 @@ MEAN_SAMPLES = 10
 
 def twin(state, eps):
     """A model state (get_state's) with the first roller's spin scaled by 1 + eps."""
-    from tripod_model.layout import Y_OM   # (on the path _model put it)
-    out = [dict(s, Y=s["Y"].copy()) for s in state]
-    out[0]["Y"][Y_OM] *= 1.0 + eps
+    from tripod_model.fmu_arrays import X_Y
+    from tripod_model.layout import Y_OM
+    out = state.copy()
+    out[X_Y + Y_OM] *= 1.0 + eps
     return out
 
 

@@ -24,7 +24,7 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
-from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note
+from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_notes
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
@@ -163,15 +163,8 @@ def notes(W):
 
 def notes_text(W):
     """[(level, message)] of the notes W holds, a note starting with "; " joined to the one
-    before (as the FMU's binary words them: fmu_src/native/fmi2_native.c)."""
-    out = []
-    for _, level, text in notes(W):
-        if text.startswith("; ") and out:
-            prev_level, prev = out[-1]
-            out[-1] = (prev_level, prev + (text[2:] if prev.endswith(": ") else text))
-        else:
-            out.append((level, text))
-    return out
+    before (as the FMU's binary words them: cfuncs.worded_notes)."""
+    return worded_notes(W, W_NOTES, NOTE_TEXT)
 
 
 def note(W, code, a0, a1, a2, a3):

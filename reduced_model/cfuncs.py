@@ -3,6 +3,7 @@
 (fmu_src/aot.py), their compiled functions as the C functions the native FMI layer calls
 (fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH)."""
 import math
+import re
 
 NOTE_ARGS = 4   # the numbers a note carries (the native layer words four)
 
@@ -20,6 +21,24 @@ def leave_note(W, at, most, code, a0, a1, a2, a3):
     W[k + 3] = a2
     W[k + 4] = a3
     W[at] = n + 1
+
+
+def worded_notes(W, at, text):
+    """[(level, message)] of the notes W holds at ``at`` (leave_note's), each worded by its
+    printf format in ``text`` ((level, format) a code), a note starting with "; " joined to
+    the one before: as the native layer words them (fmu_src/native/fmi2_native.c)."""
+    out = []
+    for n in range(int(W[at])):
+        k = at + 1 + n * (1 + NOTE_ARGS)
+        level, fmt = text[int(W[k])]
+        used = len(re.findall(r"%[^%]", fmt.replace("%%", "")))   # (printf ignores the rest)
+        msg = fmt % tuple(float(W[k + 1 + i]) for i in range(used))
+        if msg.startswith("; ") and out:
+            prev_level, prev = out[-1]
+            out[-1] = (prev_level, prev + (msg[2:] if prev.endswith(": ") else msg))
+        else:
+            out.append((level, msg))
+    return out
 
 
 def native_layout(by_name, params, inputs, outputs, check_order, sizes, notes_at, most, text,

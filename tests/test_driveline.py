@@ -49,7 +49,7 @@ def test_torque_drives_pressing_and_wins(name):
 
 def test_outputs_at_start_time_are_the_start_state():
     """At t = 0 the contact FMU reports its start state, not the outputs' declared zeros: the
-    roller pressed onto the groove by F_press where the settled cycle has it (start_slide: up
+    roller pressed onto the groove by F_press where the settled cycle has it (lifecycle.settled_table: up
     the flank, sliding along the trunnion, rolling along the groove).  Against the same FMU
     three whirl cycles on, at the same whirl angle: the start at the groove bottom, at rest
     along the trunnion, was 10 % off in Fx and 5 % in the spin; the traverse model's slide

@@ -27,7 +27,7 @@ def run(params, theta_deg, cycles=3.0, torque=0.0):
     rows, heads = [], []
     for _ in range(int(round(cycles * 2 * math.pi / W / DT))):
         rows.append(j.step(DT, math.radians(theta_deg), W, 0.0 if torque else F, torque))
-        heads.append(j._stacks["_OP"][0].copy())
+        heads.append(j.header.copy())
     return {k: np.array([r[k] for r in rows]) for k in rows[0]}, np.array(heads), j
 
 

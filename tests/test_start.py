@@ -1,4 +1,4 @@
-"""The contact model's start on the settled cycle (tripod_model/start_slide.py, roller_setup.py;
+"""The contact model's start on the settled cycle (tripod_model/lifecycle.py, roller_setup.py;
 docs/integrators.md, "The start")."""
 import math
 from pathlib import Path
@@ -8,7 +8,7 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[1]
 
-from tripod_model import layout as K, roller_setup, start_slide
+from tripod_model import layout as K, lifecycle, roller_setup
 from tripod_model.model import ContactModel, JointModel
 from reduced_model import scene as S
 
@@ -42,8 +42,8 @@ def _launch_run(settled_start, n, scene=LAUNCH):
     theta, torque = scene.get("theta", d["theta"]), scene.get("torque", 0.0)
     subs, fz = [], []
     if not settled_start:   # the start as it was: at the groove bottom, at rest
-        real = start_slide.traverse_table
-        start_slide.traverse_table = lambda *a, **k: None
+        real = lifecycle.settled_table
+        lifecycle.settled_table = lambda *a: False
     try:
         for _ in range(n):
             before = sum(r.substeps for r in m.rollers)
@@ -51,7 +51,7 @@ def _launch_run(settled_start, n, scene=LAUNCH):
             subs.append(sum(r.substeps for r in m.rollers) - before)
     finally:
         if not settled_start:
-            start_slide.traverse_table = real
+            lifecycle.settled_table = real
     return np.array(subs) / 3, np.array(fz)
 
 
@@ -93,7 +93,8 @@ def test_where_the_traverse_model_does_not_hold_the_start_is_the_groove_bottom(o
     m = ContactModel(dict(over))
     p = m.p
     F = S.pressing_load(p["F_press"], p["torque"], p["s"])
-    assert start_slide.traverse_table(p, p["theta"], p["omega"], F, 0.0) is None
+    assert not lifecycle.settled_table(m.T, np.zeros_like(m.joint.W), p["theta"], p["omega"],
+                                       F, 0.0)
     m.start(p["theta"], p["omega"], F)
     assert m.Y[K.Y_U] == 0.0 and m.Y[K.Y_UD] == 0.0
 

@@ -216,13 +216,13 @@ def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
 
 def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
     # the mechanism: the needle-resolved bearing's pressing offset moves from the old load's
-    # value to the new one's over the step in which the load changed (model.ContactModel._run),
+    # value to the new one's over the step in which the load changed (lifecycle.step_resolved),
     # ending where the held load puts it; no ramp at the first step, at an unchanged load,
     # after a restore at the load the state was stepped at, or with a comparison integrator
     m = T._model({"bearing": 2, "n_needles": 12}, 1)
-    from tripod_model import kernel
-    seen, run = [], kernel.run_substeps
-    monkeypatch.setattr(kernel, "run_substeps",
+    from tripod_model import lifecycle
+    seen, run = [], lifecycle.run_substeps
+    monkeypatch.setattr(lifecycle, "run_substeps",
                         lambda Y, P, drive, *a: (seen.append(drive), run(Y, P, drive, *a))[1])
     w, dt = 2 * math.pi * 10, 1e-4
     for tq in (300.0, 300.0, 270.0, 270.0):

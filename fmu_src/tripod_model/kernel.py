@@ -166,8 +166,8 @@ def _put(dst, base, vals):
 
 @njit
 def outputs_into(o, F_press, dst):
-    """The FMU's outputs (OUTPUT_NAMES) of one roller from the kernel's output vector o, as
-    ContactModel.outputs and JointModel.step compute them.  Returns whether all are finite
+    """The FMU's outputs (OUTPUT_NAMES) of one roller from the kernel's output vector o.
+    Returns whether all are finite
     (nothing is written otherwise)."""
     Fx = o[K.O_FX]
     Fz_mod = _fz_mod(Fx, o[K.O_FZ], F_press)
@@ -186,7 +186,7 @@ def outputs_into(o, F_press, dst):
 
 @njit
 def joint_into(out, n, s, F, dst):
-    """The joint's outputs after roller 1's (JointModel.step, model._joint_outputs): the other
+    """The joint's outputs after roller 1's: the other
     rollers' forces and contact points (0 where absent), the joint on the housing at the
     contact radii s + contact_y [m], the pressing load per roller F [N].  Returns whether all
     are finite (nothing is written otherwise)."""
@@ -264,11 +264,11 @@ def step_joint(n, Y, P, OP, Wn, out, dst):
     """A joint of n rollers in one call (lifecycle.step: a joint): OP a header row, whose inputs
     every roller takes, over the rollers' own rows; every other array the rollers' arrays as
     rows (Wn: their layout.Work, each array one row a roller).  The outputs are roller 1's and
-    the joint's (JointModel.step).  Returns step's codes."""
+    the joint's.  Returns lifecycle.step's codes."""
     if P[0, K.P_SPIDER] == SPIDER_FREE:
         return step_free_spider(n, Y, P, OP, Wn, out, dst)
     jump = joint_operating_points(n, P, OP)
-    total = 0.0   # left to right, as JointModel.step
+    total = 0.0   # left to right, as lifecycle.joint_outputs
     for i in range(n):
         if not _roller(Y[i], P[i], OP[i + 1], K.Work(Wn.L[i], Wn.res[i], Wn.Y1[i], Wn.Y2[i],
                                                       Wn.G[i], Wn.A[i], Wn.b[i], Wn.hs[i],

@@ -133,7 +133,7 @@ OUT_SPIDER_X = OUTPUT_NAMES.index("spider_x")   # then spider_y, F_roller_1..3 (
 # the step's driving inputs: joint angle theta [rad], whirl rate w [rad/s], the trunnion
 # axis' pressing offset x0 [m] (oppoint.derive; at the step's end) and its rate x0_rate [m/s]
 # over the step (the needle-resolved bearing's ramp after a load change with BDF2,
-# model.ContactModel.load_ramped; 0 otherwise)
+# model.Roller.load_ramped; 0 otherwise)
 Drive = namedtuple("Drive", "theta w x0 x0_rate")
 # one roller's work arrays (model.ContactModel makes them): the trunnion line L (L_LEN), the
 # contact's result res (R_LEN), two states Y1, Y2 (like Y), the slip sensitivities G (NV x 3),

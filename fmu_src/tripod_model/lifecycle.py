@@ -89,7 +89,7 @@ def no_key(T, X):
 
 def probe(ctx):
     """The kernel's (L, res) at a roller's state now, by a step of no substeps at the inputs
-    in ctx (ContactModel.probe): its P, OP and history kept.  ctx: (Y, P, OP, work, its output
+    in ctx: its P, OP and history kept.  ctx: (Y, P, OP, work, its output
     vector, W, theta, omega, F, vp, time, T, its needle work or None, its offset cache)."""
     Y, P, OP, Wk, out, W, theta, omega, F, vp, time, T, NW, cache = ctx
     hs = Wk.hs
@@ -100,7 +100,7 @@ def probe(ctx):
         W[s + K.P_LEN + j] = OP[j]
     for j in range(K.H_LEN):
         W[s + K.P_LEN + K.OP_LEN + j] = hs[j]
-    dt = 1e-4       # (ContactModel.set_inputs: any step; none is taken)
+    dt = 1e-4       # (any step: none is taken)
     if OP[K.OP_DT] > 0 and same_step(dt, OP[K.OP_DT], time):
         dt = OP[K.OP_DT]
     OP[K.OP_THETA] = theta
@@ -128,8 +128,9 @@ def probe(ctx):
 
 def settled_table(T, W, theta, omega, F, vp):
     """The traverse model's settled cycle at these inputs into W (W_SS, W_PS), where it places
-    the rollers at the start (roller_setup.uses_table; start_slide.traverse_table): whether it
-    does."""
+    the rollers at the start (roller_setup.uses_table, place_on_cycle): whether it does.  A
+    roller started at the groove bottom and at rest along the trunnion, its friction
+    saturated, is thrown up the flank and rings (docs/integrators.md, "The start")."""
     if not uses_table(T, omega, F):
         return False
     key = W[W_TKEY:W_TKEY + 6]
@@ -154,7 +155,7 @@ def settled_table(T, W, theta, omega, F, vp):
 
 
 def start(T, IN, X, W, F):
-    """Every roller at its start (ContactModel.start) at IN's inputs and the pressing load F
+    """Every roller at its start at IN's inputs and the pressing load F
     [N]: at whirl angles 0, 120, 240 deg, rolling without slip, where the settled cycle has it
     (ideal and lumped bearing) or with its needles placed (resolved)."""
     n, resolved, nn, ns, ny, ys = shape_of(T)
@@ -182,9 +183,9 @@ def start(T, IN, X, W, F):
 
 def joint_outputs(out, n, s, F, theta, OUT):
     """The FMU's outputs from the rollers' output vectors out (n rows) at the pressing load F
-    [N] per roller and the joint angle theta [rad] (model._joint_outputs).  Returns 1, or 2 (a
+    [N] per roller and the joint angle theta [rad].  Returns 1, or 2 (a
     non-finite output)."""
-    total = 0.0   # left to right, as model._joint_outputs
+    total = 0.0   # left to right (sum() compensates from Python 3.12 on)
     for i in range(n):
         total += out[i, K.O_FZ]
     if not math.isfinite(total) or not outputs_into(out[0], F, OUT):
@@ -199,7 +200,7 @@ def joint_outputs(out, n, s, F, theta, OUT):
 
 
 def init(T, IN, X, OUT, W):
-    """The start's outputs (JointModel.initial_outputs: every roller started at IN's inputs and
+    """The start's outputs (every roller started at IN's inputs and
     probed), the model then at rest: the first step starts from its own inputs.  Returns 1; 2
     for a non-finite output; 3 for a scene refused (its note says why)."""
     W[W_NOTES] = 0.0
@@ -233,7 +234,7 @@ def init(T, IN, X, OUT, W):
 
 # --- the step ---------------------------------------------------------------------------------
 def set_inputs(OP, IN, dt):
-    """IN's inputs and the step dt [s] where the kernel reads them (ContactModel.set_inputs)."""
+    """IN's inputs and the step dt [s] where the kernel reads them."""
     OP[K.OP_THETA] = IN[THETA]
     OP[K.OP_W] = IN[OMEGA]
     OP[K.OP_FP] = IN[F_PRESS]
@@ -243,7 +244,7 @@ def set_inputs(OP, IN, dt):
 
 
 def refused(X, W, n):
-    """A note on the first roller whose step ran out of its budget (JointModel.refusal)."""
+    """A note on the first roller whose step ran out of its budget."""
     for i in range(n):
         hs = X[X_HS + i * K.H_LEN:X_HS + (i + 1) * K.H_LEN]
         P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
@@ -258,9 +259,9 @@ def refused(X, W, n):
 
 
 def step_resolved(T, X, W, n, nn, ns, ny, ys, OUT):
-    """Each needle-resolved roller's step at its OP row's inputs (ContactModel._run), then the
+    """Each needle-resolved roller's step at its OP row's inputs, then the
     joint's outputs.  Returns lifecycle.step's codes."""
-    ramped = X[X_P + K.P_INTEGRATOR] == K.INT_DEFAULT   # (ContactModel.load_ramped)
+    ramped = X[X_P + K.P_INTEGRATOR] == K.INT_DEFAULT   # (model.Roller.load_ramped)
     for i in range(n):
         Y = X[X_Y + i * ys:X_Y + i * ys + ny]
         P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
@@ -331,7 +332,7 @@ def step(T, IN, X, OUT, W, t, h):
 
 
 def end(T, IN, X, OUT, W):
-    """The run's end: notes on how roller 1 was stepped (JointModel.summary) and the
+    """The run's end: notes on how roller 1 was stepped and the
     communication steps.  Returns 1."""
     W[W_NOTES] = 0.0
     hs = X[X_HS:X_HS + K.H_LEN]

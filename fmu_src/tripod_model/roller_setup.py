@@ -23,6 +23,11 @@ def _slot(name):
     return PARAM_NAMES.index(name)
 
 
+def params_array(p: dict) -> list:
+    """The table's values T (PARAM_NAMES' order, floats) of the scene p."""
+    return [float(p[n]) for n in PARAM_NAMES]
+
+
 # P's slots copied from the table as they are, and the flags (1.0 or 0.0)
 COPIED = tuple((slot, _slot(name)) for slot, name in (
     (K.P_S, "s"), (K.P_R_ROLLER, "r_roller"), (K.P_R_GROOVE, "r_groove"),

@@ -1,5 +1,6 @@
-"""What a roller's model state (ContactModel.get_state) must hold to be stepped: checked when a
-host sets a state (the FMU's fmi2SetFMUstate), beyond its format.  Plain Python.
+"""The bounds a contact model's state must keep to be stepped: checked when a host sets a state
+(the FMU's fmi2SetFMUstate: lifecycle.state_problem compiles these functions), beyond its
+format.  Scalar Python.
 
 The bounds come from the scene, each far outside what a run reaches (benchmarks/step_budget.py
 and tests/test_budget.py measure both):
@@ -17,7 +18,6 @@ and tests/test_budget.py measure both):
 """
 import math
 
-import numpy as np
 
 from reduced_model.scene import BY_NAME
 from . import layout as K
@@ -25,31 +25,6 @@ from . import layout as K
 SPEED_MARGIN = 10.0
 WHIRL_HI = BY_NAME["shaft_angle"].hi + 2.0 * math.pi   # a state's whirl angle [rad]
 VST_HI = BY_NAME["v_st"].hi                             # a state's transition velocity [m/s]
-# what each roller value roller_bound checks is called in a refusal: name, unit, why the bound
-Y_WORDS = {K.Y_X: ("whirl angle", "rad", "the shaft angle's range"),
-           K.Y_U: ("slide u", "m", "half the needle length: the roller off its needles"),
-           K.Y_UD: ("slide speed", "m/s", "the scene's speeds"),
-           K.Y_OM: ("spin", "rad/s", "the scene's speeds"),
-           K.Y_E: ("radial offset e", "m", "the needle diameter"),
-           K.Y_W: ("radial offset w", "m", "the needle diameter"),
-           K.Y_B1: ("tilt b1", "rad", "half a needle across the row"),
-           K.Y_B2: ("tilt b2", "rad", "half a needle across the row"),
-           K.Y_ED: ("radial speed e'", "m/s", "the scene's speeds"),
-           K.Y_WD: ("radial speed w'", "m/s", "the scene's speeds"),
-           K.Y_B1D: ("tilt rate b1'", "rad/s", "the scene's speeds"),
-           K.Y_B2D: ("tilt rate b2'", "rad/s", "the scene's speeds")}
-
-
-class BadState(ValueError):
-    """A model state that cannot be stepped, with the reason."""
-
-
-def _finite(name, v):
-    a = np.asarray(v, dtype=float)
-    if not np.isfinite(a).all():
-        raise BadState(f"{name} holds a non-finite value")
-
-
 def speed_limit(s, r_roller, theta, omega, vp):
     """The fastest a roller's point may move [m/s] at joint angle theta [rad] (at most pi/4
     counted), whirl omega [rad/s] and plunge speed vp [m/s] on a joint of trunnion offset s and
@@ -83,8 +58,8 @@ def history_bound(vst, hs):
 
 
 def roller_bound(Y, row, l_needle, d_needle, r_roller, r_bore, v):
-    """The first value of a roller's state Y beyond its bound (module docstring), in Y_WORDS'
-    order: (code of fmu_arrays.STATE_PROBLEMS, its index in Y, the bound), (0, -1, 0.0) when
+    """The first value of a roller's state Y beyond its bound (module docstring): (code of
+    fmu_arrays.STATE_PROBLEMS, its index in Y, the bound), (0, -1, 0.0) when
     every one is within.  row: the bearing has a row (not the ideal one); l_needle, d_needle,
     r_roller, r_bore [m]; v: speed_limit [m/s].  NaN is beyond.  Scalar: the compiled state
     check (lifecycle.roller_problem) compiles it."""
@@ -113,42 +88,6 @@ def roller_bound(Y, row, l_needle, d_needle, r_roller, r_bore, v):
     return 0, -1, 0.0
 
 
-def check_roller_state(st: dict, p: dict, theta: float, omega: float, vp: float) -> None:
-    """Raise BadState naming the value if the roller state ``st`` cannot be stepped; p: the
-    model's parameters, theta [rad], omega [rad/s], vp [m/s]: the inputs it is to be stepped
-    at (the larger of those and of its own key count)."""
-    for name in ("Y", "out", "hs", "Y2", "ND"):
-        if st.get(name) is not None:
-            _finite(name, st[name])
-    for name in ("vst", "time"):
-        _finite(name, st[name])
-    if not st["started"]:   # the first step starts it afresh (ContactModel.start)
-        return
-    key = np.asarray(st["inputs"], dtype=float)
-    if np.isinf(key).any():
-        raise BadState("the inputs it was stepped at hold an infinite value")
-    if key[0] == key[0]:    # NaN: no step yet
-        theta, omega, vp = max(abs(theta), abs(key[0])), max(abs(omega), abs(key[1])), \
-            max(abs(vp), abs(key[4]))
-    if not (st["time"] >= 0.0 and st["substeps"] >= 0):
-        raise BadState("its time or substep count is negative")
-    hs = st["hs"]
-    code = history_bound(st["vst"], hs)
-    if code:
-        raise BadState((f"v_st = {st['vst']:.4g} m/s is outside (0, {VST_HI:g}] m/s",
-                        f"the carried substep {hs[K.H_SUB]:.4g} s is outside [0, 1] s",
-                        f"the restart's weight {hs[K.H_JUMPW]:.4g} is outside [0, 1]",
-                        f"its count of substeps taken {hs[K.H_TAKEN]:.4g} is negative")[code - 1])
-    v = speed_bound(p, theta, omega, vp)
-    for label, Y in (("", st["Y"]), (" (previous step)", st["Y2"])):
-        code, i, bound = roller_bound(Y, p["bearing"] != K.BEAR_IDEAL, p["l_needle"],
-                                      p["d_needle"], p["r_roller"], p["r_bore"], v)
-        if code:
-            name, unit, why = Y_WORDS[i]
-            raise BadState(f"{name}{label} = {Y[i]:.4g} {unit} is outside +-{bound:.4g} {unit} "
-                           f"({why})")
-
-
 def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
     """0 when a free spider's coordinates (layout.OP_SP_*) can be stepped, 9 otherwise
     (fmu_arrays.STATE_PROBLEMS): its centre within r_groove [m] of its kinematic pose (beyond,
@@ -162,30 +101,3 @@ def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
     if not (abs(vx) <= vb and abs(vy) <= vb and abs(vpsi) <= vb / s):
         return 9
     return 0
-
-
-def check_spider_state(sp, p: dict, omega: float) -> None:
-    """Raise BadState if a free spider's state (JointModel.get_state: OP_SP_* on) cannot be
-    stepped: spider_bounds at the whirl rate omega [rad/s] it is to step at."""
-    _finite("the spider's state", sp)
-    if sp[K.OP_SP_SET - K.OP_SP_QX] not in (0.0, 1.0):
-        raise BadState("the spider's set flag is none the model writes")
-    q = [float(sp[j - K.OP_SP_QX]) for j in (K.OP_SP_QX, K.OP_SP_QY, K.OP_SP_PSI, K.OP_SP_VX,
-                                              K.OP_SP_VY, K.OP_SP_VPSI)]
-    if spider_bounds(*q, p["s"], p["r_groove"], p["s"] * abs(omega)):
-        raise BadState(f"the spider's pose (dX, dY, psi) = ({q[0]:.4g} m, {q[1]:.4g} m, "
-                       f"{q[2]:.4g} rad) or its speeds ({q[3]:.4g} m/s, {q[4]:.4g} m/s, "
-                       f"{q[5]:.4g} rad/s) are beyond +-{p['r_groove']:.4g} m, "
-                       f"+-{p['r_groove'] / p['s']:.4g} rad or ten times the scene's speeds")
-
-
-def check_joint_state(states: list, p: dict, theta: float, omega: float, vp: float) -> None:
-    """check_roller_state for each roller of a JointModel state (JointModel.get_state), the
-    reason prefixed with the roller's number; a free spider's (check_spider_state)."""
-    if states and "spider" in states[0]:
-        check_spider_state(states[0]["spider"], p, omega)
-    for i, st in enumerate(states):
-        try:
-            check_roller_state(st, p, theta, omega, vp)
-        except BadState as e:
-            raise BadState(f"roller {i + 1}: {e}") from None
