@@ -17,7 +17,6 @@ its outputs are the compiled FMU's to the last bit where the two compute alike.
 from __future__ import annotations
 
 import importlib
-import inspect
 import math
 
 import numpy as np
@@ -66,14 +65,10 @@ class InProcess(FMU2Slave):
     def _reset(self):
         self.a = {k: np.zeros(self.sizes[k]) for k in ARRAYS}
         for v, array, slot, start in self.vars.values():
-            self.a[self._array(array)][slot] = start
+            self.a[array][slot] = start
         self.phase = "instantiated"
         self.time = 0.0
         self.tolerance = 0.0
-
-    @staticmethod
-    def _array(kind):
-        return {"P": "P", "IN": "IN", "OUT": "OUT"}[kind]
 
     def _say(self, status, msg):
         self.log.append((status, msg))
@@ -98,8 +93,9 @@ class InProcess(FMU2Slave):
         else:
             self._say(fmi2Warning if level == 1 else fmi2OK, msg)
 
-    def _call(self, fn, *extra, arrays=ARRAYS):
-        return int(fn(*(self.a[k] for k in arrays), *extra))
+    def _call(self, fn, *extra):
+        """fn(P, IN, X, OUT, W, *extra): one of the model's lifecycle functions, its code."""
+        return int(fn(*(self.a[k] for k in ARRAYS), *extra))
 
     def _check(self, names):
         """The first of these variables whose value its range refuses: (False, why)."""
@@ -109,7 +105,7 @@ class InProcess(FMU2Slave):
             array, slot = self.layout["arrays"][name]
             if p is None:
                 continue
-            x = self.a[self._array(array[3:])][slot]
+            x = self.a[array[3:]][slot]
             try:
                 check_param(p, bool(x) if p.kind == "bool" else x)
             except ValueError as e:
@@ -134,7 +130,7 @@ class InProcess(FMU2Slave):
         if not self.tolerance or "tolerance" not in self.layout["by_name"]:
             return
         array, slot = self.layout["arrays"]["tolerance"]
-        P = self.a[self._array(array[3:])]
+        P = self.a[array[3:]]
         if P[slot] != 0.0:
             return
         p = self.layout["by_name"]["tolerance"]
@@ -177,13 +173,13 @@ class InProcess(FMU2Slave):
                                f"initialisation")
             rows.append((array, slot, float(x)))
         for array, slot, x in rows:
-            self.a[self._array(array)][slot] = x
+            self.a[array][slot] = x
 
     def _get(self, vr, kind):
         out = []
         for r in vr:
             v, array, slot, _ = self.vars[(int(r), kind)]
-            out.append(self.a[self._array(array)][slot])
+            out.append(self.a[array][slot])
         return out
 
     def setReal(self, vr, value):
@@ -270,9 +266,3 @@ class InProcess(FMU2Slave):
         pass
 
     getFMUstate, setFMUstate, freeFMUstate = getFMUState, setFMUState, freeFMUState   # (FMPy's)
-
-    def state_problem(self):
-        """The model's own check of the state it holds (0: it can be stepped)."""
-        fn = self.model.state_problem
-        n = len(inspect.signature(fn).parameters)
-        return self._call(fn, arrays=("P", "IN", "X", "W") if n == 4 else ("P", "X"))
