@@ -95,7 +95,7 @@ def defaults() -> dict:
 
 
 def params_array(values: dict) -> np.ndarray:
-    """The parameters (PARAMS' names) as mounts.py's P."""
+    """The parameters (PARAMS' names) as mounts.py's T."""
     return np.array([float(values[p.name]) for p in PARAMS])
 
 
@@ -130,13 +130,13 @@ class Mounts:
     over the step (mounts.mounts_step: the transition computed once per step size)."""
 
     def __init__(self, p):
-        self.P = params_array(p)
+        self.T = params_array(p)
         self.W = np.zeros(M.W_LEN)
 
     def step(self, x, Q, h):
         """The state x = (q, v) [m, rad, m/s, rad/s] after h [s] under Q held."""
         x = np.array(x, dtype=float)
-        M.mounts_step(self.P, x, [float(f) for f in Q], self.W, h)
+        M.mounts_step(self.T, x, [float(f) for f in Q], self.W, h)
         return x
 
 
@@ -147,12 +147,12 @@ class PowertrainModel:
     def __init__(self, values: dict):
         """values: every parameter and the inputs at the start (TABLE's names)."""
         self.p = dict(values)
-        self.P = params_array(values)
+        self.T = params_array(values)
         self.IN = np.array([float(values[p.name]) for p in INPUTS])
         self.x = np.zeros(M.X_LEN)
         self.OUT = np.zeros(M.OUT_LEN)
         self.W = np.zeros(M.W_LEN)
-        rc = M.init(self.P, self.IN, self.x, self.OUT, self.W)
+        rc = M.init(self.T, self.IN, self.x, self.OUT, self.W)
         if rc < 0:
             name = PARAMS[-rc - 1].name
             raise ValueError(f"{name} = {self.p[name]!r} is too small to compute with; "
@@ -168,7 +168,7 @@ class PowertrainModel:
         where the step's are not finite: the slave refuses it)."""
         for i, p in enumerate(INPUTS):
             self.IN[i] = joint[p.name]
-        if M.step(self.P, self.IN, self.x, self.OUT, self.W, t, h) != 1:
+        if M.step(self.T, self.IN, self.x, self.OUT, self.W, t, h) != 1:
             return {name: math.nan for name, _, _ in OUTPUTS}
         return self.outputs()
 
@@ -178,8 +178,8 @@ def native_layout() -> dict:
     variables are checked in at initialisation (TABLE's, as the slave checks them): for the FMU
     whose binary runs mounts.py compiled (fmu_src/native_fmu.py)."""
     arrays = {p.name: ("IN_IN", i) for i, p in enumerate(INPUTS)}
-    arrays.update({p.name: ("IN_P", i) for i, p in enumerate(PARAMS)})
+    arrays.update({p.name: ("IN_T", i) for i, p in enumerate(PARAMS)})
     arrays.update({name: ("IN_OUT", i) for i, (name, _, _) in enumerate(OUTPUTS)})
     return {"by_name": BY_NAME, "arrays": arrays, "check_order": [p.name for p in TABLE],
-            "sizes": {"P": M.P_LEN, "IN": M.IN_LEN, "X": M.X_LEN, "OUT": M.OUT_LEN,
+            "sizes": {"T": M.T_LEN, "IN": M.IN_LEN, "X": M.X_LEN, "OUT": M.OUT_LEN,
                       "W": M.W_LEN, "TH": 2}}

@@ -35,7 +35,7 @@ def _c_double(x: float) -> str:
 def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: dict,
                check_order, notes=None) -> str:
     """model_data.c: MODEL_VARS from the model description's variables, each with its place in
-    the model's arrays (arrays: name -> (IN_P | IN_IN | IN_OUT, slot)) and its range from the
+    the model's arrays (arrays: name -> (IN_T | IN_IN | IN_OUT, slot)) and its range from the
     parameter table (by_name: name -> Param); the sizes; the notes' wording (notes: at, args,
     max, text: ((level, printf format), ...), state_problems); the compiled functions' symbols
     (init and step; end and check_state where the model has them)."""
@@ -70,7 +70,7 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
         by_vr[vr] = k if refs.count(vr) == 1 else -1
     guid = root.get("guid")
     model_id = root.find("CoSimulation").get("modelIdentifier")
-    size = ", ".join(str(sizes[k]) for k in ("P", "IN", "X", "OUT", "W", "TH"))
+    size = ", ".join(str(sizes[k]) for k in ("T", "IN", "X", "OUT", "W", "TH"))
     notes = notes or {"at": -1, "args": 0, "max": 0, "text": (), "state_problems": ("",)}
     texts = [f"    {{{level}, {_c_string(text)}}}," for level, text in notes["text"]] or \
         ['    {0, ""},']

@@ -3,16 +3,16 @@ torque) and one output (Fz) over functions that do nothing but write Fz, under t
 FMI layer (harness.bench.bare_fmu).  What the layer alone costs a step, beside the compiled
 FMUs' steps (`tripod-thrust bench`)."""
 
-P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN = 1, 3, 1, 1, 1
+T_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN = 1, 3, 1, 1, 1
 
 
-def init(P, IN, X, OUT, W):
+def init(T, IN, X, OUT, W):
     """Fz = 0 at the start.  Returns 1."""
     OUT[0] = 0.0
     return 1
 
 
-def step(P, IN, X, OUT, W, t, h):
+def step(T, IN, X, OUT, W, t, h):
     """Nothing to step: Fz = 0.  Returns 1."""
     OUT[0] = 0.0
     return 1
@@ -24,7 +24,7 @@ def c_functions():
 
     from reduced_model.cfuncs import c_functions as wrap
     return wrap({"init": nb.njit(init), "step": nb.njit(step)},
-                (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))
+                (T_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))
 
 
 def model_description() -> bytes:
@@ -51,4 +51,4 @@ def native_layout() -> dict:
     return {"by_name": {}, "check_order": [],
             "arrays": {"theta": ("IN_IN", 0), "omega": ("IN_IN", 1), "torque": ("IN_IN", 2),
                        "Fz": ("IN_OUT", 0)},
-            "sizes": {"P": P_LEN, "IN": IN_LEN, "X": X_LEN, "OUT": OUT_LEN, "W": W_LEN, "TH": 2}}
+            "sizes": {"T": T_LEN, "IN": IN_LEN, "X": X_LEN, "OUT": OUT_LEN, "W": W_LEN, "TH": 2}}

@@ -27,7 +27,7 @@ from fmpy.fmi2 import FMU2Slave, fmi2Discard, fmi2Error, fmi2OK, fmi2Warning
 from harness.fmus import builder
 from reduced_model.cfuncs import worded_notes
 
-ARRAYS = ("P", "IN", "X", "OUT", "W")
+ARRAYS = ("T", "IN", "X", "OUT", "W")
 NO_NOTES = {"at": -1}     # (a model that leaves none: the powertrain)
 
 
@@ -94,7 +94,7 @@ class InProcess(FMU2Slave):
             self._say(fmi2Warning if level == 1 else fmi2OK, msg)
 
     def _call(self, fn, *extra):
-        """fn(P, IN, X, OUT, W, *extra): one of the model's lifecycle functions, its code."""
+        """fn(T, IN, X, OUT, W, *extra): one of the model's lifecycle functions, its code."""
         return int(fn(*(self.a[k] for k in ARRAYS), *extra))
 
     def _check(self, names):
@@ -130,8 +130,8 @@ class InProcess(FMU2Slave):
         if not self.tolerance or "tolerance" not in self.layout["by_name"]:
             return
         array, slot = self.layout["arrays"]["tolerance"]
-        P = self.a[array[3:]]
-        if P[slot] != 0.0:
+        T = self.a[array[3:]]
+        if T[slot] != 0.0:
             return
         p = self.layout["by_name"]["tolerance"]
         t = self.tolerance
@@ -139,7 +139,7 @@ class InProcess(FMU2Slave):
             t = p.auto_or_min
         if p.hi is not None and t > p.hi:
             t = p.hi
-        P[slot] = t
+        T[slot] = t
         self._say(fmi2OK, f"tolerance = {t:g}: the host's {self.tolerance:g} "
                           f"(fmi2SetupExperiment)")
 
@@ -168,7 +168,7 @@ class InProcess(FMU2Slave):
             v, array, slot, _ = row
             if array == "OUT":
                 self._fail(fn, f"{fn}: {v.name} is an output")
-            if array == "P" and self.phase == "ok":
+            if array == "T" and self.phase == "ok":
                 self._fail(fn, f"{fn}: {v.name} is a fixed parameter: set it before "
                                f"initialisation")
             rows.append((array, slot, float(x)))
@@ -251,7 +251,7 @@ class InProcess(FMU2Slave):
     def setFMUState(self, state):
         arrays, phase, time = state
         stepping = ("ok", "failed", "terminated")
-        built = np.array_equal(arrays["P"], self.a["P"]) and self.phase in stepping
+        built = np.array_equal(arrays["T"], self.a["T"]) and self.phase in stepping
         if phase in stepping and not built:   # the work for the state's parameters: its start
             for k in arrays:
                 self.a[k][:] = arrays[k]

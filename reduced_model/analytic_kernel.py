@@ -5,7 +5,7 @@ table.py) ahead of time (c_functions, fmu_src/aot.py) and runs them without Pyth
 
 Arrays (float64; flags and counts as 0.0 / 1.0, integers as floats; Python lists or numpy
 arrays on the Python path):
-- P: the analytic FMU's parameters in PARAM_NAMES' order (the table's, inputs left out);
+- T: the analytic FMU's parameters in PARAM_NAMES' order (the table's, inputs left out);
 - IN: its inputs in INPUT_NAMES' order; OUT: its outputs in OUTPUT_NAMES' order;
 - X: the model's state (X_* slots): whirl angles, the step, the operating point's inputs (key)
   and constants (O_* slots, from X_OP on), the mode (Eqs. 18-27, the settled table, or the
@@ -21,7 +21,7 @@ import math
 from . import equations, table
 from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLLERS, O_CLEAR,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
-                        P_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
+                        T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
 from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_notes
@@ -186,20 +186,20 @@ def hertz_ratio(O, F):
     return (F / O[O_K]) ** (2.0 / 3.0) / O[O_CLEAR] if F > 0 else 0.0
 
 
-def checked_value(P, O, k):
+def checked_value(T, O, k):
     """CHECKED_RANGES[k]'s quantity for the scene the reduced model runs at O, in its unit."""
     if k == C_THETA:
         return O[O_TH] * (180.0 / math.pi)
     if k == C_MU:
-        return P[MU_GROOVE]
+        return T[MU_GROOVE]
     if k == C_INERTIA:
-        return inertia_ratio(P[M_ROLLER], P[R_ROLLER], O[O_W], O[O_F])
+        return inertia_ratio(T[M_ROLLER], T[R_ROLLER], O[O_W], O[O_F])
     if k == C_CLEARANCE:
-        return (P[R_GROOVE] - P[R_ROLLER]) / P[R_ROLLER]
+        return (T[R_GROOVE] - T[R_ROLLER]) / T[R_ROLLER]
     if k == C_ROLLER:
-        return P[R_ROLLER] / P[S]
+        return T[R_ROLLER] / T[S]
     if k == C_BORE:
-        return P[R_BORE] / P[R_ROLLER]
+        return T[R_BORE] / T[R_ROLLER]
     if k == C_HERTZ:
         return hertz_ratio(O, O[O_F])
     return O[O_VP]
@@ -211,18 +211,18 @@ def inside(k, v0, v1):
     return lo - 1e-9 * abs(lo) <= v0 and v1 <= hi + 1e-9 * abs(hi)
 
 
-def note_outside(P, O, W):
+def note_outside(T, O, W):
     """Notes naming what of the scene at O lies outside the checked range (none inside it)."""
     head = False
     for k in range(len(CHECKED_RANGES)):
-        v = checked_value(P, O, k)
+        v = checked_value(T, O, k)
         if not inside(k, v, v):
             if not head:
                 note(W, NOTE_OUTSIDE, 0.0, 0.0, 0.0, 0.0)
                 head = True
             note(W, NOTE_CHECKED + k, v, 0.0, 0.0, 0.0)
     for j in range(len(DEFAULT_SLOTS)):
-        v = P[DEFAULT_SLOTS[j]]
+        v = T[DEFAULT_SLOTS[j]]
         if v != DEFAULT_VALUES[j]:
             if not head:
                 note(W, NOTE_OUTSIDE, 0.0, 0.0, 0.0, 0.0)
@@ -230,13 +230,13 @@ def note_outside(P, O, W):
             note(W, NOTE_DEFAULT + j, v, 0.0, 0.0, 0.0)
 
 
-def note_run_outside(P, X, W):
+def note_run_outside(T, X, W):
     """Notes naming where the run's inputs (their span) left the checked range."""
     O = X[X_OP:X_OP + O_LEN]
     t0, w0, f0 = X[X_SPAN], X[X_SPAN + 1], X[X_SPAN + 2]
     t1, w1, f1 = X[X_SPAN + 3], X[X_SPAN + 4], X[X_SPAN + 5]
     # the roller's inertia at its worst: the highest whirl on the lowest load
-    worst = inertia_ratio(P[M_ROLLER], P[R_ROLLER], w1, f0)
+    worst = inertia_ratio(T[M_ROLLER], T[R_ROLLER], w1, f0)
     d = 180.0 / math.pi
     spans = ((C_THETA, t0 * d, t1 * d), (C_INERTIA, worst, worst),
              (C_HERTZ, hertz_ratio(O, f0), hertz_ratio(O, f1)))
@@ -258,12 +258,12 @@ def mirrored(X, x):
     return -x if X[X_OP + O_MIRROR] != 0.0 else x
 
 
-def take_inputs(P, IN, X):
+def take_inputs(T, IN, X):
     """IN's operating-point inputs as the key, the operating point at them, the span widened."""
     for q in range(N_KEY):
         X[X_KEY + q] = IN[q]
     X[X_HAS_KEY] = 1.0
-    operating_point(P, IN[THETA], IN[OMEGA], IN[F_PRESS], IN[TORQUE], IN[PLUNGE_SPEED],
+    operating_point(T, IN[THETA], IN[OMEGA], IN[F_PRESS], IN[TORQUE], IN[PLUNGE_SPEED],
                     X[X_OP:X_OP + O_LEN])
     now = (IN[THETA], abs(IN[OMEGA]), abs(X[X_OP + O_LOAD]))
     first = X[X_HAS_SPAN] == 0.0
@@ -277,7 +277,7 @@ def take_inputs(P, IN, X):
             X[X_SPAN + 3 + q] = max(X[X_SPAN + 3 + q], now[q])
 
 
-def prepare(P, IN, X, W):
+def prepare(T, IN, X, W):
     """The operating point at IN's inputs, unless they moved only by rounding from its key (a
     master interpolating a constant stretch of an input table).  At the start the settled table
     (where the traverse model applies), reverse whirl from rest the march; once the inputs
@@ -291,9 +291,9 @@ def prepare(P, IN, X, W):
         if not moved:
             return
     O = X[X_OP:X_OP + O_LEN]
-    take_inputs(P, IN, X)
+    take_inputs(T, IN, X)
     loaded = O[O_MU] > 0 and O[O_F] > 0
-    if P[TRAVERSE] == 0.0:
+    if T[TRAVERSE] == 0.0:
         X[X_MODE] = MODE_THRUST
         X[X_REGIME] = 0.0
     elif start and O[O_W] < 0 and loaded:
@@ -310,18 +310,18 @@ def prepare(P, IN, X, W):
         X[X_MODE] = MODE_THRUST
         X[X_REGIME] = 0.0
         if O[O_W] > 0 and loaded:
-            T = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
+            TAB = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
             cycles, mismatch, g_max = traverse_table(
-                O, W[:W_NOTES], N_PER_CYCLE, T, X[X_TABLE_SS:X_TABLE_SS + TABLE_ROWS],
+                O, W[:W_NOTES], N_PER_CYCLE, TAB, X[X_TABLE_SS:X_TABLE_SS + TABLE_ROWS],
                 X[X_TABLE_PS:X_TABLE_PS + TABLE_ROWS])
             X[X_CYCLES] = cycles
             X[X_MISMATCH] = mismatch
             X[X_SETTLED] = 1.0 if mismatch <= SETTLED_TOL * O[O_VST] else 0.0
             X[X_GMAX] = g_max
             X[X_MODE] = MODE_TABLE
-            X[X_REGIME] = regime(g_max, T, N_PER_CYCLE, O)
+            X[X_REGIME] = regime(g_max, TAB, N_PER_CYCLE, O)
             X[X_TABLES] += 1.0
-            note_outside(P, O, W)
+            note_outside(T, O, W)
             if X[X_SETTLED] == 0.0:
                 note(W, NOTE_UNSETTLED, O[O_TH], O[O_W], X[X_MISMATCH], X[X_CYCLES])
     else:
@@ -348,7 +348,7 @@ def prepare(P, IN, X, W):
         X[X_MODE] = MODE_MARCH
 
 
-def roller_row(P, X, i, x):
+def roller_row(T, X, i, x):
     """Roller i's (Fz, Fz_mod, Fx, Fy [N], slip speed [m/s]) at its whirl angle x [rad] now, as
     the joint's (coast: turned back): the march's, the table's, or Eqs. (18)-(27) (where Fx is
     the pressing load)."""
@@ -359,11 +359,11 @@ def roller_row(P, X, i, x):
         Fz, Fzm, Fx, Fy, slip = X[r + R_FZ], X[r + R_FZ_MOD], X[r + R_FX], X[r + R_FY], \
             X[r + R_SLIP]
     elif X[X_MODE] == MODE_TABLE:
-        T = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
+        TAB = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
         y = mirrored(X, x)
-        Fz, Fzm, Fx, Fy, slip = table_at(T, N_PER_CYCLE, y, 0), table_at(T, N_PER_CYCLE, y, 1), \
-            table_at(T, N_PER_CYCLE, y, 2), table_at(T, N_PER_CYCLE, y, 3), \
-            table_at(T, N_PER_CYCLE, y, 4)
+        Fz, Fzm, Fx, Fy, slip = table_at(TAB, N_PER_CYCLE, y, 0), table_at(TAB, N_PER_CYCLE, y, 1), \
+            table_at(TAB, N_PER_CYCLE, y, 2), table_at(TAB, N_PER_CYCLE, y, 3), \
+            table_at(TAB, N_PER_CYCLE, y, 4)
     else:
         Fz, ft, V, phi = thrust_at(O, mirrored(X, x))
         return sign * Fz, sign * Fz, O[O_LOAD], ft * math.cos(phi), abs(V)
@@ -372,74 +372,74 @@ def roller_row(P, X, i, x):
     return Fz, Fzm, Fx, Fy, slip
 
 
-def outputs(P, X, OUT):
+def outputs(T, X, OUT):
     """Every output at the state X into OUT when each is finite.  Returns 1, or 2 (OUT
     untouched)."""
-    n = int(P[N_ROLLERS])
+    n = int(T[N_ROLLERS])
     F = X[X_OP + O_LOAD]
-    Fz1, Fzm1, Fx1, Fy1, slip1 = roller_row(P, X, 0, X[X_WHIRL])
+    Fz1, Fzm1, Fx1, Fy1, slip1 = roller_row(T, X, 0, X[X_WHIRL])
     total = 0.0 + Fz1
     fz2 = fx2 = fy2 = fz3 = fx3 = fy3 = 0.0      # (scalars: nothing allocated when compiled)
     if n > 1:
-        fz2, _, fx2, fy2, _ = roller_row(P, X, 1, X[X_WHIRL + 1])
+        fz2, _, fx2, fy2, _ = roller_row(T, X, 1, X[X_WHIRL + 1])
         total += fz2
-        fz3, _, fx3, fy3, _ = roller_row(P, X, 2, X[X_WHIRL + 2])
+        fz3, _, fx3, fy3, _ = roller_row(T, X, 2, X[X_WHIRL + 2])
         total += fz3
-    sp = P[S]
+    sp = T[S]
     hx, hy, ht = housing_forces(Fx1, Fy1, sp, fx2, fy2, sp, fx3, fy3, sp)
     return finite_into((Fx1, Fy1, Fz1, Fzm1, Fx1 - F, slip1, total, fz2, fz3, X[X_WHIRL], fx2,
                         fy2, fx3, fy3, hx, hy, ht, F, X[X_PLUNGE], X[X_REGIME]), OUT)
 
 
-def check_scene(P, W):
+def check_scene(T, W):
     """The relations between parameters the table's ranges cannot state (scene.validate): a note
     naming them and False where one fails."""
-    if P[R_GROOVE] <= P[R_ROLLER]:
-        note(W, NOTE_GROOVE, P[R_GROOVE], P[R_ROLLER], 0.0, 0.0)
+    if T[R_GROOVE] <= T[R_ROLLER]:
+        note(W, NOTE_GROOVE, T[R_GROOVE], T[R_ROLLER], 0.0, 0.0)
         return False
-    if P[N_ROLLERS] != 1.0 and P[N_ROLLERS] != 3.0:
-        note(W, NOTE_ROLLERS, P[N_ROLLERS], 0.0, 0.0, 0.0)
+    if T[N_ROLLERS] != 1.0 and T[N_ROLLERS] != 3.0:
+        note(W, NOTE_ROLLERS, T[N_ROLLERS], 0.0, 0.0, 0.0)
         return False
-    if P[TRAVERSE] != 0.0 and P[MU_GROOVE] >= 1.0:
-        note(W, NOTE_MU, P[MU_GROOVE], 0.0, 0.0, 0.0)
+    if T[TRAVERSE] != 0.0 and T[MU_GROOVE] >= 1.0:
+        note(W, NOTE_MU, T[MU_GROOVE], 0.0, 0.0, 0.0)
         return False
-    if P[R_BORE] >= P[R_ROLLER]:
-        note(W, NOTE_BORE, P[R_BORE], P[R_ROLLER], 0.0, 0.0)
+    if T[R_BORE] >= T[R_ROLLER]:
+        note(W, NOTE_BORE, T[R_BORE], T[R_ROLLER], 0.0, 0.0)
         return False
     return True
 
 
-def init(P, IN, X, OUT, W):
+def init(T, IN, X, OUT, W):
     """The start: the rollers at whirl angles 0, 120, 240 deg, the operating point at IN (the
     settled table where the traverse model applies), the outputs at the start.  Returns 1; 2 for
     a non-finite output; 3 for a scene refused (its note says why)."""
     W[W_NOTES] = 0.0
-    if not check_scene(P, W):
+    if not check_scene(T, W):
         return 3
     for j in range(X_LEN):
         X[j] = 0.0
     for i in range(3):
-        X[X_WHIRL + i] = 2.0 * math.pi * i / 3.0 if i < int(P[N_ROLLERS]) else 0.0
-    prepare(P, IN, X, W)
-    return outputs(P, X, OUT)
+        X[X_WHIRL + i] = 2.0 * math.pi * i / 3.0 if i < int(T[N_ROLLERS]) else 0.0
+    prepare(T, IN, X, W)
+    return outputs(T, X, OUT)
 
 
-def step(P, IN, X, OUT, W, t, h):
+def step(T, IN, X, OUT, W, t, h):
     """From t to t + h [s] at IN's inputs (driven by angle: omega from the shaft angle).
     Returns 1; 2 for a non-finite output (OUT untouched); 3 for a step refused before it starts
     (its note says why); 5 for an omega derived from the shaft angle out of its range (written
     into IN; nothing stepped)."""
     W[W_NOTES] = 0.0
-    if P[DRIVE_BY_ANGLE] != 0.0:   # the whirl reaches the master's angle at the step's end
+    if T[DRIVE_BY_ANGLE] != 0.0:   # the whirl reaches the master's angle at the step's end
         w = (IN[SHAFT_ANGLE] - X[X_WHIRL]) / h
         IN[OMEGA] = w
         if not (IN_LO[OMEGA] <= w <= IN_HI[OMEGA]):
             return 5
-    prepare(P, IN, X, W)
+    prepare(T, IN, X, W)
     # a step that differs from the last one by the rounding of the master's times is that step
     dt = h if (X[X_HAS_DT] == 0.0 or not same_step(h, X[X_DT], t)) else X[X_DT]
     O = X[X_OP:X_OP + O_LEN]
-    n = int(P[N_ROLLERS])
+    n = int(T[N_ROLLERS])
     if X[X_MODE] == MODE_MARCH and substeps(O, dt) > MAX_SUBSTEPS:
         # refused before it starts (a host's huge step): the slide and the step as they were
         note(W, NOTE_TOO_LONG, dt, 2.0 * math.pi / (abs(O[O_W]) * N_PER_CYCLE), 0.0, 0.0)
@@ -456,22 +456,22 @@ def step(P, IN, X, OUT, W, t, h):
             X[X_WHIRL + i] += w
     X[X_PLUNGE] = X[X_PLUNGE] + X[X_KEY + PLUNGE_SPEED] * dt   # the held speed
     X[X_STEPS] += 1.0
-    return outputs(P, X, OUT)
+    return outputs(T, X, OUT)
 
 
-def end(P, IN, X, OUT, W):
+def end(T, IN, X, OUT, W):
     """The run's end: notes on where its inputs left the checked range (once the slide was
     stepped in time) and on how the steps ran.  Returns 1."""
     W[W_NOTES] = 0.0
-    if X[X_MODE] == MODE_MARCH and P[TRAVERSE] != 0.0:
-        note_run_outside(P, X, W)
+    if X[X_MODE] == MODE_MARCH and T[TRAVERSE] != 0.0:
+        note_run_outside(T, X, W)
     note(W, NOTE_STEPS, X[X_STEPS], X[X_TABLES], 0.0, 0.0)
     if X[X_MODE] == MODE_MARCH:
         note(W, NOTE_STEPS_MARCH, 0.0, 0.0, 0.0, 0.0)
     return 1
 
 
-def state_problem(P, X):
+def state_problem(T, X):
     """0 when the state X is one the model can step (every value finite is the layer's
     check), else a code: 1 its mode, flags or counts are none the model writes; 2 an input of
     its operating point outside its range; 3 a march row's p outside [-mu_groove, mu_groove];
@@ -494,7 +494,7 @@ def state_problem(P, X):
             return 1
         if X[r + R_HAS_OUT] != 0.0 and X[r + R_HAS_OUT] != 1.0:
             return 1
-        if not abs(X[r + R_P]) <= P[MU_GROOVE]:
+        if not abs(X[r + R_P]) <= T[MU_GROOVE]:
             return 3
     if X[X_HAS_DT] != 0.0 and not X[X_DT] > 0.0:
         return 4
@@ -539,7 +539,7 @@ def c_functions():
     """init, step, end and check_state as the native layer's C functions (cfuncs.py), for
     fmu_src/aot.py."""
     from .cfuncs import c_functions as wrap
-    return wrap(compiled_namespace(), (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))
+    return wrap(compiled_namespace(), (T_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN))
 
 
 def native_layout() -> dict:
@@ -550,5 +550,5 @@ def native_layout() -> dict:
     from .cfuncs import native_layout as layout
     return layout(BY_NAME, PARAM_NAMES, INPUT_NAMES, OUTPUT_NAMES,
                   [p.name for p in params_for("analytic")],
-                  (P_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN), W_NOTES, MAX_NOTES, NOTE_TEXT,
+                  (T_LEN, IN_LEN, X_LEN, OUT_LEN, W_LEN), W_NOTES, MAX_NOTES, NOTE_TEXT,
                   STATE_PROBLEMS)

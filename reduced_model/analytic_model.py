@@ -36,10 +36,10 @@ class AnalyticModel:
     def __init__(self, values: dict, say=None):
         self.say = say or (lambda text, warning=False: None)
         self.scene = validate(values, "analytic")     # (the table's ranges, with messages)
-        self.P = params_array(self.scene)
+        self.T = params_array(self.scene)
         self.IN = np.array([float(self.scene[n]) for n in K.INPUT_NAMES])
         self.X, self.OUT, self.W = np.zeros(K.X_LEN), np.zeros(K.OUT_LEN), np.zeros(K.W_LEN)
-        rc = K.init(self.P, self.IN, self.X, self.OUT, self.W)
+        rc = K.init(self.T, self.IN, self.X, self.OUT, self.W)
         if rc == 3:
             raise ValueError(self._notes_text())
         if rc != 1:
@@ -59,7 +59,7 @@ class AnalyticModel:
         for name, value in zip(K.INPUT_NAMES, inputs):
             check_value(name, value)
         IN = np.array(inputs, dtype=float)
-        rc = K.step(self.P, IN, self.X, self.OUT, self.W, current_time, dt)
+        rc = K.step(self.T, IN, self.X, self.OUT, self.W, current_time, dt)
         self.IN = IN
         if rc == 5:
             check_value("omega", IN[K.OMEGA])
@@ -71,7 +71,7 @@ class AnalyticModel:
 
     def end(self):
         """The run's end: its notes (where the inputs left the checked range, how it ran)."""
-        K.end(self.P, self.IN, self.X, self.OUT, self.W)
+        K.end(self.T, self.IN, self.X, self.OUT, self.W)
         self._tell()
 
     def outputs(self):

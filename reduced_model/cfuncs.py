@@ -1,7 +1,7 @@
 """What the models written as scalar functions over flat arrays share
 (reduced_model/analytic_kernel.py, driveline/mounts.py): writing their outputs only when every one is finite, and, at build time
 (fmu_src/aot.py), their compiled functions as the C functions the native FMI layer calls
-(fmu_src/native/native_model.h): int32_t f(double **args), args = (P, IN, X, OUT, W, TH)."""
+(fmu_src/native/native_model.h): int32_t f(double **args), args = (T, IN, X, OUT, W, TH)."""
 import math
 import re
 
@@ -44,15 +44,15 @@ def worded_notes(W, at, text):
 def native_layout(by_name, params, inputs, outputs, check_order, sizes, notes_at, most, text,
                   state_problems) -> dict:
     """What fmu_src/native_fmu.py needs of a model over these arrays: where each variable lives
-    (params, inputs, outputs: the names in P's, IN's and OUT's order), the parameter table
+    (params, inputs, outputs: the names in T's, IN's and OUT's order), the parameter table
     (by_name), the order the variables are checked in at initialisation, the arrays' sizes
-    (P, IN, X, OUT, W) and the notes' place and wording (text: (level, printf format) a code;
+    (T, IN, X, OUT, W) and the notes' place and wording (text: (level, printf format) a code;
     state_problems: why a state is refused, a code)."""
-    arrays = {n: ("IN_P", i) for i, n in enumerate(params)}
+    arrays = {n: ("IN_T", i) for i, n in enumerate(params)}
     arrays.update({n: ("IN_IN", i) for i, n in enumerate(inputs)})
     arrays.update({n: ("IN_OUT", i) for i, n in enumerate(outputs)})
     return {"by_name": by_name, "arrays": arrays, "check_order": list(check_order),
-            "sizes": dict(zip(("P", "IN", "X", "OUT", "W"), sizes), TH=2),
+            "sizes": dict(zip(("T", "IN", "X", "OUT", "W"), sizes), TH=2),
             "notes": {"at": notes_at, "args": NOTE_ARGS, "max": most, "text": text,
                       "state_problems": state_problems}}
 
@@ -81,8 +81,8 @@ def finite_into(vals, OUT):
 
 def c_functions(g, sizes):
     """numba cfuncs of g's init, step and, where g has them, end and check_state (njit
-    functions: init(P, IN, X, OUT, W), step(P, IN, X, OUT, W, t, h), end as init,
-    check_state(P, X) or (P, IN, X, W), W the instance's work); sizes: the lengths of P, IN, X,
+    functions: init(T, IN, X, OUT, W), step(T, IN, X, OUT, W, t, h), end as init,
+    check_state(T, X) or (T, IN, X, W), W the instance's work); sizes: the lengths of T, IN, X,
     OUT, W."""
     import numba as nb
     from numba import carray
@@ -114,11 +114,11 @@ def c_functions(g, sizes):
         out["end"] = c_end
     if "state_problem" in g:
         problem_c = g["state_problem"]
-        if problem_c.py_func.__code__.co_argcount == 4:   # (P, IN, X, W)
+        if problem_c.py_func.__code__.co_argcount == 4:   # (T, IN, X, W)
             def c_check(args):
                 return problem_c(carray(args[0], (n_p,)), carray(args[1], (n_in,)),
                                  carray(args[2], (n_x,)), carray(args[4], (n_w,)))
-        else:                                             # (P, X)
+        else:                                             # (T, X)
             def c_check(args):
                 return problem_c(carray(args[0], (n_p,)), carray(args[2], (n_x,)))
         out["check_state"] = c_check

@@ -2,7 +2,7 @@
 the inputs (O_* slots; coast as the drive scene whose turn it is), Eqs. (18)-(27) at a whirl
 angle, the traverse model's T1-T6 (traverse.py's header) and the slide stepped in time (the
 march).  One source for traverse.Traverse, the analytic FMU's model as Python and its binary
-(kernel.py compiles these with its lifecycle: c_functions).  P: the analytic FMU's parameters
+(kernel.py compiles these with its lifecycle: c_functions).  T: the analytic FMU's parameters
 in PARAM_NAMES' order; O: an operating point; a march row: R_* slots.  Scalar libm math
 throughout, so compiled and Python give the same bits.
 """
@@ -16,14 +16,14 @@ from .thrust import fz_mod
 TWO_PI = 6.283185307179586   # math.tau
 N_PER_CYCLE = 360          # the table's points a whirl cycle; the march's longest substep
 
-# --- the parameters P (the table's, inputs left out) -----------------------------------------
+# --- the parameters T (the table's, inputs left out) -----------------------------------------
 PARAM_NAMES = tuple(p.name for p in params_for("analytic") if p.causality != "input")
 (DRIVE_BY_ANGLE, N_ROLLERS, MU_GROOVE, V_ST, PITCH, YAW, ROLL, AXIAL, S, R_ROLLER, R_GROOVE,
  R_BORE, M_ROLLER, SPIN_INERTIA, TRAVERSE, SPIN_MOMENT, E, NU) = map(PARAM_NAMES.index, (
     "drive_by_angle", "n_rollers", "mu_groove", "v_st", "pitch", "yaw", "roll", "axial", "s",
     "r_roller", "r_groove", "r_bore", "m_roller", "spin_inertia", "traverse", "spin_moment",
     "E", "nu"))
-P_LEN = len(PARAM_NAMES)
+T_LEN = len(PARAM_NAMES)
 
 # the operating point: the scene's constants at the inputs of its key, for the scene the reduced
 # model runs (coast: drive at the opposite whirl, turned about the trunnion axis)
@@ -55,18 +55,18 @@ def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
     return max(h / 4.0, V_ST_FLOOR)
 
 
-def operating_point(P, theta, omega, F_press, torque, vp, O):
+def operating_point(T, theta, omega, F_press, torque, vp, O):
     """O: the constants of the scene the reduced model runs at these inputs (theta [rad], omega
     [rad/s], F_press [N], torque [N m], plunge speed vp [m/s]): Traverse's (T1-T6) and Eqs.
     (18)-(27)'s.  Coast (a negative pressing load) runs as drive at the opposite whirl and
     plunge speed, turned 180 deg about the trunnion axis (docs/model.md): O_MIRROR."""
-    s, r = P[S], P[R_ROLLER]
+    s, r = T[S], T[R_ROLLER]
     load = pressing_load(F_press, torque, s)
     mirror = load < 0
     if mirror:    # (-tq) / (3 s) is -(tq / (3 s)) to the bit
         omega, F_press, torque, vp = -omega, -F_press, -torque, -vp
     F = pressing_load(F_press, torque, s)
-    pitch, roll = P[PITCH] != 0.0, P[ROLL] != 0.0
+    pitch, roll = T[PITCH] != 0.0, T[ROLL] != 0.0
     O[O_W] = omega
     O[O_TH] = theta
     O[O_T] = math.tan(theta) if pitch else 0.0
@@ -76,22 +76,22 @@ def operating_point(P, theta, omega, F_press, torque, vp, O):
     O[O_F] = F
     O[O_LOAD] = load
     O[O_MIRROR] = 1.0 if mirror else 0.0
-    mu = P[MU_GROOVE]
+    mu = T[MU_GROOVE]
     O[O_MU] = mu
-    vst = transition_velocity(P[V_ST], s, r, omega, theta, vp, pitch, roll)
+    vst = transition_velocity(T[V_ST], s, r, omega, theta, vp, pitch, roll)
     O[O_VST] = vst
-    K, a1, _ = hertz_point(r, P[R_GROOVE], P[E], P[NU])
+    K, a1, _ = hertz_point(r, T[R_GROOVE], T[E], T[NU])
     O[O_K] = K
     O[O_A1] = a1
-    clear = P[R_GROOVE] - r
+    clear = T[R_GROOVE] - r
     O[O_CLEAR] = clear
     O[O_RHO] = clear + (F / K) ** (2.0 / 3.0) if F > 0 else clear
     O[O_VP] = vp
-    O[O_SM] = 1.0 if P[SPIN_MOMENT] != 0.0 else 0.0
+    O[O_SM] = 1.0 if T[SPIN_MOMENT] != 0.0 else 0.0
     # the roller's spin inertia as a thick ring, m (r^2 + r_bore^2) / 2 (0: the spin-inertia
     # thrust switched off)
-    inertia = 0.5 * P[M_ROLLER] * (r * r + P[R_BORE] * P[R_BORE])
-    O[O_I] = inertia if P[SPIN_INERTIA] != 0.0 else 0.0
+    inertia = 0.5 * T[M_ROLLER] * (r * r + T[R_BORE] * T[R_BORE])
+    O[O_I] = inertia if T[SPIN_INERTIA] != 0.0 else 0.0
     O[O_HELD] = 1.0 if (F > 0 and mu > 0 and vst > 0) else 0.0   # else nothing holds the roller
     # Eqs. (18)-(27): V = A sin 2x + B cos 2x (Eq. 24), ft = mu F tanh(3 V / v_st)
     O[O_A] = 0.5 * s * omega * (theta * theta) if pitch else 0.0
@@ -107,7 +107,7 @@ def operating_point(P, theta, omega, F_press, torque, vp, O):
     O[O_VPP] = vp if pitch else 0.0                    # the plunge's part of dz/dt in v1
     # the spin inertia's thrust (I / r^2) d2z/dt2, d2z/dt2 = -w^2 s theta sin x
     O[O_KSPIN] = -inertia / (r * r) * omega * omega * (s * th) \
-        if (P[SPIN_INERTIA] != 0.0 and pitch) else 0.0
+        if (T[SPIN_INERTIA] != 0.0 and pitch) else 0.0
 
 
 # --- Eqs. (18)-(27) ---------------------------------------------------------------------------
@@ -128,17 +128,17 @@ def drive_at(O, x):
     """The driving motion at whirl angle x [rad], exact Eqs. (1), (5) (z = s tan(phi), Eq. 18):
     phi, xi [rad], V [m/s] (T4's driven slip), dphi [rad/s], spin [rad/s] (rolling along the
     groove), bi [N] (T2's inertia part of f_b)."""
-    w, T, k, r = O[O_W], O[O_T], O[O_KR], O[O_R]
-    tz = T * math.sin(x)
+    w, tn, k, r = O[O_W], O[O_T], O[O_KR], O[O_R]
+    tz = tn * math.sin(x)
     phi = math.atan(tz)
-    dphi = T * w * math.cos(x) / (1.0 + tz * tz)
+    dphi = tn * w * math.cos(x) / (1.0 + tz * tz)
     q = k * math.sin(2.0 * x)
     xi = math.asin(q)
     dxi = 2.0 * w * k * math.cos(2.0 * x) / math.sqrt(1.0 - q * q)
-    zd = O[O_S] * T * w * math.cos(x)
+    zd = O[O_S] * tn * w * math.cos(x)
     if O[O_VP] != 0.0:                                  # the plunge: travel along z
         zd = zd + O[O_VP]
-    zdd = -O[O_S] * T * w * w * math.sin(x)
+    zdd = -O[O_S] * tn * w * w * math.sin(x)
     v1 = zd * math.sin(phi)                             # Eq. (19), exact
     v2 = -r * dxi                                       # Eq. (20), exact
     V = v1 + v2 * (1.0 + O[O_RHO] / r)                  # T4

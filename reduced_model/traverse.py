@@ -50,7 +50,7 @@ __all__ = ["CHECKED_AT_DEFAULT", "FULL_SLIP_REL", "INERTIA", "INERTIA_LIMIT", "M
 
 
 def params_array(sc: dict) -> np.ndarray:
-    """The scene's parameters as kernel.py's P (PARAM_NAMES' order; a key the scene lacks at
+    """The scene's parameters as kernel.py's T (PARAM_NAMES' order; a key the scene lacks at
     its default)."""
     return np.array([float(sc.get(n, BY_NAME[n].default)) for n in E.PARAM_NAMES])
 

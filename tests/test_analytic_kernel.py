@@ -20,9 +20,9 @@ def compiled():
 def _arrays(over):
     vals = sc.defaults("analytic")
     vals.update(over)
-    P = np.array([float(vals[n]) for n in K.PARAM_NAMES])
+    T = np.array([float(vals[n]) for n in K.PARAM_NAMES])
     IN = np.array([float(vals[n]) for n in K.INPUT_NAMES])
-    return P, IN, np.zeros(K.X_LEN), np.zeros(K.OUT_LEN), np.zeros(K.W_LEN)
+    return T, IN, np.zeros(K.X_LEN), np.zeros(K.OUT_LEN), np.zeros(K.W_LEN)
 
 
 def _ramp(i, v):
@@ -68,15 +68,15 @@ def test_the_notes_word_what_the_reports_word():
     """The FMU's warning at the start names what the CLI's report names outside the checked
     range; a parameter relation is refused in the table's words (scene.validate)."""
     over = {"omega": 500.0, "torque": 13.2, "r_roller": 0.0185, "r_groove": 0.0188}
-    P, IN, X, OUT, W = _arrays(over)
-    assert K.init(P, IN, X, OUT, W) == 1
+    T, IN, X, OUT, W = _arrays(over)
+    assert K.init(T, IN, X, OUT, W) == 1
     [(level, text)] = K.notes_text(W)
     assert level == K.WARNING
     assert text.split(": ", 1)[1].split("; ") == \
         outside_checked(sc.validate(over, "analytic"))
     for bad in ({"r_groove": 0.018}, {"r_bore": 0.02}, {"n_rollers": 2}, {"mu_groove": 1.0}):
-        P, IN, X, OUT, W = _arrays(bad)
-        assert K.init(P, IN, X, OUT, W) == 3
+        T, IN, X, OUT, W = _arrays(bad)
+        assert K.init(T, IN, X, OUT, W) == 3
         with pytest.raises(ValueError) as e:
             sc.validate(bad, "analytic")
         assert K.notes_text(W) == [(K.ERROR, str(e.value))]
@@ -86,28 +86,28 @@ def test_a_state_it_cannot_step_is_refused():
     """kernel.state_problem: a mode, flag or count the model never writes; an operating
     point's input out of range; a march row's p beyond mu_groove (|p| <= mu: T3); a step not
     above 0.  A state the model wrote passes."""
-    P, IN, X, OUT, W = _arrays({})
-    K.init(P, IN, X, OUT, W)
+    T, IN, X, OUT, W = _arrays({})
+    K.init(T, IN, X, OUT, W)
     IN[K.THETA] += 0.01
-    K.step(P, IN, X, OUT, W, 0.0, 1e-4)          # the march
-    assert K.state_problem(P, X) == 0
+    K.step(T, IN, X, OUT, W, 0.0, 1e-4)          # the march
+    assert K.state_problem(T, X) == 0
     for slot, value, code in ((K.X_MODE, 7.0, 1), (K.X_HAS_DT, 0.5, 1),
                               (K.X_KEY + K.OMEGA, 2e4, 2),
-                              (K.X_MARCH + K.R_P, 2 * P[K.MU_GROOVE], 3), (K.X_DT, -1e-4, 4)):
+                              (K.X_MARCH + K.R_P, 2 * T[K.MU_GROOVE], 3), (K.X_DT, -1e-4, 4)):
         bad = X.copy()
         bad[slot] = value
-        assert K.state_problem(P, bad) == code, K.STATE_PROBLEMS[code]
+        assert K.state_problem(T, bad) == code, K.STATE_PROBLEMS[code]
 
 
 def test_a_step_too_long_is_refused_before_it_starts():
     """More than MAX_SUBSTEPS substeps of the table's spacing (the march): refused, the state
     untouched, the note naming the step and the substep."""
-    P, IN, X, OUT, W = _arrays({})
-    K.init(P, IN, X, OUT, W)
+    T, IN, X, OUT, W = _arrays({})
+    K.init(T, IN, X, OUT, W)
     IN[K.THETA] += 0.01
-    K.step(P, IN, X, OUT, W, 0.0, 1e-4)
+    K.step(T, IN, X, OUT, W, 0.0, 1e-4)
     before = X.copy()
-    assert K.step(P, IN, X, OUT, W, 1e-4, 1e6) == 3
+    assert K.step(T, IN, X, OUT, W, 1e-4, 1e6) == 3
     [(level, text)] = K.notes_text(W)
     h = 2 * math.pi / (20 * math.pi * K.N_PER_CYCLE)
     assert level == K.ERROR and text.startswith(f"the communication step of 1e+06 s in "

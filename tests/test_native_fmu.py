@@ -125,15 +125,29 @@ def test_fmpy_runs_it_as_its_functions_in_python_bit_for_bit(fmus):
     """A master moving the inputs every step (FMPy's input table, interpolated), 0.5 s: every
     output equal to the last bit to the same functions' run as Python in process (one source,
     mounts.py, analytic_kernel.py or lifecycle.py; the same libm)."""
-    md = read_model_description(str(fmus[0]))
     spec, ints, _, stop = _case(fmus)
+    _bit_for_bit(fmus[0], spec, ints, stop)
+
+
+# the contact FMU in coast (the torque negative: the rollers pressed on the groove's other
+# flank) and through a reversal of the torque (drive to coast and back, 0.5 s)
+@pytest.mark.parametrize("torque", [(-300.0, 100.0, 7.0), (0.0, 300.0, 7.0)],
+                         ids=["coast", "reversing"])
+@pytest.mark.parametrize("ints", [{}, {"bearing": 1, "n_rollers": 3},
+                                  {"spider": 1, "n_rollers": 3}],
+                         ids=["ideal", "lumped-three", "free-spider"])
+def test_the_contact_fmu_in_coast_runs_as_its_functions_bit_for_bit(torque, ints):
+    _bit_for_bit(ensure_fmu("TripodRoller"), dict(CONTACT_INPUTS, torque=torque), ints, 0.5)
+
+
+def _bit_for_bit(fmu, spec, ints, stop):
+    md = read_model_description(str(fmu))
     t = np.linspace(0.0, stop, 51)
     cols = [("time", t)] + [(v.name, o + a * np.sin(w * t)) for v, o, a, w in _signals(md, spec)]
     inp = np.array(list(zip(*[c for _, c in cols])), dtype=[(n, float) for n, _ in cols])
     kw = dict(stop_time=stop, output_interval=DT, input=inp, start_values=ints)
-    a = simulate_fmu(str(fmus[0]), **kw)
-    b = simulate_fmu(str(fmus[0]), fmu_instance=InProcess(fmus[0]), fmi_type="CoSimulation",
-                     **kw)
+    a = simulate_fmu(str(fmu), **kw)
+    b = simulate_fmu(str(fmu), fmu_instance=InProcess(fmu), fmi_type="CoSimulation", **kw)
     assert len(a) == len(b) == round(stop / DT) + 1
     for name in a.dtype.names:
         assert np.array_equal(a[name], b[name]), name

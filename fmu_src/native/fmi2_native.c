@@ -120,7 +120,7 @@ static int allowed(Inst *c, const char *fn, unsigned phases)
 
 static double *slot_of(Inst *c, const ModelVar *v)
 {
-    return &c->arr[v->array == IN_P ? A_P : v->array == IN_IN ? A_IN : A_OUT][v->slot];
+    return &c->arr[v->array == IN_T ? A_T : v->array == IN_IN ? A_IN : A_OUT][v->slot];
 }
 
 /* Every variable at its start value, the model at rest. */
@@ -236,7 +236,7 @@ static void take_host_tolerance(Inst *c)
     if (!(c->host_tolerance > 0.0)) return;
     for (int k = 0; k < MODEL_N_VARS; ++k) {
         const ModelVar *v = &MODEL_VARS[k];
-        if (v->array != IN_P || strcmp(v->name, "tolerance") != 0) continue;
+        if (v->array != IN_T || strcmp(v->name, "tolerance") != 0) continue;
         double *x = slot_of(c, v);
         if (*x != 0.0) return;        /* the user's own */
         double t = c->host_tolerance;
@@ -276,12 +276,12 @@ fmi2Status fmi2ExitInitializationMode(fmi2Component component)
     }
     int32_t rc = model_init(c->arr);
     if (rc == 1 || rc == 3) log_notes(c, "fmi2ExitInitializationMode: invalid parameter: ");
-    if (rc < 0) {      /* a divisor too small: P[-rc - 1] */
+    if (rc < 0) {      /* a divisor too small: T[-rc - 1] */
         for (int k = 0; k < MODEL_N_VARS; ++k) {
             const ModelVar *v = &MODEL_VARS[k];
-            if (v->array != IN_P || v->slot != -rc - 1) continue;
+            if (v->array != IN_T || v->slot != -rc - 1) continue;
             char text[48];
-            native_value_text(v, c->arr[A_P][v->slot], text, sizeof text);
+            native_value_text(v, c->arr[A_T][v->slot], text, sizeof text);
             logf_(c, fmi2Error, "fmi2ExitInitializationMode: invalid parameter: %s = %s is too "
                   "small to compute with; allowed range %s", v->name, text, v->range_text);
         }
@@ -374,7 +374,7 @@ static fmi2Status set_values(fmi2Component component, const char *fn, char type,
             logf_(c, fmi2Error, "%s: %s is an output", fn, v->name);
             return fmi2Error;
         }
-        if (v->array == IN_P && c->phase == STEP_COMPLETE) {
+        if (v->array == IN_T && c->phase == STEP_COMPLETE) {
             logf_(c, fmi2Error, "%s: %s is a fixed parameter: set it before initialisation",
                   fn, v->name);
             return fmi2Error;
@@ -550,9 +550,9 @@ static int work_for(Inst *c, const State *s, double *scratch, char *why, size_t 
     } else if (rc < 0) {
         for (int k = 0; k < MODEL_N_VARS; ++k) {
             const ModelVar *v = &MODEL_VARS[k];
-            if (v->array != IN_P || v->slot != -rc - 1) continue;
+            if (v->array != IN_T || v->slot != -rc - 1) continue;
             char text[48];
-            native_value_text(v, arr[A_P][v->slot], text, sizeof text);
+            native_value_text(v, arr[A_T][v->slot], text, sizeof text);
             snprintf(why, n, "invalid parameter in the state: %s = %s is too small to compute "
                      "with; allowed range %s", v->name, text, v->range_text);
         }
@@ -587,7 +587,7 @@ static int state_fits(Inst *c, const State *s, double **scratch, char *why, size
         size_t at = (size_t)(slot_of(c, v) - c->data);
         double x = s->data[at];
         if (v->array == IN_IN && !native_value_ok(v, x, why, n)) return 0;
-        if (v->array != IN_P) continue;
+        if (v->array != IN_T) continue;
         if (!native_value_ok(v, x, why, n)) {
             char text[512];
             snprintf(text, sizeof text, "invalid parameter in the state: %s", why);

@@ -7,15 +7,15 @@
 
 #include <stdint.h>
 
-/* where a variable's value lives: the model's arrays P (parameters, integers as doubles), IN
+/* where a variable's value lives: the model's arrays T (the parameter table, integers as doubles), IN
    (inputs), OUT (outputs) */
-enum { IN_P, IN_IN, IN_OUT };
+enum { IN_T, IN_IN, IN_OUT };
 
 typedef struct {
     const char *name;
     uint32_t vr;
     char type;           /* 'R' Real, 'I' Integer, 'B' Boolean (0 or 1) */
-    int array;           /* IN_P, IN_IN, IN_OUT */
+    int array;           /* IN_T, IN_IN, IN_OUT */
     int slot;            /* index in that array */
     double start;
     /* the table's range (check_param): lo, hi (has_lo/has_hi), open ends, "0 or at least" */
@@ -24,8 +24,8 @@ typedef struct {
     const char *range_text;       /* Param.range_text(), for the messages */
 } ModelVar;
 
-/* the arrays the compiled functions take, in this order: P, IN, X, OUT, W, TH (t, h) */
-enum { A_P, A_IN, A_X, A_OUT, A_W, A_TH, A_COUNT };
+/* the arrays the compiled functions take, in this order: T, IN, X, OUT, W, TH (t, h) */
+enum { A_T, A_IN, A_X, A_OUT, A_W, A_TH, A_COUNT };
 
 extern const char MODEL_ID[];
 extern const char MODEL_GUID[];
@@ -52,7 +52,7 @@ extern const int MODEL_N_STATE_PROBLEMS;
 
 /* 1: done; 2: a non-finite output (OUT untouched); 3: refused, its notes say why; 5 (step): an
    input the model derived (written into IN) is outside its range, nothing stepped; -(1 +
-   slot): the parameter P[slot] cannot be divided by (init only); 0: an error inside the
+   slot): the parameter T[slot] cannot be divided by (init only); 0: an error inside the
    compiled code */
 int32_t model_init(double **args);
 int32_t model_step(double **args);

@@ -136,8 +136,8 @@ def settled_table(T, W, theta, omega, F, vp):
     key = W[W_TKEY:W_TKEY + 6]
     if key[4] != 0.0 and key[0] == theta and key[1] == omega and key[2] == F and key[3] == vp:
         return key[5] != 0.0      # (the start's outputs derived it at the same inputs)
-    PA = W[W_PA:W_PA + RE.P_LEN]
-    for j in range(RE.P_LEN):
+    PA = W[W_PA:W_PA + RE.T_LEN]
+    for j in range(RE.T_LEN):
         PA[j] = T[ANALYTIC_SLOTS[j]]
     O = W[W_O:W_O + RE.O_LEN]
     operating_point(PA, theta, omega, F, 0.0, vp, O)
