@@ -115,8 +115,10 @@ def probe(ctx):
     else:           # the needle-resolved row: its own pressing offset (step_resolved)
         inputs_moved(P, hs, derive_op(P, OP))
         x0, rate = resolved_drive(P, T, OP, math.nan, 0, False, cache)
-        run_substeps(Y, P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate), OP[K.OP_H], 0, out,
-                     Wk, NW)
+        # (n as the step computes it, not a literal 0: numba would compile the integrators
+        # again for a literal argument)
+        run_substeps(Y, P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate), OP[K.OP_H],
+                     0 if OP[K.OP_NOSTEP] > 0.0 else int(OP[K.OP_N]), out, Wk, NW)
     for j in range(K.P_LEN):
         P[j] = W[s + j]
     for j in range(K.OP_LEN):
