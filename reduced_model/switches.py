@@ -2,7 +2,8 @@
 names the paths).  Every one defaults to on; "0" turns it off, for debugging and comparison.
 
 - TRIPOD_NUMBA=0: plain Python, no compiled kernel at all (the same source, slower).
-- TRIPOD_NUMBA_CACHE: where numba's on-disk cache goes (default: under ~/.cache).
+- TRIPOD_NUMBA_CACHE: where numba's on-disk cache of the model goes (default: numba's own
+  NUMBA_CACHE_DIR where that is set, else under ~/.cache).
 """
 import os
 
@@ -12,4 +13,4 @@ def _on(name):
 
 
 NUMBA = _on("TRIPOD_NUMBA")
-NUMBA_CACHE = os.environ.get("TRIPOD_NUMBA_CACHE") or None
+NUMBA_CACHE = os.environ.get("TRIPOD_NUMBA_CACHE") or os.environ.get("NUMBA_CACHE_DIR") or None

@@ -5,7 +5,8 @@ Set TRIPOD_NUMBA=0 to force plain Python (debugging, or a host without numba).
 numba keys its on-disk cache on the source file's folder.  A cache locator keyed on the
 package's import name and the content hash of its sources keeps one cache for every copy of the
 same version (a fresh clone, a test's copy of the tree):
-~/.cache/tripod-thrust/numba-pyXY/<name>-<hash>, or under TRIPOD_NUMBA_CACHE.
+~/.cache/tripod-thrust/numba-pyXY/<name>-<hash>, or under TRIPOD_NUMBA_CACHE (or numba's
+NUMBA_CACHE_DIR) when set.
 """
 import os
 import sys
