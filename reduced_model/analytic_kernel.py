@@ -361,9 +361,11 @@ def roller_row(T, X, i, x):
     elif X[X_MODE] == MODE_TABLE:
         TAB = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
         y = mirrored(X, x)
-        Fz, Fzm, Fx, Fy, slip = table_at(TAB, N_PER_CYCLE, y, 0), table_at(TAB, N_PER_CYCLE, y, 1), \
-            table_at(TAB, N_PER_CYCLE, y, 2), table_at(TAB, N_PER_CYCLE, y, 3), \
-            table_at(TAB, N_PER_CYCLE, y, 4)
+        Fz, Fzm, Fx, Fy, slip = (table_at(TAB, N_PER_CYCLE, y, 0),
+                                 table_at(TAB, N_PER_CYCLE, y, 1),
+                                 table_at(TAB, N_PER_CYCLE, y, 2),
+                                 table_at(TAB, N_PER_CYCLE, y, 3),
+                                 table_at(TAB, N_PER_CYCLE, y, 4))
     else:
         Fz, ft, V, phi = thrust_at(O, mirrored(X, x))
         return sign * Fz, sign * Fz, O[O_LOAD], ft * math.cos(phi), abs(V)

@@ -7,8 +7,8 @@
 
 #include <stdint.h>
 
-/* where a variable's value lives: the model's arrays T (the parameter table, integers as doubles), IN
-   (inputs), OUT (outputs) */
+/* where a variable's value lives: the model's arrays T (the parameter table, integers as
+   doubles), IN (inputs), OUT (outputs) */
 enum { IN_T, IN_IN, IN_OUT };
 
 typedef struct {
