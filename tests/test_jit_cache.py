@@ -10,12 +10,27 @@ from pathlib import Path
 ROOT = Path(__file__).resolve().parents[1]
 
 
-def _cache_path(pkg_parent: Path) -> str:
+def _cache_path(pkg_parent: Path, env=None) -> str:
     code = ("import sys; sys.path.insert(0, sys.argv[1]); from tripod_model import kernel; "
             "print(kernel.run_substeps._cache._cache_path)")
     p = subprocess.run([sys.executable, "-c", code, str(pkg_parent)], capture_output=True,
-                       text=True, timeout=120, check=True)
+                       text=True, timeout=120, check=True, env=env)
     return p.stdout.strip().splitlines()[-1]
+
+
+def test_the_cache_goes_where_numba_cache_dir_or_tripod_numba_cache_says(tmp_path):
+    """numba's own NUMBA_CACHE_DIR takes the model's cache too (a user who empties or moves
+    numba's cache moves the model's); TRIPOD_NUMBA_CACHE, where set, goes first."""
+    import os
+    env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
+                                                            "TRIPOD_NUMBA_CACHE")}
+    numba_dir, ours = tmp_path / "numba", tmp_path / "ours"
+    at = Path(_cache_path(ROOT / "fmu_src", dict(env, NUMBA_CACHE_DIR=str(numba_dir))))
+    assert at.parent == numba_dir and at.name.startswith("tripod_model-")
+    at = Path(_cache_path(ROOT / "fmu_src", dict(env, NUMBA_CACHE_DIR=str(numba_dir),
+                                                 TRIPOD_NUMBA_CACHE=str(ours))))
+    assert at.parent == ours
+    assert numba_dir not in Path(_cache_path(ROOT / "fmu_src", env)).parents
 
 
 def test_cache_folder_per_source_version(tmp_path):
