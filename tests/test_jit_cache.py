@@ -30,7 +30,10 @@ def test_the_cache_goes_where_numba_cache_dir_or_tripod_numba_cache_says(tmp_pat
     at = Path(_cache_path(ROOT / "fmu_src", dict(env, NUMBA_CACHE_DIR=str(numba_dir),
                                                  TRIPOD_NUMBA_CACHE=str(ours))))
     assert at.parent == ours
-    assert numba_dir not in Path(_cache_path(ROOT / "fmu_src", env)).parents
+    # neither set: under the home folder's cache, one folder per Python version
+    at = Path(_cache_path(ROOT / "fmu_src", env))
+    assert at.parent.parent == Path.home() / ".cache" / "tripod-thrust"
+    assert at.parent.name == "numba-py%d%d" % sys.version_info[:2]
 
 
 def test_cache_folder_per_source_version(tmp_path):
