@@ -148,3 +148,41 @@ def test_contact_damping_damps_the_approach():
         m = (t > 0.0502) & (t < 0.06)
         ripple.append(np.std(fx[m] - np.polyval(np.polyfit(t[m], fx[m], 3), t[m])))
     assert ripple[1] < 0.95 * ripple[0], ripple
+
+
+@pytest.mark.parametrize("theta_deg", [2.0, 8.0, 25.0])
+def test_the_driving_motions_rates_are_their_derivatives(theta_deg):
+    # line_kinematics' closed-form rates (contact._line_rates, trunnion_axial_rate,
+    # trunnion_yaw_rate) against derivatives of the motions themselves (trunnion_line, Eqs. 1
+    # and 5; trunnion_axial, Eq. 7; trunnion_yaw, Eq. 3) by Richardson-extrapolated central
+    # differences, h = 1e-2 rad: their truncation error is O(h^4), 7.5e-10 of the rates' scale
+    # measured over 2-25 deg (and 2.6e-8 at h = 3e-2, as h^4 says); held to 1e-8 of the scale
+    # plus the differences' own rounding, at most (16 / (1/2)^2 + 4) / 3 eps |f| / h^2 for the
+    # second ones (eps |f| / h for the first), |f| the motions' size
+    from tripod_model import contact as C, layout as K
+    m = ContactModel({"bearing": 1})       # (its parameter vector: the rates of every motion)
+    P = m.P
+    theta, w, h = math.radians(theta_deg), 2 * math.pi * 10, 1e-2
+
+    def motions(x):
+        q, ax, ay, az = C.trunnion_line(x, theta, P[K.P_S], True, True)
+        return np.array([q, ax, ay, az, C.trunnion_axial(x, theta, P[K.P_S], True),
+                         C.trunnion_yaw(x, theta, True)])
+
+    def rates(x, hh):
+        d1 = (motions(x + hh) - motions(x - hh)) / (2 * hh)
+        d2 = (motions(x + hh) - 2 * motions(x) + motions(x - hh)) / hh ** 2
+        return d1, d2
+
+    for x in np.linspace(0.0, 2 * math.pi, 25):
+        L = np.full(K.L_LEN, np.nan)
+        C.line_kinematics(x, w, theta, P, L)
+        (a1, a2), (b1, b2) = rates(x, h), rates(x, h / 2)
+        d1, d2 = (4 * b1 - a1) / 3 * w, (4 * b2 - a2) / 3 * w * w
+        first = [L[K.L_QZD], L[K.L_ADX], L[K.L_ADY], L[K.L_ADZ], L[K.L_VAX], L[K.L_SPIN]]
+        second = [L[K.L_QZDD], L[K.L_AAX], L[K.L_AAY], L[K.L_AAZ]]
+        f = np.abs(motions(x)).max() * np.finfo(float).eps
+        assert np.abs(np.array(first) - d1).max() <= 1e-8 * np.abs(d1).max() + 4 * f / h * w
+        assert np.abs(np.array(second) - d2[:4]).max() <= \
+            1e-8 * np.abs(d2[:4]).max() + 23 * f / h ** 2 * w * w
+        assert [L[K.L_QZ], L[K.L_AX], L[K.L_AY], L[K.L_AZ]] == list(motions(x)[:4])

@@ -26,10 +26,6 @@ from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX,
 
 # --- driving motions ---
 
-HX = 2e-4   # whirl-angle step for finite-difference derivatives of the driving motions [rad]
-SIN_HX, COS_HX = math.sin(HX), math.cos(HX)
-
-
 @njit
 def trunnion_line(x, theta, s, pitch, roll):
     """Trunnion axis at whirl angle x: point Q on it at the groove's mid-plane and direction a.
@@ -52,8 +48,7 @@ def _roll_ratio(theta):
 @inline
 def _line_at(sx, cx, T, k, s, pitch, roll):
     """trunnion_line at the whirl angle whose sine and cosine are sx, cx, with T = tan(theta)
-    and k = _roll_ratio(theta) given (line_kinematics evaluates the line at three angles of
-    one theta)."""
+    and k = _roll_ratio(theta) given."""
     # the pitch and roll angles enter only as tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x
     # (Eq. 5): no atan, asin, nor sines and cosines of them (with glibc's tanh and pow, libm
     # took a third of the contact step's time)
@@ -80,6 +75,56 @@ def trunnion_yaw(x, theta, yaw):
     return math.atan(math.tan(theta) * math.cos(x)) if yaw else 0.0
 
 
+@inline
+def trunnion_axial_rate(x, theta, s, axial):
+    """d/dx of trunnion_axial [m/rad], Eq. (7) differentiated: with sin(xi) = e sin(2x) / s,
+    2 e (sin 2x + tan(xi) cos 2x)."""
+    if not axial:
+        return 0.0
+    c = math.cos(theta)
+    e = s * (1.0 - c) / (2.0 * c)
+    sxi = e * math.sin(2.0 * x) / s
+    return 2.0 * e * (math.sin(2.0 * x) + sxi / math.sqrt(1.0 - sxi * sxi) * math.cos(2.0 * x))
+
+
+@inline
+def trunnion_yaw_rate(x, theta, yaw):
+    """d/dx of trunnion_yaw [rad/rad], Eq. (3) differentiated: -T sin x / (1 + T^2 cos^2 x),
+    T = tan(theta)."""
+    if not yaw:
+        return 0.0
+    T = math.tan(theta)
+    tc = T * math.cos(x)
+    return -T * math.sin(x) / (1.0 + tc * tc)
+
+
+@inline
+def _line_rates(sx, cx, T, k, s, pitch, roll):
+    """trunnion_line's Qz and a with their first and second derivatives in the whirl angle x
+    (sine and cosine sx, cx; T = tan(theta), k = _roll_ratio(theta)), in closed form from
+    tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x (Eq. 5): (Qz, Qz', Qz'', a, a', a''),
+    each of a's an (x, y, z) tuple."""
+    t = t1 = t2 = 0.0
+    if pitch:
+        t, t1, t2 = T * sx, T * cx, -T * sx          # tan(phi) and its derivatives
+    c = 1.0 / math.sqrt(1.0 + t * t)                   # cos(phi)
+    c3 = c * c * c
+    c1 = -t * t1 * c3
+    c2 = -(t1 * t1 + t * t2) * c3 + 3.0 * t * t * t1 * t1 * c3 * c * c
+    u = u1 = u2 = 0.0
+    if roll:
+        u = k * 2.0 * sx * cx                          # sin(xi) = k sin 2x, as _line_at
+        u1, u2 = 2.0 * k * (cx * cx - sx * sx), -4.0 * u
+    v = math.sqrt(1.0 - u * u)                         # cos(xi)
+    v1 = -u * u1 / v
+    v2 = -(u1 * u1 + u * u2) / v - u * u * u1 * u1 / (v * v * v)
+    a = (u * c, v * c, t * c)
+    a1 = (u1 * c + u * c1, v1 * c + v * c1, t1 * c + t * c1)
+    a2 = (u2 * c + 2.0 * u1 * c1 + u * c2, v2 * c + 2.0 * v1 * c1 + v * c2,
+          t2 * c + 2.0 * t1 * c1 + t * c2)
+    return s * t, s * t1, s * t2, a, a1, a2
+
+
 @njit
 def line_kinematics(x, w, theta, P, L):
     """Q, a and their first and second time derivatives at whirl angle x, whirl rate w.
@@ -88,7 +133,9 @@ def line_kinematics(x, w, theta, P, L):
     P[P_VP]: the spider's travel along the groove), [11] d2Qz/dt2,
     [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a,
     [14:18] the (x, w, theta, plunge speed) they were computed for (a one-entry cache; NaN =
-    empty).  Central differences in x (step HX), chain rule with constant w within a substep.
+    empty).  The derivatives in closed form (_line_rates), chain rule with constant w within
+    a substep: finite differences in x carried rounding noise of 1e-8 into the second ones,
+    which any change of theta redrew.
     """
     vp = P[P_VP]
     if L[L_KX] == x and L[L_KW] == w and L[L_KTH] == theta and L[L_KVP] == vp:
@@ -98,35 +145,21 @@ def line_kinematics(x, w, theta, P, L):
     L[L_KTH] = theta
     L[L_KVP] = vp
     s = P[P_S]
-    pitch = P[P_PITCH] > 0.5
-    roll = P[P_ROLL] > 0.5
-    T, k = math.tan(theta), _roll_ratio(theta)
-    sx, cx = math.sin(x), math.cos(x)
-    ds, dc = sx * COS_HX, cx * SIN_HX      # x +- HX by the angle sum: one sine and cosine
-    q0, a0x, a0y, a0z = _line_at(sx, cx, T, k, s, pitch, roll)
-    qp, apx, apy, apz = _line_at(ds + dc, cx * COS_HX - sx * SIN_HX, T, k, s, pitch, roll)
-    qm, amx, amy, amz = _line_at(ds - dc, cx * COS_HX + sx * SIN_HX, T, k, s, pitch, roll)
-    i1 = w / (2.0 * HX)
-    i2 = w * w / (HX * HX)
-    L[L_AX] = a0x
-    L[L_AY] = a0y
-    L[L_AZ] = a0z
-    L[L_ADX] = (apx - amx) * i1
-    L[L_ADY] = (apy - amy) * i1
-    L[L_ADZ] = (apz - amz) * i1
-    L[L_AAX] = (apx - 2.0 * a0x + amx) * i2
-    L[L_AAY] = (apy - 2.0 * a0y + amy) * i2
-    L[L_AAZ] = (apz - 2.0 * a0z + amz) * i2
-    L[L_QZ] = q0
-    L[L_QZD] = (qp - qm) * i1
+    q, q1, q2, a, a1, a2 = _line_rates(math.sin(x), math.cos(x), math.tan(theta),
+                                       _roll_ratio(theta), s, P[P_PITCH] > 0.5,
+                                       P[P_ROLL] > 0.5)
+    ww = w * w
+    L[L_AX], L[L_AY], L[L_AZ] = a
+    L[L_ADX], L[L_ADY], L[L_ADZ] = a1[0] * w, a1[1] * w, a1[2] * w
+    L[L_AAX], L[L_AAY], L[L_AAZ] = a2[0] * ww, a2[1] * ww, a2[2] * ww
+    L[L_QZ] = q
+    L[L_QZD] = q1 * w
     if vp != 0.0:
         L[L_QZD] += vp
-    L[L_QZDD] = (qp - 2.0 * q0 + qm) * i2
+    L[L_QZDD] = q2 * ww
     if P[P_BEARING] != BEAR_IDEAL:   # the trunnion's own slide and spin matter only to the needles
-        ax = P[P_AXIAL] > 0.5
-        L[L_VAX] = (trunnion_axial(x + HX, theta, s, ax) - trunnion_axial(x - HX, theta, s, ax)) * i1
-        yw = P[P_YAW] > 0.5
-        L[L_SPIN] = (trunnion_yaw(x + HX, theta, yw) - trunnion_yaw(x - HX, theta, yw)) * i1
+        L[L_VAX] = trunnion_axial_rate(x, theta, s, P[P_AXIAL] > 0.5) * w
+        L[L_SPIN] = trunnion_yaw_rate(x, theta, P[P_YAW] > 0.5) * w
     else:
         L[L_VAX] = 0.0
         L[L_SPIN] = 0.0
