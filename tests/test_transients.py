@@ -302,7 +302,7 @@ def test_an_ulp_of_an_input_moves_the_outputs_by_a_rounding(case):
     # and held: Fz_joint within 1e-9 of its scale of the unmoved run over the next 1,000 steps.
     # A restart taken in full on any change moved it by 6.8e-5 to 1.9e-4; Newton stopped at
     # 1e-3 v_st, the floating spider's lumped rows by 1.2e-4 to 2.6e-4; the rates by finite
-    # differences, theta by 1.1e-9 to 3.1e-9 whatever its move.  Measured 0-8.0e-12
+    # differences, theta by 1.1e-9 to 3.1e-9 whatever its move.  Measured 0-9.0e-12
     # (docs/integrators.md); the bound leaves a factor of 100 for other CPUs
     import numpy as np
     params, torque = ULP_CASES[case]
