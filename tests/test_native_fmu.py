@@ -52,14 +52,11 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
 # the win64 run (whole, or resumed from a Linux state at 0.25 s) against the linux64 one [of
 # each output's scale]: 1e-9.  Where the lumped row's friction holds a roller's slide and lets
 # go, the moment of letting go takes the two libms' last bits: measured 7.4e-12 and 1.1e-11
-# (three rollers on the lumped row), 8.5e-10 (the floating spider with the lumped row,
-# resumed); with the kernel's tanh from exp alone (1 - exp cancelling below 1/2) 7.3e-9 and
-# 1.5e-9, and with Newton stopped at 1e-3 v_st 0.24 of an output's scale.  That last case is
-# within 1e-9 by a factor of 1.2 only: held to 3e-9 (another CPU's libm paths)
+# (three rollers on the lumped row) and 8.5e-10 (the floating spider with the lumped row,
+# resumed).  That last case is within 1e-9 by a factor of 1.2 only: held to 3e-9 (another
+# CPU's libm paths)
 WINE_BOUND = {"TripodRoller-free-spider-lumped": 3e-9}
-# runs in which a last bit grows: the needle-resolved row's impacts.  (The three rollers on
-# the lumped row were here while Newton stopped at 1e-3 v_st: where a roller's slide let go the
-# win64 libm's last bit parted the runs by 4.6e-7 of an output's scale; now 7.4e-12)
+# runs in which a last bit grows: the needle-resolved row's impacts
 LAST_BIT_GROWS = {"TripodRoller-resolved"}
 
 
@@ -76,7 +73,6 @@ RESUMED = {"TripodRoller-lumped-three": CASES["TripodRoller-lumped-three"],
                                                                 "bearing": 1},
                                                ("mu_groove", 0.07), 0.5),
            "TripodRollerAnalytic-three": CASES["TripodRollerAnalytic-three"]}
-
 
 
 def _case(fmus):
@@ -241,10 +237,9 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
     Python in the process, the outputs within 1e-9 of each output's scale of the Linux run
     (the two C runtimes' sin, cos, pow and tanh may differ in the last bit; the mounts and the
     joint's groove contact are damped, so a last bit stays a last bit).  Where a last bit
-    grows (LAST_BIT_GROWS: the needle-resolved row's impacts, benchmarks/needle_chaos.py)
-    the first step agrees within 1e-9 and the run within ten
-    times the Linux run's own spread when theta moves by 4 ulps (what another libm's last bit
-    grows into)."""
+    grows (LAST_BIT_GROWS: the needle-resolved row's impacts, benchmarks/needle_chaos.py) the
+    first step agrees within 1e-9 and the run within ten times the Linux run's own spread when
+    theta moves by 4 ulps (what another libm's last bit grows into)."""
     assert shutil.which("x86_64-w64-mingw32-gcc") and os.path.exists(WINE), \
         "mingw-w64 and wine64 missing: make test installs them (make cross-tools)"
     aot = builder().build_module("aot")

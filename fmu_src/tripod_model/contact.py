@@ -134,8 +134,8 @@ def line_kinematics(x, w, theta, P, L):
     [12] trunnion material velocity along its axis (dd/dt), [13] trunnion spin rate about a,
     [14:18] the (x, w, theta, plunge speed) they were computed for (a one-entry cache; NaN =
     empty).  The derivatives in closed form (_line_rates), chain rule with constant w within
-    a substep: finite differences in x carried rounding noise of 1e-8 into the second ones,
-    which any change of theta redrew.
+    a substep: finite differences in x would carry rounding noise of about 1e-8 into the
+    second ones, redrawn by any change of theta.
     """
     vp = P[P_VP]
     if L[L_KX] == x and L[L_KW] == w and L[L_KTH] == theta and L[L_KVP] == vp:
@@ -230,12 +230,13 @@ TANH_Q = (34459425.0, 16216200.0, 945945.0, 13860.0, 45.0)
 
 @inline
 def tanh_clipped(x):
-    """tanh(x) from one exp: glibc's tanh takes about 2.4 times as long (the needle row calls it
-    about 1100 times an evaluation: 13 % of the contacts' time; the groove's friction and the
-    lumped row's laws use it too).  Below |x| = 1/2, where 1 - exp(-2|x|) would cancel (3e-13
-    relative at 1e-4, the last bits of exp blown up: another libm's moved the outputs where a
-    roller's slide lets go), Lambert's continued fraction cut at 17 (TANH_P / TANH_Q).
-    Relative error below 4 eps (tests/test_needles.py); NaN stays NaN."""
+    """tanh(x) from one exp, or below |x| = 1/2 a rational function: glibc's tanh takes about
+    2.4 times as long (the needle row calls it about 1100 times an evaluation: 13 % of the
+    contacts' time; the groove's friction and the lumped row's laws use it too).  Below 1/2,
+    1 - exp(-2|x|) would cancel (3e-13 relative at 1e-4, where a slide creeps: another libm's
+    last bit of exp would move the outputs where a roller's slide lets go), so Lambert's
+    continued fraction cut at 17 (TANH_P / TANH_Q).  Relative error below 4 eps
+    (tests/test_needles.py); NaN stays NaN."""
     a = abs(x)
     if a >= 19.0:
         t = 1.0                      # exact in double precision

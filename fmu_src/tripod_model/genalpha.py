@@ -24,10 +24,10 @@ from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_JUMPW, H_RI
 RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) lets the stick mode
                # ring: order 3 off by 40-200 % at 25-100 us, while 0.6-0.9 all stay below
                # 0.02 % at 25-50 us (paper's scene, ideal bearing)
-# Newton stops at velocity increments below GA_NTOL x v_st.  1e-3 gave order 3 within 5e-6 of
-# this, but where to stop is a choice a last bit can flip: on the floating spider, whose lumped
-# rows start each substep from their forces, one ulp of an input then grew to 1e-4 of Fz_joint;
-# at 1e-5 it stays below 1e-11 (docs/integrators.md, "Small changes restart in proportion")
+# Newton stops at velocity increments below GA_NTOL x v_st.  A looser stop (1e-3) gives the same
+# order 3 to 5e-6, but where to stop is a choice a last bit can flip: on the floating spider,
+# whose lumped rows start each substep from their forces, one ulp of an input grows to 1e-4 of
+# Fz_joint there; at 1e-5 it stays below 1e-11 (docs/integrators.md, "Newton stops at 1e-5 v_st")
 GA_NTOL = 1e-5
 GA_MAXIT = 12
 
