@@ -185,4 +185,3 @@ def test_the_driving_motions_rates_are_their_derivatives(theta_deg):
         assert np.abs(np.array(first) - d1).max() <= 1e-8 * np.abs(d1).max() + 4 * f / h * w
         assert np.abs(np.array(second) - d2[:4]).max() <= \
             1e-8 * np.abs(d2[:4]).max() + 23 * f / h ** 2 * w * w
-        assert [L[K.L_QZ], L[K.L_AX], L[K.L_AY], L[K.L_AZ]] == list(motions(x)[:4])

@@ -35,27 +35,15 @@ def trunnion_line(x, theta, s, pitch, roll):
     (sense chosen so that the slip on the loaded +x flank is V = v1 + v2, model.md).
     Returns (Qz, ax, ay, az); Q = (x0, 0, Qz) with x0 the pressing offset.
     """
-    return _line_at(math.sin(x), math.cos(x), math.tan(theta), _roll_ratio(theta), s, pitch,
-                    roll)
+    q, _q1, _q2, a, _a1, _a2 = _line_rates(math.sin(x), math.cos(x), math.tan(theta),
+                                           _roll_ratio(theta), s, pitch, roll)
+    return q, a[0], a[1], a[2]
 
 
 @inline
 def _roll_ratio(theta):
     """e / s of the roll, Eq. (5): the trunnion's eccentricity over the spider radius."""
     return (1.0 - math.cos(theta)) / (2.0 * math.cos(theta))
-
-
-@inline
-def _line_at(sx, cx, T, k, s, pitch, roll):
-    """trunnion_line at the whirl angle whose sine and cosine are sx, cx, with T = tan(theta)
-    and k = _roll_ratio(theta) given."""
-    # the pitch and roll angles enter only as tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x
-    # (Eq. 5): no atan, asin, nor sines and cosines of them (with glibc's tanh and pow, libm
-    # took a third of the contact step's time)
-    tp = T * sx if pitch else 0.0
-    cp = 1.0 / math.sqrt(1.0 + tp * tp)        # cos(phi)
-    sxi = k * 2.0 * sx * cx if roll else 0.0    # sin(xi)
-    return s * tp, sxi * cp, math.sqrt(1.0 - sxi * sxi) * cp, tp * cp
 
 
 @njit
@@ -104,6 +92,9 @@ def _line_rates(sx, cx, T, k, s, pitch, roll):
     (sine and cosine sx, cx; T = tan(theta), k = _roll_ratio(theta)), in closed form from
     tan(phi) = T sin x (Eq. 1) and sin(xi) = k sin 2x (Eq. 5): (Qz, Qz', Qz'', a, a', a''),
     each of a's an (x, y, z) tuple."""
+    # the pitch and roll angles enter only as tan(phi) and sin(xi): no atan, asin, nor sines
+    # and cosines of them (with glibc's tanh and pow, libm took a third of the contact step's
+    # time)
     t = t1 = t2 = 0.0
     if pitch:
         t, t1, t2 = T * sx, T * cx, -T * sx          # tan(phi) and its derivatives
@@ -113,7 +104,7 @@ def _line_rates(sx, cx, T, k, s, pitch, roll):
     c2 = -(t1 * t1 + t * t2) * c3 + 3.0 * t * t * t1 * t1 * c3 * c * c
     u = u1 = u2 = 0.0
     if roll:
-        u = k * 2.0 * sx * cx                          # sin(xi) = k sin 2x, as _line_at
+        u = k * 2.0 * sx * cx                          # sin(xi) = k sin 2x
         u1, u2 = 2.0 * k * (cx * cx - sx * sx), -4.0 * u
     v = math.sqrt(1.0 - u * u)                         # cos(xi)
     v1 = -u * u1 / v
