@@ -1,9 +1,9 @@
 """Compile a model's functions ahead of time into object code for the FMUs' binaries
 (native_fmu.py links them with the native FMI layer).
 
-numba compiles the functions in a fresh process (an empty cache, so the LLVM module is at
-hand; a generic x86-64 CPU, so the binary runs on any machine the FMU goes to) and llvmlite
-emits them as position-independent object code; the binary links them with
+numba compiles the functions in a fresh process (a generic x86-64 CPU, so the binary runs on
+any machine the FMU goes to; only their LLVM IR, nothing for the host: _EMIT_FUNCTIONS) and
+llvmlite emits them as position-independent object code; the binary links them with
 native/aot_stubs.c (the symbols of numba's error path) and libm.  For win64 the same IR is
 retargeted to x86_64-w64-windows-gnu and linked by mingw-w64 (TARGETS).  The compiled objects
 are kept by the content of their sources (AOT_CACHE, cache_key).
@@ -44,9 +44,23 @@ TARGETS = {
 _EMIT_FUNCTIONS = r"""
 import importlib, json, os, sys
 import llvmlite.binding as llvm
+from numba.core import caching, codegen as cg
 out, spec, targets = sys.argv[1], sys.argv[2], json.loads(sys.argv[3])
 module, factory = spec.split(":")
+# Only the entry points' IR is wanted.  numba would optimise every function's module with all
+# its callees linked in and generate its machine code for this CPU, again for each caller: half
+# the compile.  Here a library keeps its function passes only; the entry points' linked
+# modules take the module passes once (below), and nothing is generated or cached for the host.
+module_passes = cg.CPUCodeLibrary._optimize_final_module
+cg.CPUCodeLibrary._optimize_final_module = lambda self: None
+cg.JITCodeLibrary._finalize_specific = lambda self: None
+cg.JITCodeLibrary.get_pointer_to_function = lambda self, name: self._ensure_finalized() or 0
+cg.JITCPUCodegen._add_module = lambda self, module: None
+cg.JITCPUCodegen.set_env = lambda self, name, env: None
+caching.Cache.save_overload = lambda self, sig, data: None
 functions = getattr(importlib.import_module(module), factory)()
+for fn in functions.values():
+    module_passes(fn._library)
 llvm.initialize_all_targets()
 llvm.initialize_all_asmprinters()
 symbols = {name: fn.native_name for name, fn in functions.items()}
