@@ -7,6 +7,8 @@ import subprocess
 import sys
 from pathlib import Path
 
+import pytest
+
 ROOT = Path(__file__).resolve().parents[1]
 
 
@@ -47,3 +49,28 @@ def test_cache_folder_per_source_version(tmp_path):
     assert _cache_path(same) == tree          # an extracted copy finds the tree's cache
     assert _cache_path(changed) != tree       # another version keeps its own
     assert Path(tree).name.startswith("tripod_model-")
+
+
+@pytest.mark.slow   # (the kernel compiled from nothing: about 2 minutes)
+def test_each_kernel_function_compiles_once_for_every_step(tmp_path):
+    """A literal argument compiles a function once more for its value, with everything it
+    calls: the needle loop for the split step's False and the one-system step's True, the
+    kernel's advance for the floating spider's one substep.  In a fresh process with an empty
+    cache, so every function this run needs is compiled and its signatures listed (a cached
+    caller carries its callees' code, and they are then never loaded)."""
+    import os
+    code = ("import math\n"
+            "from tripod_model.model import JointModel\n"
+            "from tripod_model import kernel, needles\n"
+            "for p in ({'bearing': 2}, {'bearing': 2, 'integrator': 1},\n"
+            "          {'bearing': 1, 'n_rollers': 3, 'spider': 1}):\n"
+            "    JointModel(p).step(1e-4, math.radians(8), 20 * math.pi, 4500.0)\n"
+            "print(len(needles._contacts.signatures), len(needles.needle_forces.signatures),\n"
+            "      len(kernel.advance.signatures),\n"
+            "      sum('Literal' in str(s) for s in kernel.advance.signatures))\n")
+    env = dict(os.environ, TRIPOD_NUMBA_CACHE=str(tmp_path))
+    p = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                       timeout=1200, cwd=ROOT, env=env)
+    assert p.returncode == 0, p.stderr[-3000:]
+    # advance: once with the needle row's work, once without it (the other bearings)
+    assert p.stdout.split() == ["1", "1", "2", "0"], p.stdout

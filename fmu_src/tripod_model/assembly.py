@@ -39,7 +39,10 @@ def resolved_forces(Y, P, NW, theta, x, h, L, e1, e2, cpl):
     g = L[L_QZDD]   # the frame origin Q accelerates along the groove (z) only
     pose = (o1, o2, o3, vo1, vo2, vo3, b2 * ib, -b1 * ib, ib, Y[Y_B1D], Y[Y_B2D], Y[Y_OM],
             d_tr, L[L_VAX], L[L_SPIN])
-    needle_forces(Y, NW, P[P_VST_OP], h, hk, cpl, pose, (e1x, ax), (g * e1z, g * e2z, g * az))
+    # bool(): one compiled needle loop for both steps (a literal True or False would compile
+    # the loop once for each)
+    needle_forces(Y, NW, P[P_VST_OP], h, hk, bool(cpl), pose, (e1x, ax),
+                  (g * e1z, g * e2z, g * az))
 
 
 @inline

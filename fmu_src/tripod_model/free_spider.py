@@ -107,7 +107,8 @@ def _spider_substep(n, Y, P, Wn, q, v, h, T, theta, w, head, gs):
         g = gs[i]
         rate = g[0] * v[0] + g[1] * v[1] + g[2] * v[2]
         x0 = g[0] * q[0] + g[1] * q[1] + g[2] * q[2] + h * rate
-        if not advance(Y[i], P[i], K.Drive(theta, w, x0, rate), h, 1, Wi, None):
+        # int(1), not the literal 1: the kernel's advance compiled once for every caller
+        if not advance(Y[i], P[i], K.Drive(theta, w, x0, rate), h, int(1), Wi, None):
             return False, gs
     v0, v1, v2 = v[0], v[1], v[2]
     Fg, Kg, Mg, ends = _spider_forces(n, Y, P, Wn, (q[0] + h * v[0], q[1] + h * v[1],
