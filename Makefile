@@ -75,14 +75,16 @@ cross-tools:
 	  { [ "$$(id -u)" = 0 ] && apt-get update -qq && apt-get install -y -qq gcc-mingw-w64-x86-64 \
 	  wine64 >/dev/null; } || { echo "make: the win64 build and its tests need mingw-w64 and wine64 (as root: apt-get install gcc-mingw-w64-x86-64 wine64)"; exit 1; }
 
-# two workers (the machine's two cores; pytest-xdist), the slowest tests named at the end;
+# two workers (the machine's two cores; pytest-xdist), a module's tests on one worker (its
+# fixtures, such as a compiled namespace or a scene grid, then computed once, not on both),
+# the slowest tests named at the end;
 # the slowest tests (marked slow: the needle row's convergence, a reference compiling in memory)
 # in their own tier, which CI runs too
 test: $(STAMP) cross-tools
-	$(BIN)/python -m pytest -q -n 2 --durations=15 -m "not slow"
+	$(BIN)/python -m pytest -q -n 2 --dist loadscope --durations=15 -m "not slow"
 
 test-slow: $(STAMP) cross-tools
-	$(BIN)/python -m pytest -q -n 2 --durations=10 -m slow
+	$(BIN)/python -m pytest -q -n 2 --dist loadscope --durations=10 -m slow
 
 # regenerate every generated block of README.md and docs/ (harness/docgen.py) from one run:
 # per-FMU variables, reference CSVs and plots, the validation grid, the demo's output, then the
