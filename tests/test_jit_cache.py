@@ -1,7 +1,8 @@
 """The compiled kernel's on-disk cache (tripod_model/jit.py): one folder per source version and
 import name, shared by every copy of that version under that name (FMPy extracts an FMU to a
 new folder each run; an FMU's package has a name of its own), so two versions on one machine
-never overwrite each other's cache."""
+never overwrite each other's cache; and each of its functions compiled once for every caller."""
+import os
 import shutil
 import subprocess
 import sys
@@ -23,7 +24,6 @@ def _cache_path(pkg_parent: Path, env=None) -> str:
 def test_the_cache_goes_where_numba_cache_dir_or_tripod_numba_cache_says(tmp_path):
     """numba's own NUMBA_CACHE_DIR takes the model's cache too (a user who empties or moves
     numba's cache moves the model's); TRIPOD_NUMBA_CACHE, where set, goes first."""
-    import os
     env = {k: v for k, v in os.environ.items() if k not in ("NUMBA_CACHE_DIR",
                                                             "TRIPOD_NUMBA_CACHE")}
     numba_dir, ours = tmp_path / "numba", tmp_path / "ours"
@@ -58,7 +58,6 @@ def test_each_kernel_function_compiles_once_for_every_step(tmp_path):
     kernel's advance for the floating spider's one substep.  In a fresh process with an empty
     cache, so every function this run needs is compiled and its signatures listed (a cached
     caller carries its callees' code, and they are then never loaded)."""
-    import os
     code = ("import math\n"
             "from tripod_model.model import JointModel\n"
             "from tripod_model import kernel, needles\n"
