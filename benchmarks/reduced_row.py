@@ -13,9 +13,15 @@ fitted:
   slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts);
 - the roller rocking on the row (docs/model.md, "The roller rocks on the row"): the tilt b2
   about e2 (the groove's axis) held quasi-statically by the row's tilt stiffness,
-  k_t2 b2 = -r_roller f_a + lever f_row (k_t2 = k_r l^2 / 12, k_r the row's stiffness along
-  the load; lever = r_bore F_r / q, where the loaded needles meet the bore), whose rate moves
-  the groove contact along the trunnion by -r_roller b2' and the bore by -lever b2'.
+  k_t2 b2 = -r_roller f_a + lever f_row + c F (d - rho_c p) (k_t2 = k_r l^2 / 12, k_r the
+  row's stiffness along the load; lever = r_bore F_r / q, where the loaded needles meet the
+  bore; the last the row's load F acting at c = 1/2 of the trunnion's stroke d relative to
+  the roller, the whole with the needles' friction off: contact.row_load_moment), whose rate
+  moves the groove contact along the trunnion by -r_roller b2' and the bore by -lever b2'.
+
+The analytic FMU carries the last variant (needle_row = true: reduced_model/equations.py,
+row_step); this march, by scipy's fsolve on (s, b2) with T3 inverted at each point, is its
+independent check (tests/test_reduced_row.py).
 
 The slide is marched by T4's trapezoidal rule over whole cycles from the groove bottom (four
 cycles, 360 steps a cycle; the tilt by backward differences), T6 with the friction along the
@@ -34,6 +40,7 @@ from scipy.optimize import brentq, fsolve
 
 from benchmarks.needle_mechanism import phasor, run
 from reduced_model import equations as E, scene as S
+from reduced_model.needle_row import ROW_CARRY
 from reduced_model.orders import last_cycle_orders, order_component
 from reduced_model.traverse import operating_point
 from tripod_model import layout as K, oppoint
@@ -70,6 +77,9 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
     mq = sc["mu_needle"] * q if slide else 0.0
     mr = sc["mu_rolling"] * q * sc["r_bore"] if rolling else 0.0
     k_row = 0.5 * 3.0 / vst
+    # the row's load F where its needles are along the trunnion (half the stroke relative to
+    # the roller with their friction on, the whole with it off: contact.row_load_moment)
+    carry = (ROW_CARRY if slide else 1.0) * F
     th, hx = O[E.O_TH], 1e-6
     h = 2 * math.pi / w / n
 
@@ -104,8 +114,10 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
         if rock:
             def residual(z):
                 pp, fa, _b, fn, _p, row = at(x1, z[0], (z[1] * 1e-3 - b2) / h)
+                d = trunnion_axial(x1, th, sc["s"], True)
                 return [(rho * pp - 0.5 * h * z[0] - rhs0) / (h * 1e-2),
-                        (kt2 * z[1] * 1e-3 + rim * fn * fa - lever * row) / (kt2 * 1e-3)]
+                        (kt2 * z[1] * 1e-3 + rim * fn * fa - lever * row
+                         - carry * (d - rho * pp)) / (kt2 * 1e-3)]
             z, info, _ier, msg = fsolve(residual, [s, b2 * 1e3], xtol=1e-12, full_output=True)
             if max(abs(info["fvec"])) > 1e-6:      # (fsolve may stop short of xtol, not of this)
                 raise RuntimeError(f"the rocking step did not converge at {x1:.4f} rad: {msg}")

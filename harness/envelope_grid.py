@@ -80,12 +80,13 @@ def joint_orders(path, theta, F, omega, bearing):
             "roller": last_cycle_orders(t, np.array(f1), x, (1, 3))}
 
 
-def analytic_orders(path, theta, F, omega):
-    """The same orders of the analytic model (one roller) in the scene."""
+def analytic_orders(path, theta, F, omega, **over):
+    """The same orders of the analytic model (one roller) in the scene; over: its parameters
+    other than their defaults (needle_row = False: the ideal bearing's traverse model)."""
     from reduced_model.analytic_model import AnalyticModel
     from reduced_model.analytic_kernel import INPUT_NAMES
     values = dict(defaults("analytic"), **for_model(load_joint(path), "analytic"), theta=theta,
-                  omega=omega, F_press=F, n_rollers=1)
+                  omega=omega, F_press=F, n_rollers=1, **over)
     m = AnalyticModel(values)
     inputs = [values[n] for n in INPUT_NAMES]
     t, fz, x = [], [], []

@@ -18,11 +18,12 @@ is a constant: nothing read from a state sizes or indexes an array.
 """
 import math
 
-from . import equations, table
+from . import equations, needle_row, table
 from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLLERS, O_CLEAR,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
                         T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
-                        R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, S, TRAVERSE,
+                        R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, R_T, S,
+                        TRAVERSE,
                         march, operating_point, substeps, thrust_at)
 from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_notes
 from .friction import spin_moment
@@ -66,8 +67,9 @@ X_OP = 28                          # O_LEN constants
 X_MARCH = X_OP + O_LEN             # 3 rows of R_LEN
 X_TABLE = X_MARCH + 3 * R_LEN      # TABLE_ROWS rows of (Fz, Fz_mod, Fx, Fy, slip speed)
 X_TABLE_SS = X_TABLE + 5 * TABLE_ROWS   # the settled cycle's slide slip s [m/s] and p [1] at
-X_TABLE_PS = X_TABLE_SS + TABLE_ROWS    # the table's points (where a march starts)
-X_LEN = X_TABLE_PS + TABLE_ROWS
+X_TABLE_PS = X_TABLE_SS + TABLE_ROWS    # the table's points (where a march starts), and the
+X_TABLE_BS = X_TABLE_PS + TABLE_ROWS    # roller's tilt b2 [rad] on the needle row there
+X_LEN = X_TABLE_BS + TABLE_ROWS
 
 # --- the work W: the table's derivation, then the notes ---------------------------------------
 W_NOTES = D_COUNT * TABLE_ROWS
@@ -313,7 +315,7 @@ def prepare(T, IN, X, W):
             TAB = X[X_TABLE:X_TABLE + 5 * TABLE_ROWS]
             cycles, mismatch, g_max = traverse_table(
                 O, W[:W_NOTES], N_PER_CYCLE, TAB, X[X_TABLE_SS:X_TABLE_SS + TABLE_ROWS],
-                X[X_TABLE_PS:X_TABLE_PS + TABLE_ROWS])
+                X[X_TABLE_PS:X_TABLE_PS + TABLE_ROWS], X[X_TABLE_BS:X_TABLE_BS + TABLE_ROWS])
             X[X_CYCLES] = cycles
             X[X_MISMATCH] = mismatch
             X[X_SETTLED] = 1.0 if mismatch <= SETTLED_TOL * O[O_VST] else 0.0
@@ -338,6 +340,11 @@ def prepare(T, IN, X, W):
                                           mirrored(X, X[X_WHIRL + i]))
                     X[r + R_S] = s
                     X[r + R_P] = p
+                    X[r + R_B2] = table_state_at(X[X_TABLE_BS:X_TABLE_BS + TABLE_ROWS],
+                                                 X[X_TABLE_BS:X_TABLE_BS + TABLE_ROWS],
+                                                 N_PER_CYCLE, mirrored(X, X[X_WHIRL + i]))[0]
+                    X[r + R_B2D] = 0.0
+                    X[r + R_T] = 0.0
                     X[r + R_HAS_S] = 1.0
                 else:
                     X[r + R_HAS_S] = 0.0
@@ -531,10 +538,12 @@ def compiled_namespace():
     h = dict(vars(hertz))
     h["groove_curvature_radii"] = jit(groove_curvature_radii)
     g = {**vars(equations), **vars(table), **globals()}
+    g["needle_line_stiffness"] = needle_row.needle_line_stiffness
     g["hertz_point"] = jit(types.FunctionType(hertz_point.__code__, h, "hertz_point"))
     for f in (spin_moment, housing_forces, fz_mod, pressing_load, same_step, same_value):
         g[f.__name__] = jit(f)
-    return compile_over(g, equations.COMPILED + table.COMPILED + COMPILED, jit)
+    return compile_over(g, needle_row.COMPILED + equations.COMPILED + table.COMPILED + COMPILED,
+                        jit)
 
 
 def c_functions():

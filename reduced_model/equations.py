@@ -10,6 +10,7 @@ import math
 
 from .friction import V_ST_FLOOR, spin_moment
 from .hertz import hertz_point
+from .needle_row import ROW_CARRY, row_constants, row_offset, sum_row
 from .scene import params_for, pressing_load
 from .thrust import fz_mod
 
@@ -23,17 +24,27 @@ PARAM_NAMES = tuple(p.name for p in params_for("analytic") if p.causality != "in
     "drive_by_angle", "n_rollers", "mu_groove", "v_st", "pitch", "yaw", "roll", "axial", "s",
     "r_roller", "r_groove", "r_bore", "m_roller", "spin_inertia", "traverse", "spin_moment",
     "E", "nu"))
+(NEEDLE_ROW, MU_NEEDLE, MU_ROLLING, FRICTION_NEEDLE, ROLLING_RESISTANCE, L_NEEDLE,
+ NEEDLE_CLEARANCE, N_NEEDLES) = map(PARAM_NAMES.index, (
+    "needle_row", "mu_needle", "mu_rolling", "friction_needle", "rolling_resistance",
+    "l_needle", "needle_clearance", "n_needles"))
 T_LEN = len(PARAM_NAMES)
 
 # the operating point: the scene's constants at the inputs of its key, for the scene the reduced
 # model runs (coast: drive at the opposite whirl, turned about the trunnion axis)
 (O_W, O_TH, O_T, O_KR, O_S, O_R, O_F, O_MU, O_VST, O_K, O_A1, O_CLEAR, O_RHO, O_VP, O_SM, O_I,
- O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD, O_LEN) = range(27)
+ O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD,
+ # the needle row (needle_row = true; row_point): on, mu_needle q, mu_rolling q r_bore, the tilt
+ # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3)
+ O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_LEN) = range(37)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
 # speed [m/s]), whether s and the outputs exist yet (the march starts at rest)
-R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_LEN = range(10)
+# and, with the needle row, the roller's tilt b2 [rad] on it, its rate [rad/s] and the groove
+# contact's slip across the slide t [m/s] (the next step's Newton starts from them)
+(R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_B2, R_B2D, R_T,
+ R_LEN) = range(13)
 
 # --- the scene's constants --------------------------------------------------------------------
 def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
@@ -108,6 +119,38 @@ def operating_point(T, theta, omega, F_press, torque, vp, O):
     # the spin inertia's thrust (I / r^2) d2z/dt2, d2z/dt2 = -w^2 s theta sin x
     O[O_KSPIN] = -inertia / (r * r) * omega * omega * (s * th) \
         if (T[SPIN_INERTIA] != 0.0 and pitch) else 0.0
+    row_point(T, O)
+
+
+def row_point(T, O):
+    """The needle row's constants at O (docs/model.md, "The row's terms in the reduced model"),
+    from Eq. (17) summed over the row at the pressing load F (needle_row.py): the needle loads'
+    sum q [N], the row's stiffness along the load k_r [N/m] and the lever r_bore F / q [m] at
+    which the loaded needles meet the bore.  Off (O_ROW = 0) with needle_row false, the
+    traverse model off, or nothing holding the roller."""
+    on = T[NEEDLE_ROW] != 0.0 and T[TRAVERSE] != 0.0 and O[O_HELD] != 0.0
+    O[O_ROW] = 1.0 if on else 0.0
+    for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF):
+        O[k] = 0.0
+    if not on:
+        return
+    n, c, ln = int(T[N_NEEDLES]), T[NEEDLE_CLEARANCE], T[L_NEEDLE]
+    c1, k_row, _ = row_constants(n, ln)
+    Fr, kr, _kw, q = sum_row(c, n, c1, row_offset(c, n, c1, k_row, O[O_F]))
+    rb = T[R_BORE]
+    O[O_MQ] = T[MU_NEEDLE] * q if T[FRICTION_NEEDLE] != 0.0 else 0.0
+    O[O_MR] = T[MU_ROLLING] * q * rb if T[ROLLING_RESISTANCE] != 0.0 else 0.0
+    O[O_KT2] = kr * ln * ln / 12.0                  # the lumped row's tilt stiffness about e2
+    O[O_LEVER] = rb * Fr / q
+    O[O_RB] = rb
+    O[O_KROW] = 1.5 / O[O_VST]        # half the slip at each of a needle's two contacts
+    th = O[O_TH]
+    O[O_EAX] = O[O_S] * (1.0 - math.cos(th)) / (2.0 * math.cos(th)) if T[AXIAL] != 0.0 else 0.0
+    O[O_TYAW] = math.tan(th) if T[YAW] != 0.0 else 0.0
+    # the row's load acts where its needles are along the trunnion: CARRY of the stroke relative
+    # to the roller with the needles' friction on (they roll between a race that strokes and one
+    # that stays), the whole with it off (contact.row_load_moment)
+    O[O_CRF] = (ROW_CARRY if T[FRICTION_NEEDLE] != 0.0 else 1.0) * O[O_F]
 
 
 # --- Eqs. (18)-(27) ---------------------------------------------------------------------------
@@ -299,6 +342,269 @@ def groove_forces(fn, p, beta, phi, xi, F):
     return Fz, Fx, Fy, fz_mod(Fx, Fz, F)
 
 
+# --- the needle row (needle_row = true) -------------------------------------------------------
+# The row's terms in the traverse model (docs/model.md, "The row's terms in the reduced model"):
+# the needles' sliding friction along the trunnion (T1), their rolling resistance (T2) and the
+# roller's tilt b2 about the groove's axis, held quasi-statically by the row's tilt stiffness,
+# k_t2 b2 = -r f_n fa + lever row, whose rate moves the groove contact along the trunnion by
+# -r b2' and the bore by -lever b2'.
+def row_groove_forces(fn, p, fa, beta, row, phi, xi, F):
+    """T6 with the row: (Fz, Fx, Fy, Fz_mod) [N] on the groove, as groove_forces with the
+    groove's friction along the trunnion fa f_n in place of p f_n, and F . a = -row [N] (the
+    row takes the rest of T1's balance)."""
+    Fz = -fn * (fa * math.sin(phi) + beta * math.cos(phi))
+    Fx = fn * (math.sqrt(1.0 - p * p) + p * fa - fa * xi)
+    Fy = -(row + Fx * math.sin(xi) + Fz * math.cos(xi) * math.sin(phi)) \
+        / (math.cos(xi) * math.cos(phi))
+    return Fz, Fx, Fy, fz_mod(Fx, Fz, F)
+
+
+def row_rates(O, x):
+    """(d' [m/s], psi' [rad/s], d [m]) at whirl angle x [rad]: the trunnion's axial stroke rate,
+    Eq. (7) differentiated (sin xi = e sin 2x / s), its yaw rate, Eq. (3) differentiated, and
+    its axial stroke, Eq. (7)."""
+    w, e, tn, s = O[O_W], O[O_EAX], O[O_TYAW], O[O_S]
+    vax = dax = 0.0
+    if e != 0.0:
+        sxi = e * math.sin(2.0 * x) / s
+        cxi = math.sqrt(1.0 - sxi * sxi)
+        vax = 2.0 * e * (math.sin(2.0 * x) + sxi / cxi * math.cos(2.0 * x)) * w
+        dax = s - (e * math.cos(2.0 * x) + s * cxi)
+    tc = tn * math.cos(x)
+    return vax, -tn * math.sin(x) / (1.0 + tc * tc) * w, dax
+
+
+def row_beta(O, p, fn, bi, dphi, spin, yaw):
+    """T2 with the needles' rolling resistance, Eq. (12): f_b / f_n, the moment mu_rolling q
+    r_bore tanh(3 v_r / v_st) against the roller's spin relative to the trunnion, v_r = (spin -
+    psi') r_bore (spin, yaw: psi' [rad/s])."""
+    return beta_at(O, p, fn, bi, dphi, spin) \
+        - O[O_MR] * math.tanh(3.0 * (spin - yaw) * O[O_RB] / O[O_VST]) / (O[O_R] * fn)
+
+
+def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin):
+    """T1-T3, T5 with the row at the slide slip s [m/s] and tilt rate b2d [rad/s], where the
+    drive gives V (T4's driven slip), vax, yaw (row_rates), bi, dphi, spin: (p, fa, f_n [N],
+    beta, row [N]).  fa: the groove's friction along the trunnion over f_n, against its
+    contact's slip s - r b2d (T3 inverted); row: the needles' friction, mu_needle q tanh(3 u /
+    (2 v_st)) against the roller's slide on the trunnion, u = s - V - d' - lever b2d (half the
+    slip at each of a needle's two contacts); T1: f_n p = f_n fa - row (fixed point in p)."""
+    sg = s - O[O_R] * b2d
+    row = O[O_MQ] * math.tanh(O[O_KROW] * (s - V - vax - O[O_LEVER] * b2d))
+    sign = -1.0 if sg > 0 else 1.0
+    p = fa = 0.0
+    fn = normal_force(O, p)
+    beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
+    for _ in range(40):
+        fa = sign * share(O, sg, abs(beta))
+        pn = fa - row / fn
+        done = abs(pn - p) < 1e-14
+        p = pn
+        fn = normal_force(O, p)
+        beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
+        if done:
+            break
+    return p, fa, fn, beta, row
+
+
+def row_step(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin):
+    """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
+    row from slip s, cross slip t >= 0 and tilt
+    b2 [rad] over h [s]: T4's trapezoidal rule, rho_c p - h/2 s1 = rhs0, with the tilt's balance
+    k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as Newton on
+    (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v / |v| on its
+    contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n, with f_n's and
+    beta's dependence on p in the Jacobian (beta's by a difference); a step
+    is cut to move no slip by more than v_st / 2.  Not settled within 40 iterations to 1e-9
+    v_st: the caller takes row_trapezoid."""
+    rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
+    r, lev, kt2, mq, kr, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_MQ], O[O_KROW], O[O_CRF]
+    kt = 0.5 * h
+    cap = mu * (1.0 - 1e-9)
+    tol = 1e-9 * O[O_VST]
+    arm = max(r, lev) / h
+    b0 = b2
+    b2 = b0 + h * b2d           # the last step's tilt rate carried on: the first iterate
+    p = 0.0
+    for _ in range(40):
+        b2d = (b2 - b0) / h
+        sg = s - r * b2d
+        v = math.sqrt(sg * sg + t * t)
+        gv, dg, us, ut = k, k, 0.0, 0.0      # the friction's slope at v = 0
+        if v > 0.0:
+            g = math.tanh(k * v)
+            gv, dg, us, ut = g / v, k * (1.0 - g * g), sg / v, t / v
+        fa = -mu * gv * sg
+        tr = math.tanh(kr * (s - V - vax - lev * b2d))
+        row = mq * tr
+        dr = mq * kr * (1.0 - tr * tr)
+        fn = normal_force(O, p)
+        for _ in range(8):         # T1 with T5: p = fa - row / f_n(p)
+            pn = fa - row / fn
+            fn = normal_force(O, pn)
+            done = abs(pn - p) < 1e-15
+            p = pn
+            if done:
+                break
+        B = min(abs(row_beta(O, p, fn, bi, dphi, spin, yaw)), cap)
+        a11 = mu * (gv * (1.0 - us * us) + dg * us * us)
+        a22 = mu * (gv * (1.0 - ut * ut) + dg * ut * ut)
+        a12 = mu * (dg - gv) * us * ut
+        r1 = rho * p - kt * s - rhs0
+        r2 = mu * gv * t - B
+        r3 = kt2 * b2 + r * fn * fa - lev * row - crf * (dax - rho * p)
+        # the Jacobian in (s1, t1, b2_1): d(sg)/d(b2_1) = -r / h, d(u)/d(b2_1) = -lever / h;
+        # p's (dp1, dp2, dp3) = d(fa) - d(row) / f_n, and the tilt's moment r f_n fa with
+        # f_n's rise with p (T5)
+        q = math.sqrt(1.0 - p * p)
+        fnp = 1.5 * O[O_K] * math.sqrt(max(rho / q - O[O_CLEAR], 0.0)) * rho * p / (q * q * q)
+        c = 1.0 / (1.0 - row * fnp / (fn * fn))
+        dp1 = c * (-a11 - dr / fn)
+        dp2 = -c * a12
+        dp3 = c * (a11 * r + dr * lev / fn) / h
+        mf = r * fa * fnp + crf * rho
+        j11 = rho * dp1 - kt
+        j12 = rho * dp2
+        j13 = rho * dp3
+        # beta's dependence on p (f_n, the spin moment), by a difference
+        pe = p + 1e-7
+        db_dp = (min(abs(row_beta(O, pe, normal_force(O, pe), bi, dphi, spin, yaw)), cap) - B) \
+            / 1e-7
+        j21 = a12 - db_dp * dp1
+        j22 = a22 - db_dp * dp2
+        j23 = -a12 * r / h - db_dp * dp3
+        j31 = -r * fn * a11 - lev * dr + mf * dp1
+        j32 = -r * fn * a12 + mf * dp2
+        j33 = kt2 + (r * fn * a11 * r + lev * dr * lev) / h + mf * dp3
+        c11 = j22 * j33 - j23 * j32
+        c12 = j23 * j31 - j21 * j33
+        c13 = j21 * j32 - j22 * j31
+        det = j11 * c11 + j12 * c12 + j13 * c13
+        if not (det != 0.0 and math.isfinite(det)):
+            return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
+        # -J^-1 (r1, r2, r3) by the adjugate
+        ds = -(c11 * r1 + (j13 * j32 - j12 * j33) * r2 + (j12 * j23 - j13 * j22) * r3) / det
+        dt = -(c12 * r1 + (j11 * j33 - j13 * j31) * r2 + (j13 * j21 - j11 * j23) * r3) / det
+        db = -(c13 * r1 + (j12 * j31 - j11 * j32) * r2 + (j11 * j22 - j12 * j21) * r3) / det
+        # a step that moves a contact's slip by more than half v_st is cut to that: the full
+        # step overshoots where a friction saturates and can cycle between its two sides
+        big = max(abs(ds), abs(dt), abs(db) * arm) / (0.5 * O[O_VST])
+        if big > 1.0:
+            ds, dt, db = ds / big, dt / big, db / big
+        s += ds
+        t = abs(t + dt)
+        b2 += db
+        if abs(ds) < tol and abs(dt) < tol and abs(db) * arm < tol:
+            # the friction, p and beta where it settled
+            b2d = (b2 - b0) / h
+            sg = s - r * b2d
+            v = math.sqrt(sg * sg + t * t)
+            fa = -mu * (math.tanh(k * v) / v if v > 0.0 else k) * sg
+            row = mq * math.tanh(kr * (s - V - vax - lev * b2d))
+            p = fa - row / fn
+            fn = normal_force(O, p)
+            return True, s, t, b2, p, fa, fn, row_beta(O, p, fn, bi, dphi, spin, yaw), row
+    return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
+
+
+def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+    """b2_1 [rad] where the tilt's balance k_t2 b2_1 + r f_n fa - lever row holds at slide slip
+    s [m/s] (b2' = (b2_1 - b0) / h): it rises with b2_1 (the friction of both contacts opposes
+    their slips, which b2' lowers), so regula falsi (Illinois) in the bracket where the two
+    frictions are spent."""
+    r, lev, kt2, mu, crf, rho = O[O_R], O[O_LEVER], O[O_KT2], O[O_MU], O[O_CRF], O[O_RHO]
+    pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
+    fmax = normal_force(O, pmax)
+    m = 1.01 * (r * fmax * mu + lev * O[O_MQ] + crf * (abs(dax) + rho * pmax)) / kt2 + 1e-12
+    lo, hi = -m, m
+    flo = hi_f = 0.0
+    for j in range(2):
+        b = lo if j == 0 else hi
+        p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
+        if j == 0:
+            flo = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
+        else:
+            hi_f = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
+    side = 0
+    b = 0.0
+    for _ in range(200):
+        b = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
+        if not lo < b < hi:
+            b = 0.5 * (lo + hi)
+        p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
+        f = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
+        if f > 0.0:
+            hi, hi_f = b, f
+            if side == 1:
+                flo *= 0.5
+            side = 1
+        elif f < 0.0:
+            lo, flo = b, f
+            if side == -1:
+                hi_f *= 0.5
+            side = -1
+        else:
+            break
+        if hi - lo < 1e-13 * m:
+            break
+    return b
+
+
+def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+    """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
+    residual rho_c p - h/2 s1 - rhs0 over s1, the tilt balanced at each (row_tilt); it falls
+    with s1 (slope <= -h/2) within the bracket |p| <= mu_groove + mu_needle q / f_n:
+    regula falsi (Illinois)."""
+    rho, mu = O[O_RHO], O[O_MU]
+    pmax = mu + O[O_MQ] / normal_force(O, 0.0)
+    lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
+    flo = hi_f = 0.0
+    for j in range(2):
+        z = lo if j == 0 else hi
+        b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
+        f = rho * row_at(O, z, (b - b0) / h, V, vax, yaw, bi, dphi, spin)[0] - 0.5 * h * z - rhs0
+        if j == 0:
+            flo = f
+        else:
+            hi_f = f
+    side = 0
+    z = s
+    b = b0
+    for _ in range(200):
+        z = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
+        if not lo < z < hi:
+            z = 0.5 * (lo + hi)
+        b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
+        f = rho * row_at(O, z, (b - b0) / h, V, vax, yaw, bi, dphi, spin)[0] - 0.5 * h * z - rhs0
+        if f > 0.0:
+            lo, flo = z, f
+            if side == -1:
+                hi_f *= 0.5
+            side = -1
+        elif f < 0.0:
+            hi, hi_f = z, f
+            if side == 1:
+                flo *= 0.5
+            side = 1
+        else:
+            break
+        if hi - lo < 1e-10 * O[O_VST]:
+            break
+    return z, b
+
+
+def row_advance(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin):
+    """(s1, t1, b2_1, p, fa, f_n, beta, row) of one step with the row (row_at's at its end):
+    row_step, or row_trapezoid where it does not settle (t1 then 0: the next Newton starts
+    across the slide afresh)."""
+    res = row_step(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin)
+    if res[0]:
+        return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
+    s1, b1 = row_trapezoid(O, rhs0, s, b2, h, V, vax, yaw, dax, bi, dphi, spin)
+    p, fa, fn, beta, row = row_at(O, s1, (b1 - b2) / h, V, vax, yaw, bi, dphi, spin)
+    return s1, 0.0, b1, p, fa, fn, beta, row
+
+
 # --- the slide stepped in time (inputs that move) ---------------------------------------------
 def march(O, X, r, x, dt):
     """The slide of the roller whose march row starts at X[r] stepped in time at O from whirl
@@ -310,26 +616,41 @@ def march(O, X, r, x, dt):
     n, h = steps_of(O, dt)
     wh = O[O_W] * h
     V0 = drive_at(O, x)[2]
-    s, p = X[r + R_S], X[r + R_P]
+    s, p, b2, bd, tt = X[r + R_S], X[r + R_P], X[r + R_B2], X[r + R_B2D], X[r + R_T]
     if X[r + R_HAS_S] == 0.0:
-        s, p = V0, 0.0
-    phi = xi = bi = dphi = spin = 0.0
+        s, p, b2, bd, tt = V0, 0.0, 0.0, 0.0, 0.0
+    row = O[O_ROW] != 0.0
+    phi = xi = bi = dphi = spin = fa = fn = beta = rw = 0.0
     for i in range(n):
-        phi, xi, V1, dphi, spin, bi = drive_at(O, x + wh * (i + 1))
+        x1 = x + wh * (i + 1)
+        phi, xi, V1, dphi, spin, bi = drive_at(O, x1)
         if O[O_HELD] != 0.0:
             rhs0 = O[O_RHO] * p + 0.5 * h * (s - V0 - V1)
-            ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p)
-            if ok:
-                s, p = s1, p1
+            if row:
+                vax, yaw, dax = row_rates(O, x1)
+                b1 = b2
+                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, V1,
+                                                             vax, yaw, dax, bi, dphi, spin)
+                bd = (b2 - b1) / h
             else:
-                s = trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p, True)
-                p = p_at(O, s, bi, dphi, spin, p, True)
+                ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p)
+                if ok:
+                    s, p = s1, p1
+                else:
+                    s = trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p, True)
+                    p = p_at(O, s, bi, dphi, spin, p, True)
         V0 = V1
     if O[O_HELD] == 0.0:
         s, p = V0, 0.0
-    fn = normal_force(O, p) if O[O_F] > 0 else 0.0
-    beta = beta_at(O, p, fn, bi, dphi, spin) if fn > 0 else 0.0
-    Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, phi, xi, O[O_F])
+    if row:
+        Fz, Fx, Fy, Fzm = row_groove_forces(fn, p, fa, beta, rw, phi, xi, O[O_F])
+    else:
+        fn = normal_force(O, p) if O[O_F] > 0 else 0.0
+        beta = beta_at(O, p, fn, bi, dphi, spin) if fn > 0 else 0.0
+        Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, phi, xi, O[O_F])
+    X[r + R_B2] = b2
+    X[r + R_B2D] = bd
+    X[r + R_T] = tt
     X[r + R_S] = s
     X[r + R_P] = p
     X[r + R_FZ] = Fz
@@ -354,6 +675,7 @@ def steps_of(O, dt):
 
 
 # the functions kernel.py compiles (callees first)
-COMPILED = ("transition_velocity", "operating_point", "thrust_at", "drive_at",
+COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
             "normal_force", "beta_at", "share", "p_at", "trapezoid_step", "slip_step",
-            "groove_forces", "substeps", "steps_of", "march")
+            "groove_forces", "row_groove_forces", "row_rates", "row_beta", "row_at", "row_step",
+            "row_tilt", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")

@@ -53,6 +53,7 @@ def _fmt(v: float, p: Param) -> str:
 
 _A = frozenset({"analytic", "contact"})
 _C = frozenset({"contact"})
+_R = frozenset({"analytic"})
 
 # the values `bearing` and `integrator` take, named once (tripod_model/layout.py hands them to
 # the kernel as BEAR_* and INT_*; everything else compares against these names)
@@ -109,24 +110,28 @@ PARAMS: tuple[Param, ...] = (
           "add the roller spin-inertia thrust (I_spin/r^2) d2z/dt2", kind="bool", models=_A),
     # --- contact model only ---
     Param("mu_needle", 0.050, "1", 0.0, 1.0, "sliding friction coefficient needle-roller/trunnion",
-          models=_C),
+          models=_A),
     Param("mu_rolling", 0.002, "1", 0.0, 0.1, "rolling friction coefficient of the needles, Eq. (12)",
-          models=_C),
+          models=_A),
     Param("bearing", BEARING_IDEAL, "1", BEARING_IDEAL, BEARING_RESOLVED,
           "needle bearing: 0 ideal, 1 lumped, 2 every needle resolved", kind="int", models=_C),
     Param("traverse", True, "1", None, None,
           "roller free along the trunnion axis (contact point traverses the groove); in the "
           "analytic model: the reduced traverse model (false: Eqs. 18-27 alone)",
           kind="bool", models=_A),
+    Param("needle_row", False, "1", None, None,
+          "traverse model: the needle row's friction (the needles' sliding friction and rolling "
+          "resistance) and the roller's rocking on the row (docs/model.md); false: an ideal "
+          "bearing, the roller free along the trunnion", kind="bool", models=_R),
     Param("friction_groove", True, "1", None, None, "roller-groove sliding friction on",
           kind="bool", models=_C),
     Param("spin_moment", True, "1", None, None, "roller-groove spin moment Eq. (16) on",
           kind="bool", models=_A),
     Param("friction_needle", True, "1", None, None,
-          "needle sliding friction on (lumped and resolved bearing)",
-          kind="bool", models=_C),
+          "needle sliding friction on (lumped and resolved bearing, the analytic model's row)",
+          kind="bool", models=_A),
     Param("rolling_resistance", True, "1", None, None, "needle rolling resistance Eq. (12) on",
-          kind="bool", models=_C),
+          kind="bool", models=_A),
     Param("max_substep", 0.0, "s", 0.0, 1.0e-2,
           "largest internal integration substep; 0 = automatic from a stability estimate",
           models=_C, auto_or_min=1e-7),
@@ -158,12 +163,12 @@ PARAMS: tuple[Param, ...] = (
     Param("nu", 0.3, "1", 0.0, 0.5, "Poisson's ratio", hi_open=True, models=_A),
     Param("r_trunnion", 0.0109, "m", 0.0, 1.0, "trunnion radius", lo_open=True, models=_C),
     Param("d_needle", 0.0016, "m", 0.0, 0.1, "needle diameter", lo_open=True, models=_C),
-    Param("l_needle", 0.012, "m", 0.0, 0.1, "needle length", lo_open=True, models=_C),
+    Param("l_needle", 0.012, "m", 0.0, 0.1, "needle length", lo_open=True, models=_A),
     Param("n_spheres", 7, "1", 1, 50, "spheres per needle (contact discretisation, Fig. 10)",
           kind="int", models=_C),
     Param("needle_clearance", 1e-5, "m", 0.0, 1e-3, "radial clearance of the needle row",
-          models=_C),
-    Param("n_needles", 46, "1", 3, 200, "number of needles in the row", kind="int", models=_C),
+          models=_A),
+    Param("n_needles", 46, "1", 3, 200, "number of needles in the row", kind="int", models=_A),
     Param("needle_circ_clearance", 5e-5, "m", 0.0, 1e-2,
           "circumferential play of the needle row, summed over the row (resolved bearing)",
           models=_C),

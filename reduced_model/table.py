@@ -6,8 +6,9 @@ the analytic FMU (kernel.py).
 """
 import math
 
-from .equations import (N_PER_CYCLE, O_F, O_HELD, O_MU, O_RHO, O_VST, O_W, TWO_PI, beta_at,
-                        drive_at, groove_forces, normal_force, p_at, thrust_at, trapezoid_step)
+from .equations import (N_PER_CYCLE, O_F, O_HELD, O_MU, O_RHO, O_ROW, O_VST, O_W, TWO_PI,
+                        beta_at, drive_at, groove_forces, normal_force, p_at, row_advance, row_at,
+                        row_groove_forces, row_rates, thrust_at, trapezoid_step)
 
 # --- the reduced traverse model's table -------------------------------------------------------
 PERIODIC_TOL = 1e-7        # the secant's target: |s(2 pi) - s(0)| <= PERIODIC_TOL x v_st
@@ -20,10 +21,11 @@ FULL_SLIP_REL = 0.05       # order 3 within 5 % (complex) of Eq. (27): Eqs. 18-2
 REGIME_FULL_SLIP, REGIME_TRAVERSE, REGIME_MICRO_SLIP = 0, 1, 2   # scene.REGIME_CODES
 
 
-# per table point: driven slip V, T2's inertia part bi, dphi, spin, phi, xi; the cycle run and
-# the best one (slip s, p)
-(D_V, D_BI, D_DPHI, D_SPIN, D_PHI, D_XI, D_SS, D_PS, D_BEST_SS, D_BEST_PS,
- D_COUNT) = range(11)
+# per table point: driven slip V, T2's inertia part bi, dphi, spin, phi, xi, the trunnion's
+# stroke and yaw rates (the row's: row_rates); the cycle run and the best one (slip s, p, the
+# roller's tilt b2 on the row)
+(D_V, D_BI, D_DPHI, D_SPIN, D_PHI, D_XI, D_VAX, D_YAW, D_DAX, D_SS, D_PS, D_B2, D_BEST_SS,
+ D_BEST_PS, D_BEST_B2, D_COUNT) = range(16)
 
 # --- the periodic solution: the settled table -------------------------------------------------
 # D (work, n + 1 values a row, rows D_*): the driving motion at the table's n + 1 points, the
@@ -40,6 +42,12 @@ def drive_table(O, D, n):
         D[D_SPIN * m + i] = spin
         D[D_PHI * m + i] = phi
         D[D_XI * m + i] = xi
+        vax, yaw, dax = row_rates(O, 2.0 * math.pi * i / n) if O[O_ROW] != 0.0 \
+            else (0.0, 0.0, 0.0)
+        D[D_VAX * m + i] = vax
+        D[D_YAW * m + i] = yaw
+        D[D_DAX * m + i] = dax
+        D[D_B2 * m + i] = 0.0
 
 
 def table_p(O, D, n, i, s):
@@ -48,10 +56,48 @@ def table_p(O, D, n, i, s):
     return p_at(O, s, D[D_BI * m + i], D[D_DPHI * m + i], D[D_SPIN * m + i], 0.0, False)
 
 
+def table_row_at(O, D, n, i, s, b2d):
+    """row_at at table point i: (p, fa, f_n, beta, row) for the slide slip s [m/s] and the
+    tilt rate b2d [rad/s]."""
+    m = n + 1
+    return row_at(O, s, b2d, D[D_V * m + i], D[D_VAX * m + i], D[D_YAW * m + i],
+                  D[D_BI * m + i], D[D_DPHI * m + i], D[D_SPIN * m + i])
+
+
+def row_cycle(O, D, n, s0):
+    """cycle with the needle row: the roller's tilt b2 on the row stepped beside the slip
+    (row_advance), from where the cycle run before ended (its b2 and b2'; 0 at the first).
+    Returns s at the cycle's end."""
+    m = n + 1
+    h = 2.0 * math.pi / O[O_W] / n
+    rho, v, ss, ps, bs = O[O_RHO], D_V * m, D_SS * m, D_PS * m, D_B2 * m
+    b2 = D[bs + n]
+    b2d = (D[bs + n] - D[bs + n - 1]) / h
+    s, t = s0, 0.0
+    p0 = table_row_at(O, D, n, 0, s, b2d)[0]
+    D[ss] = s
+    D[ps] = p0
+    D[bs] = b2
+    for i in range(n):
+        rhs0 = rho * p0 + 0.5 * h * (s - D[v + i] - D[v + i + 1])
+        j = i + 1
+        b0 = b2
+        s, t, b2, p0, _fa, _fn, _beta, _row = row_advance(
+            O, rhs0, s, t, b2, b2d, h, D[v + j], D[D_VAX * m + j], D[D_YAW * m + j],
+            D[D_DAX * m + j], D[D_BI * m + j], D[D_DPHI * m + j], D[D_SPIN * m + j])
+        b2d = (b2 - b0) / h
+        D[ss + j] = s
+        D[ps + j] = p0
+        D[bs + j] = b2
+    return s
+
+
 def cycle(O, D, n, s0):
     """One whirl cycle of T4, rho_c dp/dt = s - V', by the trapezoidal rule in s (never
     singular: d(rho_c p - h s / 2)/ds <= -h / 2) from slide slip s0 [m/s]: s and p at every
     table point into D (D_SS, D_PS).  Returns s at the cycle's end."""
+    if O[O_ROW] != 0.0:
+        return row_cycle(O, D, n, s0)
     m = n + 1
     h = 2.0 * math.pi / O[O_W] / n
     rho, v, ss, ps = O[O_RHO], D_V * m, D_SS * m, D_PS * m
@@ -76,6 +122,7 @@ def keep_best(D, n):
     for i in range(m):
         D[D_BEST_SS * m + i] = D[D_SS * m + i]
         D[D_BEST_PS * m + i] = D[D_PS * m + i]
+        D[D_BEST_B2 * m + i] = D[D_B2 * m + i]
 
 
 def periodic(O, D, n):
@@ -108,12 +155,15 @@ def periodic(O, D, n):
     return used, best
 
 
-def traverse_table(O, D, n, T, SS, PS):
-    """The settled table at O (O_W > 0) into T, SS, PS.  Returns (cycles of the cycle map run,
-    mismatch |s(2 pi) - s(0)| [m/s], g_max: the largest friction over mu_s f_n [1])."""
+def traverse_table(O, D, n, T, SS, PS, BS):
+    """The settled table at O (O_W > 0) into T, SS, PS and, with the needle row, the roller's
+    tilt b2 [rad] at the table's points into BS.  Returns (cycles of the cycle map run, mismatch
+    |s(2 pi) - s(0)| [m/s], g_max: the largest groove friction over mu_s f_n [1])."""
     drive_table(O, D, n)
     m = n + 1
-    bss, bps = D_BEST_SS * m, D_BEST_PS * m
+    bss, bps, bbs = D_BEST_SS * m, D_BEST_PS * m, D_BEST_B2 * m
+    row = O[O_ROW] != 0.0
+    h = 2.0 * math.pi / O[O_W] / n
     if O[O_HELD] == 0.0:            # no friction, or no slip to drive it: the roller slips by V
         for i in range(m):
             D[bss + i] = D[D_V * m + i]
@@ -124,11 +174,23 @@ def traverse_table(O, D, n, T, SS, PS):
     g_max = 0.0
     for i in range(m):
         p = D[bps + i]
-        fn = normal_force(O, p) if O[O_F] > 0 else 0.0
-        beta = beta_at(O, p, fn, D[D_BI * m + i], D[D_DPHI * m + i],
-                       D[D_SPIN * m + i]) if fn > 0 else 0.0
-        Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, D[D_PHI * m + i], D[D_XI * m + i], O[O_F])
-        g = math.sqrt(p * p + beta * beta)
+        if row:
+            # b2' of the step into point i (the cycle's end's into its start)
+            k = i if i > 0 else n
+            p, fa, fn, beta, rw = table_row_at(O, D, n, i, D[bss + i],
+                                               (D[bbs + k] - D[bbs + k - 1]) / h)
+            Fz, Fx, Fy, Fzm = row_groove_forces(fn, p, fa, beta, rw, D[D_PHI * m + i],
+                                                D[D_XI * m + i], O[O_F])
+            BS[i] = D[bbs + i]
+        else:
+            fa = p
+            fn = normal_force(O, p) if O[O_F] > 0 else 0.0
+            beta = beta_at(O, p, fn, D[D_BI * m + i], D[D_DPHI * m + i],
+                           D[D_SPIN * m + i]) if fn > 0 else 0.0
+            Fz, Fx, Fy, Fzm = groove_forces(fn, p, beta, D[D_PHI * m + i], D[D_XI * m + i],
+                                            O[O_F])
+            BS[i] = 0.0
+        g = math.sqrt(fa * fa + beta * beta)
         if g > g_max:
             g_max = g
         T[5 * i] = Fz
@@ -193,5 +255,5 @@ def regime(g_max, T, n, O):
 
 
 # the functions kernel.py compiles (callees first)
-COMPILED = ("drive_table", "table_p", "cycle", "keep_best", "periodic", "traverse_table",
+COMPILED = ("drive_table", "table_p", "table_row_at", "row_cycle", "cycle", "keep_best", "periodic", "traverse_table",
             "table_index", "table_at", "table_state_at", "order3", "regime")

@@ -129,8 +129,8 @@ class Traverse:
         m = n + 1
         self.x = 2.0 * math.pi * np.arange(m) / n
         self.D = np.zeros(TB.D_COUNT * m)
-        T, SS, PS = np.zeros(5 * m), np.zeros(m), np.zeros(m)
-        self.cycles, self.mismatch, self.g_max = TB.traverse_table(O, self.D, n, T, SS, PS)
+        T, SS, PS, BS = np.zeros(5 * m), np.zeros(m), np.zeros(m), np.zeros(m)
+        self.cycles, self.mismatch, self.g_max = TB.traverse_table(O, self.D, n, T, SS, PS, BS)
         self.settled = self.mismatch <= SETTLED_TOL * self.vst
         self.T = T
         self.slip, self.p = SS, PS

@@ -39,6 +39,11 @@ SCENES = {   # name: (parameters and start inputs, the inputs at step i)
     "plunge": ({"plunge_speed": 0.05}, _ramp),
     "launch": ({"torque": 3000.0, "theta": 0.4, "omega": 3.0}, _ramp),
     "by-angle": ({"drive_by_angle": True}, lambda i, v: {"shaft_angle": 62.8e-4 * (i + 1)}),
+    "row-march": ({"needle_row": True, "n_rollers": 3}, _ramp),
+    "row-coast-through-zero": ({"needle_row": True, "torque": -300.0},
+                               lambda i, v: {"torque": -300.0 + 3 * i}),
+    "row-launch": ({"needle_row": True, "torque": 3000.0, "theta": 0.14, "omega": 30.0}, _ramp),
+    "row-reverse": ({"needle_row": True, "omega": -60.0}, lambda i, v: {}),
 }
 
 

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from reduced_model import hertz
-from tripod_model import line_contact
+from reduced_model import needle_row
 from tripod_model.model import ContactModel
 from tripod_model.simulate import simulate
 
@@ -26,7 +26,7 @@ def test_hertz_against_model_md_orders():
 
 def test_needle_line_law_eq17():
     # Eq. 17 in mm and N: delta = 3.8e-5 (N_s f)^0.9 / l^0.8; check a point by hand
-    C = line_contact.needle_line_stiffness(0.012)
+    C = needle_row.needle_line_stiffness(0.012)
     P = 500.0
     d_mm = 3.8e-5 * P ** 0.9 / 12.0 ** 0.8
     assert C * (d_mm * 1e-3) ** (10 / 9) == pytest.approx(P, rel=1e-9)

@@ -13,7 +13,8 @@ import numpy as np
 import pytest
 from rounding import solve_error
 
-from tripod_model import contact, line_contact, rowsolve, layout as LY, needles as NDL, ring
+from tripod_model import contact, rowsolve, layout as LY, needles as NDL, ring
+from reduced_model import needle_row
 from tripod_model.model import ContactModel
 
 SCENE = {"bearing": 2, "n_needles": 12}
@@ -87,7 +88,7 @@ def test_static_load_sharing_eq17():
     E = -m.Y[LY.Y_E]
     c = np.cos(psi)
     ap = np.maximum(E * c - m.p["needle_clearance"], 0.0)
-    Cl = line_contact.needle_line_stiffness(m.p["l_needle"])
+    Cl = needle_row.needle_line_stiffness(m.p["l_needle"])
     expect = Cl * (0.5 * ap) ** (10 / 9)        # two races in series, whole needle
     got = ND[:, LY.D_BORE]
     assert np.sum(got * c) == pytest.approx(1000.0, rel=1e-3)

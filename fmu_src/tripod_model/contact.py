@@ -11,12 +11,12 @@ those on the groove (kernel.run_substeps).
 """
 import math
 
-from reduced_model import friction
-from . import oppoint
+from reduced_model import friction, needle_row
 from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
     L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
-    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_LT,
+    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KN1, P_LT,
+    P_NROW,
     P_FRICTION_NEEDLE, P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE,
     P_R_GROOVE, P_ROLL, P_S,
     P_SPIN_MOMENT, P_VP, P_VST_OP, P_YAW, P_ROW_DAMPING, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
@@ -347,8 +347,8 @@ def groove_contact(c, v, wr, P, res):
     res[R_SLOPE] = slope
 
 
-# the lumped row's law, Eq. (17) over its needles (oppoint.row_sums), compiled inline
-row_sums = inline(oppoint.row_sums)
+# the lumped row's law, Eq. (17) over its needles (needle_row.sum_row), compiled inline
+sum_row = inline(needle_row.sum_row)
 
 
 @inline
@@ -356,8 +356,8 @@ def row_load(P, e):
     """Lumped needle row with the roller e [m] off the trunnion axis along x: the row's radial
     force on the roller F_r [N] (pushing it back onto the axis: +x in drive, e < 0; -x in
     coast), its tangent stiffness along the load k_r and across it k_w [N/m] and the sum of
-    the needle loads q [N] (row_sums)."""
-    f, k, kw, q = row_sums(P, abs(e))
+    the needle loads q [N] (sum_row, as oppoint.row_sums)."""
+    f, k, kw, q = sum_row(P[P_NEEDLE_CLEARANCE], int(P[P_NROW]), P[P_KN1], abs(e))
     return (f if e < 0.0 else -f), k, kw, q
 
 
@@ -411,9 +411,7 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
             -h * lever * ja1, h * lever * lever * jaa)
 
 
-# with the row's friction on, the needles roll between a race that strokes (the trunnion) and
-# one that stays (the bore) and go half its way; off, they ride the trunnion's stops
-ROW_CARRY = 0.5
+ROW_CARRY = needle_row.ROW_CARRY
 
 
 @inline

@@ -33,8 +33,9 @@ IN_LEN = len(INPUT_NAMES)
 IN_LO = tuple(BY_NAME[n].lo for n in INPUT_NAMES)
 IN_HI = tuple(BY_NAME[n].hi for n in INPUT_NAMES)
 OUT_LEN = K.N_OUT
-# the analytic model's parameters (its traverse table starts the roller) as the contact FMU's
-ANALYTIC_SLOTS = tuple(PARAM_NAMES.index(n) for n in RE.PARAM_NAMES)
+# the analytic model's parameters (its traverse table starts the roller) as the contact FMU's;
+# -1: one the contact model lacks, 0 there (needle_row: the start's table is the ideal bearing's)
+ANALYTIC_SLOTS = tuple(PARAM_NAMES.index(n) if n in PARAM_NAMES else -1 for n in RE.PARAM_NAMES)
 
 # --- sizes: three rollers, the table's most needles and spheres -------------------------------
 R_MAX = 3
@@ -76,7 +77,8 @@ W_D = W_O + RE.O_LEN                        # its derivation,
 W_T = W_D + D_COUNT * TABLE_ROWS            # the table,
 W_SS = W_T + 5 * TABLE_ROWS                 # the slide slip and tilt on the settled cycle
 W_PS = W_SS + TABLE_ROWS
-W_TKEY = W_PS + TABLE_ROWS                  # the inputs the table is for, set, settled
+W_BS = W_PS + TABLE_ROWS                    # (the row's tilt: 0, the ideal bearing's table)
+W_TKEY = W_BS + TABLE_ROWS                  # the inputs the table is for, set, settled
 W_NW = W_TKEY + 6                           # R_MAX needle works of NW_LEN
 W_NOTES = W_NW + R_MAX * NW_LEN
 MAX_NOTES = 8

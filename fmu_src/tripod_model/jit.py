@@ -150,10 +150,14 @@ def compiled_copies(module, names, given=None):
         return types.SimpleNamespace(**{n: getattr(module, n) for n in names})
     g = dict(vars(module))   # the copies' globals: the module's, with the compiled callees
     g.update(given or {})
+    done = {}
     for n in names:
         f = g[n]
-        if getattr(f, "__module__", None) == module.__name__:
-            f = types.FunctionType(f.__code__, g, f.__name__, f.__defaults__, f.__closure__)
+        own = getattr(f, "__module__", None) == module.__name__
+        # an imported function calls the copies compiled before it, in its own module's globals
+        fg = g if own else {**f.__globals__, **done}
+        if own or done:
+            f = types.FunctionType(f.__code__, fg, f.__name__, f.__defaults__, f.__closure__)
             f.__qualname__ = g[n].__qualname__
-        g[n] = njit(f)
+        g[n] = done[n] = njit(f)
     return types.SimpleNamespace(**{n: g[n] for n in names})

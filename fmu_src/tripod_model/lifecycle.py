@@ -20,7 +20,7 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          NOTE_SUMMARY_ADAPT, NOTE_SUMMARY_BDF, NOTE_SUMMARY_GA, NOTE_TEXT,
                          NOTE_TOO_LONG, NW_LEN, OMEGA, F_PRESS, OUT_LEN, PLUNGE_SPEED,
                          SHAFT_ANGLE, STATE_PROBLEMS, T_LEN, TABLE_N, TABLE_ROWS, THETA, TORQUE,
-                         W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
+                         W_BS, W_LEN, W_D, W_L, W_NOTES, W_NW, W_O, W_PA, W_PS, W_SAVE, W_SS,
                          W_T, W_TKEY, W_X0, X_HS, X_LEN, X_OP, X_OUTV, X_P, X_STARTED,
                          X_STEPS, X_TIME, X_Y, X_Y2, _at, needle_work, note, op_row, shape_of,
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
@@ -140,12 +140,12 @@ def settled_table(T, W, theta, omega, F, vp):
         return key[5] != 0.0      # (the start's outputs derived it at the same inputs)
     PA = W[W_PA:W_PA + RE.T_LEN]
     for j in range(RE.T_LEN):
-        PA[j] = T[ANALYTIC_SLOTS[j]]
+        PA[j] = T[ANALYTIC_SLOTS[j]] if ANALYTIC_SLOTS[j] >= 0 else 0.0
     O = W[W_O:W_O + RE.O_LEN]
     operating_point(PA, theta, omega, F, 0.0, vp, O)
     cycles, mismatch, g_max = traverse_table(
         O, W[W_D:W_D + D_COUNT * TABLE_ROWS], TABLE_N, W[W_T:W_T + 5 * TABLE_ROWS],
-        W[W_SS:W_SS + TABLE_ROWS], W[W_PS:W_PS + TABLE_ROWS])
+        W[W_SS:W_SS + TABLE_ROWS], W[W_PS:W_PS + TABLE_ROWS], W[W_BS:W_BS + TABLE_ROWS])
     settled = mismatch <= SETTLED_TOL * O[RE.O_VST]
     key[0] = theta
     key[1] = omega
@@ -447,7 +447,7 @@ def compiled_namespace():
     from reduced_model.cfuncs import compile_over
     from reduced_model.analytic_kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import fmu_arrays, kernel, line_contact, roller_setup
+    from . import fmu_arrays, kernel, roller_setup
 
     def jit(f):
         return nb.njit(f)
@@ -457,13 +457,13 @@ def compiled_namespace():
     for name in ("operating_point", "traverse_table", "table_state_at", "hertz_point",
                  "pressing_load", "same_step"):
         g[name] = red[name]
-    for f in (spin_inertia, line_contact.needle_line_stiffness):
-        g[f.__name__] = jit(f)
+    g["spin_inertia"] = jit(spin_inertia)
     # (the kernel's copies: lumped_offset calls row_sums, compiled beside it there)
     g["groove_offset"], g["lumped_offset"] = kernel._op.groove_offset, kernel._op.lumped_offset
     g["v_st"], g["substep"] = kernel._op.v_st, kernel._op.substep   # (the kernel's copies)
     g["_at"] = fmu_arrays.compiled_at()
-    return compile_over(g, roller_setup.COMPILED + fmu_arrays.COMPILED + COMPILED, jit)
+    return compile_over(g, ("needle_line_stiffness", "row_constants") + roller_setup.COMPILED
+                        + fmu_arrays.COMPILED + COMPILED, jit)
 
 
 def c_functions():

@@ -11,6 +11,7 @@ implementation for both.
 import math
 
 from reduced_model.friction import v_st_auto
+from reduced_model.needle_row import row_offset, sum_row
 from reduced_model.scene import pressing_load
 from reduced_model.sliding import amplitude_A, amplitude_B, amplitude_plunge
 
@@ -201,54 +202,21 @@ def groove_offset(P, F):
 
 
 def row_sums(P, a):
-    """The lumped row with the roller a >= 0 [m] off the trunnion axis: Eq. (17) on each of its
-    P_NROW needles at psi_j = 2 pi j / n from the pressing direction, squeezed by
-    a cos(psi_j) - c (c the row's radial clearance) across its two races in series, as the
-    resolved row's start sums it (roller_setup.row_load).  Returns the radial load |F_r| [N],
-    its tangent stiffness along the load k_r and across it k_w [N/m], and the sum of the needle
-    loads q [N] (more than |F_r|: the load fans out over the row, by 6 % at 4.5 kN and 16 % at
-    45 kN on the default row, as the resolved row has it)."""
-    c = P[P_NEEDLE_CLEARANCE]
-    if not a > c:
-        return 0.0, 0.0, 0.0, 0.0
-    n = int(P[P_NROW])
-    dc, ds = math.cos(2.0 * math.pi / n), math.sin(2.0 * math.pi / n)
-    cj, sj = 1.0, 0.0
-    f = k = kw = q = 0.0
-    # needle j and n - j alike: from the pressing direction outwards while they are loaded
-    for j in range(n // 2 + 1):
-        ap = a * cj - c
-        if not ap > 0.0:
-            break
-        w = 1.0 if j == 0 or 2 * j == n else 2.0
-        g9 = math.exp(math.log(ap) / 9.0)   # ap^(1/9); pow costs more
-        g = w * ap * g9
-        q += g
-        f += g * cj
-        k += w * g9 * cj * cj
-        kw += w * g9 * sj * sj
-        cj, sj = cj * dc - sj * ds, sj * dc + cj * ds   # the next needle's angle
-    C = P[P_KN1]
-    return C * f, 10.0 / 9.0 * C * k, 10.0 / 9.0 * C * kw, C * q
+    """The lumped row with the roller a >= 0 [m] off the trunnion axis (needle_row.sum_row
+    over P's row, as the resolved row's start sums it: roller_setup.row_load): the radial
+    load |F_r| [N], its tangent stiffness along the load k_r and across it k_w [N/m], the sum
+    of the needle loads q [N]."""
+    return sum_row(P[P_NEEDLE_CLEARANCE], int(P[P_NROW]), P[P_KN1], a)
 
 
 def lumped_offset(P, F):
     """Static x offset of the roller from the trunnion axis [m] under a radial load F [N],
-    lumped bearing: where row_sums' load is |F| (Newton from above: the load is convex in the
-    offset), against the load (negative in drive, positive in coast)."""
+    lumped bearing (needle_row.row_offset), against the load (negative in drive, positive in
+    coast)."""
     c = P[P_NEEDLE_CLEARANCE]
     if F == 0.0:
         return -c
-    # above the root: the row's load with every needle of the half row as loaded as the first
-    e = c + (abs(F) / P[P_KN]) ** 0.9 + 2.0 * c
-    while row_sums(P, e)[0] < abs(F):
-        e = c + 2.0 * (e - c)
-    for _ in range(60):
-        f, k, _kw, _q = row_sums(P, e)
-        de = (f - abs(F)) / k
-        e -= de
-        if not de > 1e-15 * e:
-            break
+    e = row_offset(c, int(P[P_NROW]), P[P_KN1], P[P_KN], F)
     return e if F < 0.0 else -e
 
 
@@ -340,5 +308,5 @@ def copy_derived(P, OP, P_to, OP_to):
 # what kernel.py compiles in this module's namespace (the reduced model's formulas too: one
 # implementation of each)
 FUNCTIONS = ("row_substep", "pressing_load", "amplitude_A", "amplitude_B", "amplitude_plunge", "v_st_auto", "amplitudes", "v_st",
-             "_rate_amplitude", "_accuracy_bound", "ga_substeps", "ga_step_size", "tolerance_scale", "ga_free_step", "ring_step", "substep", "groove_offset", "row_sums", "lumped_offset",
+             "_rate_amplitude", "_accuracy_bound", "ga_substeps", "ga_step_size", "tolerance_scale", "ga_free_step", "ring_step", "substep", "groove_offset", "sum_row", "row_sums", "row_offset", "lumped_offset",
              "derive", "copy_derived")

@@ -13,7 +13,7 @@ from reduced_model.scene import params_for
 from reduced_model.table import table_state_at
 from reduced_model.thrust import spin_inertia
 from . import layout as K
-from .line_contact import needle_line_stiffness
+from reduced_model.needle_row import needle_line_stiffness, row_constants
 from .oppoint import groove_offset, lumped_offset
 
 PARAM_NAMES = tuple(p.name for p in params_for("contact") if p.causality != "input")
@@ -86,16 +86,11 @@ def kernel_params(T, P):
     # resolved row's substep and its slide's rate (oppoint.substep); the lumped row's law is
     # oppoint.row_sums, with the clearance
     n = int(T[T_N_NEEDLES])
-    s19 = s10 = 0.0
-    for j in range(n):
-        c = math.cos(2.0 * math.pi * j / n)
-        if c > 1e-12:
-            s19 += c ** (19.0 / 9.0)
-            s10 += c ** (10.0 / 9.0)
-    P[K.P_KN] = needle_line_stiffness(l_n) * 2.0 ** (-10.0 / 9.0) * s19   # F_r = K_row g^(10/9)
-    P[K.P_QSUM] = s10 / s19                  # sum of needle loads / F_r
+    c1, k_row, q_sum = row_constants(n, l_n)
+    P[K.P_KN] = k_row                        # F_r = K_row g^(10/9)
+    P[K.P_QSUM] = q_sum                      # sum of needle loads / F_r
     P[K.P_NROW] = n
-    P[K.P_KN1] = needle_line_stiffness(l_n) * 2.0 ** (-10.0 / 9.0)
+    P[K.P_KN1] = c1
     P[K.P_LT] = l_n * l_n / 12.0             # tilt = radial x l^2 / 12
     P[K.P_IT] = m * (3.0 * (r * r + rb * rb) + T[T_ROLLER_WIDTH] * T[T_ROLLER_WIDTH]) / 12.0
     tol = T[T_STEP_TOLERANCE]

@@ -1,0 +1,105 @@
+"""The reduced traverse model with the needle row (needle_row = true, reduced_model/equations.py:
+row_point, row_step): the same equations solved independently, its limit where the row cannot
+rock, the slide stepped in time against the settled table, and the row's own law shared with
+the contact model's lumped row."""
+import math
+
+import numpy as np
+import pytest
+
+from reduced_model import needle_row as NR
+from reduced_model import scene as S
+from reduced_model.analytic_kernel import INPUT_NAMES
+from reduced_model.analytic_model import AnalyticModel
+from reduced_model.orders import last_cycle_orders, order_component
+from reduced_model.scene import defaults
+from reduced_model.traverse import Traverse
+
+
+def _table_orders(**over):
+    """Orders 1 and 3 of Fz [N] (complex) of the settled table of one roller at 10 Hz."""
+    from benchmarks.needle_mechanism import phasor
+    sc = S.validate(dict({"omega": 20 * math.pi, "needle_row": True}, **over), "analytic")
+    fz = np.asarray(Traverse(sc).Fz[:-1])
+    return {k: phasor(order_component(fz, k)) for k in (1, 3)}
+
+
+@pytest.mark.parametrize("deg,F", [(8.0, 45000.0), (8.0, 4500.0)], ids=["launch", "paper"])
+def test_the_kernel_and_an_independent_march_agree(deg, F):
+    """benchmarks/reduced_row.py marches the same equations four cycles from rest with scipy's
+    fsolve on (slip, tilt) and T3 inverted at each point; the kernel solves the periodic cycle by
+    Newton on the slip vector and the tilt.  Both discretize alike (360 steps a cycle), and
+    each solve converges to 1e-9 of v_st or better: orders 1 and 3 agree within 1e-5
+    (measured 6e-9 and 6e-8)."""
+    from benchmarks.reduced_row import reduced_orders
+    th = math.radians(deg)
+    march = reduced_orders(S.validate({"theta": th, "F_press": F, "omega": 20 * math.pi},
+                                      "contact"), True, True, True)
+    table = _table_orders(theta=th, F_press=F)
+    for k in (1, 3):
+        assert abs(march[k] - table[k]) <= 1e-5 * abs(table[k]), k
+
+
+def test_a_row_that_cannot_rock_nor_rub_is_the_ideal_bearing():
+    """The needles' friction and rolling resistance off and the row's tilt stiffness about 470
+    times the default's (needles of 0.1 m: k_t2 = k_r l^2 / 12 with k_r ~ l^(8/9)): what is
+    left of the row (the tilt under the groove's friction and the row's load) moves the
+    groove contact by 1/470 of what the default row does, so the orders are the ideal
+    bearing's within 0.5 % (the default row moves order 1 by 36-43 % at these loads)."""
+    for F in (4500.0, 45000.0):
+        over = dict(theta=math.radians(8.0), F_press=F)
+        stiff = _table_orders(friction_needle=False, rolling_resistance=False, l_needle=0.1,
+                              **over)
+        ideal = _table_orders(needle_row=False, **over)
+        default = _table_orders(**over)
+        for k in (1, 3):
+            assert abs(stiff[k] - ideal[k]) <= 5e-3 * abs(ideal[k]), (F, k)
+        assert abs(default[1] - ideal[1]) >= 0.2 * abs(ideal[1])
+
+
+def test_the_slide_stepped_in_time_follows_the_table():
+    """Held inputs moved once by a part in 1e9 after a cycle hand the slide from the settled
+    table to the march (T4 by the trapezoidal rule at the communication step, the tilt by
+    backward Euler) from where the table had it: the next cycle's orders 1 and 3 of Fz agree
+    with the table's within 1 %, and nothing jumps at the hand-over (within 2 % of the order 3
+    amplitude).  The two step at 1e-4 s and 2.8e-4 s, and backward Euler's tilt rate is first
+    order in the step: they part by 0.3-0.65 % (measured at 4.5 and 45 kN; the ideal
+    bearing's table and march by 0.04-0.06 %)."""
+    v = dict(defaults("analytic"), theta=math.radians(8.0), F_press=45000.0, needle_row=True)
+    m = AnalyticModel(v)
+    inp = [v[n] for n in INPUT_NAMES]
+    dt, n = 1e-4, 1100
+    t, fz, x = [], [], []
+    for k in range(2 * n):
+        if k == n:
+            inp[INPUT_NAMES.index("theta")] *= 1.0 + 1e-9
+        m.step(dt, k * dt, inp)
+        o = m.outputs()
+        t.append((k + 1) * dt)
+        fz.append(o["Fz"])
+        x.append(o["whirl_angle"])
+    t, fz, x = np.array(t), np.array(fz), np.array(x)
+    table = last_cycle_orders(t[:n], fz[:n], x[:n], (1, 3))
+    march = last_cycle_orders(t, fz, x, (1, 3))
+    for k in (1, 3):
+        za, zb = (a * np.exp(1j * math.radians(p)) for a, p in (table[k], march[k]))
+        assert abs(za - zb) <= 1e-2 * abs(za), k
+    jumps = np.abs(np.diff(fz[n - 5:n + 5]))
+    assert jumps.max() <= jumps[:4].max() + 0.02 * table[3][0]
+
+
+def test_the_row_law_is_the_lumped_rows():
+    """needle_row.sum_row at the offset row_offset finds carries the load asked (to 1e-12),
+    and for a row without clearance its load is row_constants' K_row g^(10/9) (every needle of
+    the loaded half squeezed by g cos(psi_j), Eq. 17): the law the lumped row and the reduced
+    model share."""
+    c1, k_row, q_sum = NR.row_constants(46, 0.012)
+    for F in (300.0, 4500.0, 45000.0):
+        a = NR.row_offset(1e-5, 46, c1, k_row, F)
+        Fr, kr, kw, q = NR.sum_row(1e-5, 46, c1, a)
+        assert Fr == pytest.approx(F, rel=1e-12)
+        assert q > Fr and kr > 0 and kw > 0
+        g = 2e-6 * F / 4500.0
+        Fr0, _kr, _kw, q0 = NR.sum_row(0.0, 46, c1, g)
+        assert Fr0 == pytest.approx(k_row * g ** (10.0 / 9.0), rel=1e-12)
+        assert q0 == pytest.approx(q_sum * Fr0, rel=1e-12)
