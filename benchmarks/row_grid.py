@@ -1,8 +1,9 @@
 """The fast models against the full one over the driveline envelope (issue 67 point 5): the
-ideal and lumped bearings of the contact model and the analytic model, each against the
-needle-resolved row, one roller, over harness/envelope_grid.py's quasi-random grid of scenes.
-Prints the Markdown table of docs/validation.md ("The fast models against the full one over
-the envelope"); "off" is the complex difference over the resolved row's amplitude.
+ideal and lumped bearings of the contact model and the analytic model (with its needle row, and
+with the ideal bearing: needle_row = false), each against the needle-resolved row, one
+roller, over harness/envelope_grid.py's quasi-random grid of scenes.  Prints the Markdown
+table of docs/validation.md ("The fast models against the full one over the envelope"); "off"
+is the complex difference over the resolved row's amplitude.
 
 Usage: python -m benchmarks.row_grid [--scenes N] [--first K]   (one resolved run is 7 s to
 a minute here: about 5 minutes for twelve scenes)
@@ -44,8 +45,8 @@ def main():
         return
     print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | resolved: order 1, order 3 "
           "[N] | ideal: order 1, 3 off | lumped: order 1, 3 off | analytic: order 1, 3 off | "
-          "wall, resolved [s] |")
-    print("|---|---|---|---|---|---|---|---|---|---|")
+          "analytic, ideal bearing: order 1, 3 off | wall, resolved [s] |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|")
     for i in range(args.first, args.first + args.scenes):
         path, theta, F, omega = scene(i)
         t0 = time.perf_counter()
@@ -54,7 +55,8 @@ def main():
         cells = [f"{off(o, ref, 1):.1f} %, {off(o, ref, 3):.1f} %"
                  for o in (contact_orders(path, theta, F, omega, 0),
                            contact_orders(path, theta, F, omega, 1),
-                           analytic_orders(path, theta, F, omega))]
+                           analytic_orders(path, theta, F, omega, needle_row=True),
+                           analytic_orders(path, theta, F, omega, needle_row=False))]
         print(f"| {i} | {path.stem} | {math.degrees(theta):.1f} | {F / 1e3:+.2f} | "
               f"{omega / 2 / math.pi:.1f} | {ref[1][0]:.2f}, {ref[3][0]:.2f} | "
               + " | ".join(cells) + f" | {wall:.0f} |", flush=True)

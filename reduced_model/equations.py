@@ -407,9 +407,10 @@ def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin):
     return p, fa, fn, beta, row
 
 
-def row_step(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_step(O, rhs0, s, t, b2, b2d, h, x):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
-    row from slip s, cross slip t >= 0 and tilt
+    row to whirl angle x [rad] (the drive there: drive_at, row_rates) from slip s, cross slip
+    t >= 0 and tilt
     b2 [rad] over h [s]: T4's trapezoidal rule, rho_c p - h/2 s1 = rhs0, with the tilt's balance
     k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as Newton on
     (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v / |v| on its
@@ -417,6 +418,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin):
     beta's dependence on p in the Jacobian (beta's by a difference); a step
     is cut to move no slip by more than v_st / 2.  Not settled within 40 iterations to 1e-9
     v_st: the caller takes row_trapezoid."""
+    _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
+    vax, yaw, dax = row_rates(O, x)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
     r, lev, kt2, mq, kr, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_MQ], O[O_KROW], O[O_CRF]
     kt = 0.5 * h
@@ -593,13 +596,16 @@ def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     return z, b
 
 
-def row_advance(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin):
-    """(s1, t1, b2_1, p, fa, f_n, beta, row) of one step with the row (row_at's at its end):
+def row_advance(O, rhs0, s, t, b2, b2d, h, x):
+    """(s1, t1, b2_1, p, fa, f_n, beta, row) of one step with the row to whirl angle x [rad]
+    (row_at's at its end):
     row_step, or row_trapezoid where it does not settle (t1 then 0: the next Newton starts
     across the slide afresh)."""
-    res = row_step(O, rhs0, s, t, b2, b2d, h, V, vax, yaw, dax, bi, dphi, spin)
+    res = row_step(O, rhs0, s, t, b2, b2d, h, x)
     if res[0]:
         return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
+    _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
+    vax, yaw, dax = row_rates(O, x)
     s1, b1 = row_trapezoid(O, rhs0, s, b2, h, V, vax, yaw, dax, bi, dphi, spin)
     p, fa, fn, beta, row = row_at(O, s1, (b1 - b2) / h, V, vax, yaw, bi, dphi, spin)
     return s1, 0.0, b1, p, fa, fn, beta, row
@@ -627,10 +633,8 @@ def march(O, X, r, x, dt):
         if O[O_HELD] != 0.0:
             rhs0 = O[O_RHO] * p + 0.5 * h * (s - V0 - V1)
             if row:
-                vax, yaw, dax = row_rates(O, x1)
                 b1 = b2
-                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, V1,
-                                                             vax, yaw, dax, bi, dphi, spin)
+                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, x1)
                 bd = (b2 - b1) / h
             else:
                 ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p)

@@ -119,7 +119,7 @@ PARAMS: tuple[Param, ...] = (
           "roller free along the trunnion axis (contact point traverses the groove); in the "
           "analytic model: the reduced traverse model (false: Eqs. 18-27 alone)",
           kind="bool", models=_A),
-    Param("needle_row", False, "1", None, None,
+    Param("needle_row", True, "1", None, None,
           "traverse model: the needle row's friction (the needles' sliding friction and rolling "
           "resistance) and the roller's rocking on the row (docs/model.md); false: an ideal "
           "bearing, the roller free along the trunnion", kind="bool", models=_R),

@@ -21,11 +21,10 @@ FULL_SLIP_REL = 0.05       # order 3 within 5 % (complex) of Eq. (27): Eqs. 18-2
 REGIME_FULL_SLIP, REGIME_TRAVERSE, REGIME_MICRO_SLIP = 0, 1, 2   # scene.REGIME_CODES
 
 
-# per table point: driven slip V, T2's inertia part bi, dphi, spin, phi, xi, the trunnion's
-# stroke and yaw rates (the row's: row_rates); the cycle run and the best one (slip s, p, the
-# roller's tilt b2 on the row)
-(D_V, D_BI, D_DPHI, D_SPIN, D_PHI, D_XI, D_VAX, D_YAW, D_DAX, D_SS, D_PS, D_B2, D_BEST_SS,
- D_BEST_PS, D_BEST_B2, D_COUNT) = range(16)
+# per table point: driven slip V, T2's inertia part bi, dphi, spin, phi, xi; the cycle run and
+# the best one (slip s, p, the roller's tilt b2 on the row)
+(D_V, D_BI, D_DPHI, D_SPIN, D_PHI, D_XI, D_SS, D_PS, D_B2, D_BEST_SS, D_BEST_PS, D_BEST_B2,
+ D_COUNT) = range(13)
 
 # --- the periodic solution: the settled table -------------------------------------------------
 # D (work, n + 1 values a row, rows D_*): the driving motion at the table's n + 1 points, the
@@ -42,11 +41,6 @@ def drive_table(O, D, n):
         D[D_SPIN * m + i] = spin
         D[D_PHI * m + i] = phi
         D[D_XI * m + i] = xi
-        vax, yaw, dax = row_rates(O, 2.0 * math.pi * i / n) if O[O_ROW] != 0.0 \
-            else (0.0, 0.0, 0.0)
-        D[D_VAX * m + i] = vax
-        D[D_YAW * m + i] = yaw
-        D[D_DAX * m + i] = dax
         D[D_B2 * m + i] = 0.0
 
 
@@ -60,8 +54,9 @@ def table_row_at(O, D, n, i, s, b2d):
     """row_at at table point i: (p, fa, f_n, beta, row) for the slide slip s [m/s] and the
     tilt rate b2d [rad/s]."""
     m = n + 1
-    return row_at(O, s, b2d, D[D_V * m + i], D[D_VAX * m + i], D[D_YAW * m + i],
-                  D[D_BI * m + i], D[D_DPHI * m + i], D[D_SPIN * m + i])
+    vax, yaw, _dax = row_rates(O, 2.0 * math.pi * i / n)
+    return row_at(O, s, b2d, D[D_V * m + i], vax, yaw, D[D_BI * m + i], D[D_DPHI * m + i],
+                  D[D_SPIN * m + i])
 
 
 def row_cycle(O, D, n, s0):
@@ -82,9 +77,8 @@ def row_cycle(O, D, n, s0):
         rhs0 = rho * p0 + 0.5 * h * (s - D[v + i] - D[v + i + 1])
         j = i + 1
         b0 = b2
-        s, t, b2, p0, _fa, _fn, _beta, _row = row_advance(
-            O, rhs0, s, t, b2, b2d, h, D[v + j], D[D_VAX * m + j], D[D_YAW * m + j],
-            D[D_DAX * m + j], D[D_BI * m + j], D[D_DPHI * m + j], D[D_SPIN * m + j])
+        s, t, b2, p0, _fa, _fn, _beta, _row = row_advance(O, rhs0, s, t, b2, b2d, h,
+                                                          2.0 * math.pi * j / n)
         b2d = (b2 - b0) / h
         D[ss + j] = s
         D[ps + j] = p0

@@ -56,7 +56,8 @@ def test_a_json_joint_file_is_the_same_joint(tmp_path):
 def test_the_analytic_model_takes_what_it_has():
     j = load_joint(EXAMPLES / "light-truck.toml")
     a = for_model(j, "analytic")
-    assert set(a) == {"s", "r_roller", "r_groove", "r_bore", "m_roller", "mu_groove", "E", "nu"}
+    assert set(a) == {"s", "r_roller", "r_groove", "r_bore", "m_roller", "mu_groove", "E", "nu",
+                      "l_needle", "n_needles", "needle_clearance", "mu_needle", "mu_rolling"}
     assert for_model(j, "contact") == j
 
 
@@ -136,4 +137,5 @@ def test_the_launch_example_takes_a_joint_file(tmp_path):
     assert f'<ssv:Parameter name="s"><ssv:Real value="{j["s"]!r}"/>' in ssd
     creep = pt.defaults()["torque_creep"] / (3.0 * j["s"])
     assert f'<ssv:Parameter name="F_press"><ssv:Real value="{creep!r}"/>' in ssd
-    assert 'name="n_needles"' not in ssd        # (the contact model's only)
+    assert 'name="n_needles"' in ssd            # (the analytic model's needle row)
+    assert 'name="d_needle"' not in ssd         # (the contact model's only)
