@@ -32,13 +32,10 @@ ORDERS = (1, 3)
 
 
 def split_scene(overrides: dict) -> tuple[dict, dict]:
-    """Validated contact scene and the analytic scene it implies: the shared names, and the
-    analytic model's needle row where the contact model has one (needle_row = true with the
-    lumped or the needle-resolved row, false with the ideal bearing)."""
+    """Validated contact scene and the analytic scene it implies
+    (scene.analytic_counterpart)."""
     contact = scene_mod.validate(overrides, "contact")
-    analytic = {k: v for k, v in contact.items() if "analytic" in scene_mod.BY_NAME[k].models}
-    analytic["needle_row"] = int(contact["bearing"]) != scene_mod.BEARING_IDEAL
-    return contact, scene_mod.validate(analytic, "analytic")
+    return contact, scene_mod.validate(scene_mod.analytic_counterpart(contact), "analytic")
 
 
 def quadrant(scene: dict) -> str:

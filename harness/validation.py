@@ -99,7 +99,7 @@ def grid_rows(scenes: dict | None = None) -> list[dict]:
     """One row a scene: the contact model, Eqs. (18)-(27) and the traverse model, order 3."""
     rows = []
     for label, ov in (scenes or grid()).items():
-        sc = scene_mod.validate(ov, "analytic")
+        sc = scene_mod.validate(scene_mod.analytic_counterpart(ov), "analytic")
         oc, cycles, ok = contact_orders(ov)
         tr = Traverse(sc)
         o3 = tr.orders()[3]
@@ -228,8 +228,7 @@ def size_rows(scenes: dict | None = None) -> list[dict]:
     from reduced_model.traverse import operating_point, params_array
     rows = []
     for label, ov in (scenes or size_grid()).items():
-        sc = scene_mod.validate({k: v for k, v in ov.items()
-                                 if "analytic" in scene_mod.BY_NAME[k].models}, "analytic")
+        sc = scene_mod.validate(scene_mod.analytic_counterpart(ov), "analytic")
         oc, cycles, ok = contact_orders(ov)
         tr = Traverse(sc)
         o3 = tr.orders()[3]
@@ -307,6 +306,8 @@ def fmu_order3(name: str, overrides: dict):
     magnitude (reverse whirl turns the other way)."""
     from .fmus import ensure_fmu
     from .runs import run_settled
+    if name == "TripodRollerAnalytic":
+        overrides = scene_mod.analytic_counterpart(overrides)
     sc = scene_mod.validate(overrides, "analytic")
     w = abs(sc["omega"])
     r = run_settled(ensure_fmu(name), overrides, w, ["Fz_mod"], dt=2 * math.pi / w / 2000)

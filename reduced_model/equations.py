@@ -416,8 +416,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
     (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v / |v| on its
     contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n, with f_n's and
     beta's dependence on p in the Jacobian (beta's by a difference); a step
-    is cut to move no slip by more than v_st / 2.  Not settled within 40 iterations to 1e-9
-    v_st: the caller takes row_trapezoid."""
+    is cut to move no slip by more than half of v_st or of the slip.  Not settled within 40
+    iterations to 1e-9 v_st: the caller takes row_trapezoid."""
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
@@ -438,7 +438,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
             g = math.tanh(k * v)
             gv, dg, us, ut = g / v, k * (1.0 - g * g), sg / v, t / v
         fa = -mu * gv * sg
-        tr = math.tanh(kr * (s - V - vax - lev * b2d))
+        ur = s - V - vax - lev * b2d
+        tr = math.tanh(kr * ur)
         row = mq * tr
         dr = mq * kr * (1.0 - tr * tr)
         fn = normal_force(O, p)
@@ -489,11 +490,15 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
         ds = -(c11 * r1 + (j13 * j32 - j12 * j33) * r2 + (j12 * j23 - j13 * j22) * r3) / det
         dt = -(c12 * r1 + (j11 * j33 - j13 * j31) * r2 + (j13 * j21 - j11 * j23) * r3) / det
         db = -(c13 * r1 + (j12 * j31 - j11 * j32) * r2 + (j11 * j22 - j12 * j21) * r3) / det
-        # a step that moves a contact's slip by more than half v_st is cut to that: the full
-        # step overshoots where a friction saturates and can cycle between its two sides
-        big = max(abs(ds), abs(dt), abs(db) * arm) / (0.5 * O[O_VST])
+        # a step that moves a contact's slip by more than half of v_st or of the slip itself
+        # is cut to that: the full step overshoots where a friction saturates and can cycle
+        # between its two sides
+        big = max(abs(ds), abs(db) * arm) / (0.5 * max(O[O_VST], abs(sg), abs(ur)))
         if big > 1.0:
             ds, dt, db = ds / big, dt / big, db / big
+        # t at most doubles (and v_st / 2): where the spin takes nearly all the friction the
+        # cross slip runs far out along the tanh's flat top
+        dt = min(dt, t + 0.5 * O[O_VST])
         s += ds
         t = abs(t + dt)
         b2 += db

@@ -490,6 +490,16 @@ RELATIONS = {
 }
 
 
+def analytic_counterpart(contact: dict) -> dict:
+    """The analytic model's values for a contact scene (its overrides or a validated scene):
+    the names both models take, and the analytic model's needle row where the contact model
+    has one (needle_row = true with the lumped or the needle-resolved row, false with the ideal
+    bearing): what the cross-check runs the analytic model with."""
+    out = {k: v for k, v in contact.items() if "analytic" in BY_NAME[k].models}
+    out["needle_row"] = int(contact.get("bearing", BY_NAME["bearing"].default)) != BEARING_IDEAL
+    return out
+
+
 def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
     """A complete scene for ``model``: defaults updated by ``overrides``, every value checked.
 
