@@ -36,7 +36,7 @@ import math
 import time
 
 import numpy as np
-from scipy.optimize import brentq, fsolve
+from scipy.optimize import brentq, fsolve, root
 
 from benchmarks.needle_mechanism import phasor, run
 from reduced_model import equations as E, scene as S
@@ -119,8 +119,12 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
                         (kt2 * z[1] * 1e-3 + rim * fn * fa - lever * row
                          - carry * (d - rho * pp)) / (kt2 * 1e-3)]
             z, info, _ier, msg = fsolve(residual, [s, b2 * 1e3], xtol=1e-12, full_output=True)
-            if max(abs(info["fvec"])) > 1e-6:      # (fsolve may stop short of xtol, not of this)
-                raise RuntimeError(f"the rocking step did not converge at {x1:.4f} rad: {msg}")
+            if max(abs(info["fvec"])) > 1e-6:      # Levenberg-Marquardt where hybrd stalls
+                sol = root(residual, [s, b2 * 1e3], method="lm", options={"xtol": 1e-14})
+                z, msg = sol.x, sol.message
+                if max(abs(np.asarray(residual(z)))) > 1e-6:
+                    raise RuntimeError(f"the rocking step did not converge at {x1:.4f} rad: "
+                                       f"{msg}")
             s, b2d = z[0], (z[1] * 1e-3 - b2) / h
         else:
             s = brentq(lambda z: rho * at(x1, z, 0.0)[0] - 0.5 * h * z - rhs0, s - 1.0, s + 1.0,

@@ -21,9 +21,13 @@ from xml.sax.saxutils import quoteattr
 import numpy as np
 
 from driveline import powertrain as pt
-from reduced_model.scene import check_param, parse_param
+from reduced_model.scene import BEARING_LUMPED, check_param, parse_param
 
 JOINTS = {"contact": "TripodRoller", "analytic": "TripodRollerAnalytic"}
+# each joint model as a launch wants it: the contact FMU with the lumped needle row (the ideal
+# bearing's launch peak is 27 % below the row's), the analytic FMU with its own row (its
+# default); an integer binding, since FMPy's SSP reader takes a Boolean "false" for true
+JOINT_VALUES = {"contact": {"bearing": BEARING_LUMPED}, "analytic": {}}
 TO_JOINT = ("theta", "plunge_speed", "omega", "torque")      # powertrain outputs -> joint inputs
 TO_POWERTRAIN = tuple(p.name for p in pt.INPUTS)             # joint outputs -> powertrain inputs
 RECORD = {"powertrain": ("acc_y", "acc_x", "acc_z", "disp_y", "roll", "plunge"),
@@ -76,7 +80,7 @@ def system_xml(joint="contact", powertrain: dict | None = None, joint_values: di
     for name, v in p.items():
         check_param(pt.BY_NAME[name], v)
     pvals = {q.name: p[q.name] for q in pt.PARAMS}
-    jvals = joint_start(p) | (joint_values or {})
+    jvals = joint_start(p) | JOINT_VALUES[joint] | (joint_values or {})
     conns = "".join(f'\n    <ssd:Connection startElement="powertrain" startConnector="{n}" '
                     f'endElement="joint" endConnector="{n}"/>' for n in TO_JOINT)
     conns += "".join(f'\n    <ssd:Connection startElement="joint" startConnector="{n}" '

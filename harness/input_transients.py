@@ -10,7 +10,7 @@ import math
 import numpy as np
 
 from reduced_model.orders import last_cycle_orders, order_spectrum
-from reduced_model.scene import BY_NAME, PARAMS, check_value, defaults, validate
+from reduced_model.scene import BY_NAME, PARAMS, analytic_counterpart, check_value, defaults, validate
 
 DT = 1e-4
 THETA, TORQUE = math.radians(8.0), 300.0
@@ -309,13 +309,15 @@ def revolution_orders(t, x, y, orders=(1, 3)):
 
 def start_values_by_model(start_values):
     """{"contact": ..., "analytic": ...}: each FMU's share of ``start_values`` (a parameter goes
-    to the models that have it, scene.py), each checked against its model's ranges.  Raises
+    to the models that have it, scene.py; the analytic model's needle row paired with the
+    contact model's bearing: scene.analytic_counterpart), each checked against its model's
+    ranges.  Raises
     ValueError naming a parameter neither model has, or a value out of range."""
     for name, value in start_values.items():
         check_value(name, value)
-    out = {}
-    for model in ("contact", "analytic"):
-        out[model] = {k: v for k, v in start_values.items() if model in BY_NAME[k].models}
+    out = {"contact": {k: v for k, v in start_values.items() if "contact" in BY_NAME[k].models},
+           "analytic": analytic_counterpart(start_values)}
+    for model in out:
         validate(out[model], model)
     return out
 

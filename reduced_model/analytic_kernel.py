@@ -20,6 +20,7 @@ import math
 
 from . import equations, needle_row, table
 from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLLERS, O_CLEAR,
+                        MU_NEEDLE, NEEDLE_ROW, O_MQ, O_ROW,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
                         T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, R_T, S,
@@ -29,7 +30,8 @@ from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_not
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
-from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, RELATIONS, TOO_LONG,
+from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, RELATIONS, ROW_MU,
+                    TOO_LONG,
                     params_for,
                     pressing_load, same_step, same_value)   # (pressing_load: compiled_namespace)
 from .table import D_COUNT, SETTLED_TOL, regime, table_at, table_state_at, traverse_table
@@ -94,8 +96,9 @@ CHECKED_RANGES = (("theta", "deg", 2.0, 25.0), ("mu_groove", "", 0.03, 0.12),
                   ("plunge speed", "m/s", -0.1, 0.1))
 (C_THETA, C_MU, C_INERTIA, C_CLEARANCE, C_ROLLER, C_BORE, C_HERTZ,
  C_PLUNGE) = range(len(CHECKED_RANGES))
-# held at their defaults in that check (yaw and axial are not here: the analytic model does not
-# use them, so they cannot move its result)
+# held at their defaults in that check (yaw and axial are not here: the ideal bearing's traverse
+# model does not use them; the needle row does, and the envelope grid that checks it ran them at
+# their defaults, which this list does not yet say)
 CHECKED_AT_DEFAULT = ("v_st", "pitch", "roll", "spin_inertia", "spin_moment", "E", "nu")
 DEFAULT_SLOTS = tuple(PARAM_NAMES.index(n) for n in CHECKED_AT_DEFAULT)
 DEFAULT_VALUES = tuple(float(BY_NAME[n].default) for n in CHECKED_AT_DEFAULT)
@@ -141,12 +144,13 @@ NOTE_TEXT = (
     (ERROR, "mu_groove = %g: the traverse model needs mu_groove < 1 (the friction it balances "
             "tilts the contact normal by asin(mu_groove)); allowed range [0, 1) (or traverse = "
             "false)"),
+    (ERROR, RELATIONS["row_mu"]),
 ) + tuple((WARNING, "; " + phrase(k, False)) for k in range(len(CHECKED_RANGES))) \
   + tuple((WARNING, "; " + phrase(k, True)) for k in range(len(CHECKED_RANGES))) \
   + tuple((WARNING, "; " + default_phrase(j)) for j in range(len(CHECKED_AT_DEFAULT)))
 (NOTE_OUTSIDE, NOTE_UNSETTLED, NOTE_MARCH, NOTE_RUN_OUTSIDE, NOTE_STEPS, NOTE_STEPS_MARCH,
- NOTE_TOO_LONG, NOTE_GROOVE, NOTE_BORE, NOTE_ROLLERS, NOTE_MU) = range(11)
-NOTE_CHECKED = 11                                       # + k: CHECKED_RANGES[k], one value
+ NOTE_TOO_LONG, NOTE_GROOVE, NOTE_BORE, NOTE_ROLLERS, NOTE_MU, NOTE_ROW_MU) = range(12)
+NOTE_CHECKED = 12                                       # + k: CHECKED_RANGES[k], one value
 NOTE_CHECKED_SPAN = NOTE_CHECKED + len(CHECKED_RANGES)  # + k: a span
 NOTE_DEFAULT = NOTE_CHECKED_SPAN + len(CHECKED_RANGES)  # + j: CHECKED_AT_DEFAULT[j]
 
@@ -412,6 +416,9 @@ def check_scene(T, W):
     if T[TRAVERSE] != 0.0 and T[MU_GROOVE] >= 1.0:
         note(W, NOTE_MU, T[MU_GROOVE], 0.0, 0.0, 0.0)
         return False
+    if T[TRAVERSE] != 0.0 and T[NEEDLE_ROW] != 0.0 and T[MU_GROOVE] + ROW_MU * T[MU_NEEDLE] >= 1.0:
+        note(W, NOTE_ROW_MU, T[MU_GROOVE] + ROW_MU * T[MU_NEEDLE], 0.0, 0.0, 0.0)
+        return False
     if T[R_BORE] >= T[R_ROLLER]:
         note(W, NOTE_BORE, T[R_BORE], T[R_ROLLER], 0.0, 0.0)
         return False
@@ -484,7 +491,8 @@ def state_problem(T, X):
     """0 when the state X is one the model can step (every value finite is the layer's
     check), else a code: 1 its mode, flags or counts are none the model writes; 2 an input of
     its operating point outside its range; 3 a march row's p outside [-mu_groove, mu_groove];
-    4 its step not above 0."""
+    4 its step not above 0.  (p's range: mu_groove, and with the needle row mu_needle q / F
+    beside it.)"""
     for j in (X_HAS_DT, X_HAS_KEY, X_TOLD, X_SETTLED, X_HAS_SPAN):
         if X[j] != 0.0 and X[j] != 1.0:
             return 1
@@ -503,7 +511,11 @@ def state_problem(T, X):
             return 1
         if X[r + R_HAS_OUT] != 0.0 and X[r + R_HAS_OUT] != 1.0:
             return 1
-        if not abs(X[r + R_P]) <= T[MU_GROOVE]:
+        # p = fa - row / f_n with |fa| <= mu_groove, |row| <= mu_needle q and f_n >= F
+        # (T5 at p = 0): the needle row widens the range by mu_needle q / F
+        F = X[X_OP + O_F]
+        row = X[X_OP + O_MQ] / F if (X[X_OP + O_ROW] != 0.0 and F > 0.0) else 0.0
+        if not abs(X[r + R_P]) <= T[MU_GROOVE] + row:
             return 3
     if X[X_HAS_DT] != 0.0 and not X[X_DT] > 0.0:
         return 4
@@ -512,7 +524,8 @@ def state_problem(T, X):
 
 STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
                   "an input of its operating point is outside its range",
-                  "a march row's p is outside [-mu_groove, mu_groove]",
+                  "a march row's p is outside [-mu_groove, mu_groove] (the needle row: widened "
+                  "by mu_needle q / F)",
                   "its step is not above 0")
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,

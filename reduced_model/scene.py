@@ -487,16 +487,26 @@ RELATIONS = {
     "bore": "r_bore = %g m must be below r_roller = %g m (range (0, r_roller) m)",
     "spider": "spider = 1 (free) needs n_rollers = 3 and bearing 0 or 1 (the needle-resolved "
               "row is not coupled to a floating spider); got n_rollers = %.0f, bearing = %.0f",
+    "row_mu": "mu_groove + 1.5 mu_needle = %g: the traverse model with the needle row needs it "
+              "below 1 (the groove's and the row's friction tilt the contact normal by their "
+              "sum, the row's at most 1.5 mu_needle F); lower mu_groove or mu_needle (or "
+              "needle_row = false)",
 }
+# the needle row's friction over the pressing load is at most mu_needle q / F, q / F at most 1.3
+# (Eq. 17 over the row: 1.27 without clearance, less with it): with this margin the normal's
+# tilt p in the traverse model stays below mu_groove + ROW_MU mu_needle
+ROW_MU = 1.5
 
 
 def analytic_counterpart(contact: dict) -> dict:
     """The analytic model's values for a contact scene (its overrides or a validated scene):
     the names both models take, and the analytic model's needle row where the contact model
     has one (needle_row = true with the lumped or the needle-resolved row, false with the ideal
-    bearing): what the cross-check runs the analytic model with."""
+    bearing, unless the values name needle_row themselves): what the cross-check runs the
+    analytic model with."""
     out = {k: v for k, v in contact.items() if "analytic" in BY_NAME[k].models}
-    out["needle_row"] = int(contact.get("bearing", BY_NAME["bearing"].default)) != BEARING_IDEAL
+    out.setdefault("needle_row",
+                   int(contact.get("bearing", BY_NAME["bearing"].default)) != BEARING_IDEAL)
     return out
 
 
@@ -524,6 +534,9 @@ def validate(overrides: dict | None = None, model: str = "analytic") -> dict:
         raise ValueError(RELATIONS["n_rollers"] % scene["n_rollers"])
     if model == "analytic" and scene["traverse"]:
         check_traverse_mu(scene["mu_groove"])
+        if scene["needle_row"] and scene["mu_groove"] + ROW_MU * scene["mu_needle"] >= 1.0:
+            raise ValueError(RELATIONS["row_mu"] % (scene["mu_groove"]
+                                                    + ROW_MU * scene["mu_needle"]))
     if scene["r_bore"] >= scene["r_roller"]:
         raise ValueError(RELATIONS["bore"] % (scene["r_bore"], scene["r_roller"]))
     check_roller_mass(scene)

@@ -204,8 +204,10 @@ def test_analytic_steps_the_slide_in_time_when_inputs_move():
     """Inputs that move no longer cost a new traverse table each (0.05 s or more): the slide is
     stepped in time (Traverse.march) from the start's settled table.  After a step of the
     pressing load it settles on the new operating point's periodic solution, which the secant
-    on the cycle map finds independently: order 3 within 1e-3 (the table's 360 points hold
-    order 3 within 2e-4 of 1440, the march steps at 1e-4 s, finer)."""
+    on the cycle map finds independently: orders 1 and 3 within 1 % (the table's 360 points
+    hold order 3 within 2e-4 of 1440 and the march steps at 1e-4 s, finer, but the needle row's
+    tilt goes by backward Euler, first order in the step: the table at 2.8e-4 s and the march
+    part by 0.3-0.65 %, tests/test_reduced_row.py; without the row within 1e-3)."""
     from reduced_model import scene as sc
     from reduced_model.orders import last_cycle_orders
     from reduced_model.traverse import Traverse
@@ -220,7 +222,7 @@ def test_analytic_steps_the_slide_in_time_when_inputs_move():
     want = Traverse(sc.validate({"F_press": 2000.0}, "analytic")).orders()
     for k in (1, 3):
         c = [a * np.exp(1j * np.radians(ph)) for a, ph in (got[k], want[k])]
-        assert abs(c[0] - c[1]) < 1e-3 * abs(c[1]), (k, got[k], want[k])
+        assert abs(c[0] - c[1]) < 1e-2 * abs(c[1]), (k, got[k], want[k])
 
 
 # a master whose communication step varies every step (a variable-step or event-driven master),

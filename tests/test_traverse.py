@@ -1,5 +1,7 @@
 """The reduced traverse model (reduced_model/traverse.py): its limits against closed forms
-derived by hand, and its accuracy against the contact model over the validation grid."""
+derived by hand, and its accuracy against the contact model over the validation grid.  T1-T6
+as the ideal bearing has them (needle_row = false, IDEAL); the needle row's terms:
+tests/test_reduced_row.py."""
 import math
 
 import numpy as np
@@ -14,13 +16,14 @@ from reduced_model.thrust import amplitudes, closed_form, transition_velocity
 from reduced_model.traverse import Traverse
 
 DEG = math.pi / 180
-ISSUE = validation.NAMED["small angle, wide groove"]
+IDEAL = {"needle_row": False}
+ISSUE = dict(validation.NAMED["small angle, wide groove"], **IDEAL)
 
 
 def test_no_room_to_slide_gives_eqs_18_27():
     # rho_c -> 0: the roller cannot lag, p = -mu(V): the thrust of Eqs. (18)-(27), here with
     # the spin terms off (exact vs small-angle kinematics differ by O(theta^2), about 1 %)
-    s = sc.validate({"r_groove": 0.019 + 1e-7, "spin_moment": False, "spin_inertia": False,
+    s = sc.validate({**IDEAL, "r_groove": 0.019 + 1e-7, "spin_moment": False, "spin_inertia": False,
                      "F_press": 50.0}, "analytic")
     o = Traverse(s).orders("Fz")[3]
     cf = closed_form(s)["total"][3]
@@ -48,10 +51,10 @@ def test_micro_slip_is_a_first_order_lag():
 
 def test_regimes():
     assert Traverse(sc.validate(ISSUE, "analytic")).regime() == "micro-slip"
-    assert Traverse(sc.validate({}, "analytic")).regime() == "traverse"
+    assert Traverse(sc.validate(IDEAL, "analytic")).regime() == "traverse"
     # a nearly closed groove without the spin moment (whose slope component alone shifts
     # order 3 by 16 deg at the paper's scene): Eqs. (18)-(27) hold
-    s = sc.validate({"r_groove": 0.019 + 1e-6, "spin_moment": False}, "analytic")
+    s = sc.validate({**IDEAL, "r_groove": 0.019 + 1e-6, "spin_moment": False}, "analytic")
     assert Traverse(s).regime() == "full slip"
 
 
@@ -171,7 +174,7 @@ def test_march_at_the_tables_spacing_stays_on_the_table():
     # the table is the periodic solution of the same trapezoidal step: marched from its first
     # point over one cycle at its own spacing, the slide retraces it (each step's Newton stops
     # at 1e-9 v_st; 360 of them)
-    s = sc.validate({}, "analytic")
+    s = sc.validate(IDEAL, "analytic")
     tab, op = Traverse(s), Traverse(s, periodic=False)
     h = 2 * math.pi / s["omega"] / tab.n
     sl, p = tab.state_at(0.0)
@@ -335,8 +338,11 @@ def test_a_scene_outside_the_checked_range_says_so():
 
 
 def test_switches_the_analytic_model_ignores_are_not_called_unchecked():
-    # yaw and axial move the contact model only: the analytic one gives the same table
+    # yaw and axial move the contact model and the analytic model's needle row only: without
+    # the row the analytic model gives the same table, with it another
     from reduced_model.traverse import outside_checked
-    off = sc.validate({"yaw": False, "axial": False}, "analytic")
+    off = sc.validate({"yaw": False, "axial": False, **IDEAL}, "analytic")
     assert outside_checked(off) == []
-    assert np.array_equal(Traverse(off).Fz_mod, Traverse(sc.validate({}, "analytic")).Fz_mod)
+    assert np.array_equal(Traverse(off).Fz_mod, Traverse(sc.validate(IDEAL, "analytic")).Fz_mod)
+    row = sc.validate({"yaw": False, "axial": False}, "analytic")
+    assert not np.array_equal(Traverse(row).Fz_mod, Traverse(sc.validate({}, "analytic")).Fz_mod)
