@@ -479,7 +479,8 @@ def test_runup_gives_each_fmu_the_parameters_its_model_has():
     sv = dict(T.RUNUP_START, running_clearance=1e-3, spin_inertia=False)
     by = T.start_values_by_model(sv)
     assert by["contact"] == sv
-    assert by["analytic"] == dict(T.RUNUP_START, spin_inertia=False)
+    # (the analytic model paired with the contact model's default, the ideal bearing)
+    assert by["analytic"] == dict(T.RUNUP_START, spin_inertia=False, needle_row=False)
     with pytest.raises(ValueError, match="no_such"):
         T.start_values_by_model({"no_such": 1.0})
     with pytest.raises(ValueError, match="running_clearance"):
