@@ -502,6 +502,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
         s += ds
         t = abs(t + dt)
         b2 += db
+        if not (abs(s) < 1e3 and t < 1e3):      # run away (no slip reaches 1 km/s)
+            return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
         if abs(ds) < tol and abs(dt) < tol and abs(db) * arm < tol:
             # the friction, p and beta where it settled
             b2d = (b2 - b0) / h
