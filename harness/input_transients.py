@@ -10,7 +10,8 @@ import math
 import numpy as np
 
 from reduced_model.orders import last_cycle_orders, order_spectrum
-from reduced_model.scene import BY_NAME, PARAMS, analytic_counterpart, check_value, defaults, validate
+from reduced_model.scene import (BY_NAME, PARAMS, analytic_counterpart, check_value, defaults,
+                                 validate)
 
 DT = 1e-4
 THETA, TORQUE = math.radians(8.0), 300.0

@@ -249,5 +249,6 @@ def regime(g_max, T, n, O):
 
 
 # the functions kernel.py compiles (callees first)
-COMPILED = ("drive_table", "table_p", "table_row_at", "row_cycle", "cycle", "keep_best", "periodic", "traverse_table",
-            "table_index", "table_at", "table_state_at", "order3", "regime")
+COMPILED = ("drive_table", "table_p", "table_row_at", "row_cycle", "cycle", "keep_best",
+            "periodic", "traverse_table", "table_index", "table_at", "table_state_at", "order3",
+            "regime")

@@ -60,7 +60,8 @@ class JointModel:
         the same analytic parameters and inputs (keep False), or kept after one (keep True);
         plain Python computes it in about 0.2 s, which a sweep of models would pay each."""
         IN = self.IN
-        key = (self.T[[j for j in FA.ANALYTIC_SLOTS if j >= 0]].tobytes(), IN[FA.THETA], IN[FA.OMEGA],
+        slots = [j for j in FA.ANALYTIC_SLOTS if j >= 0]
+        key = (self.T[slots].tobytes(), IN[FA.THETA], IN[FA.OMEGA],
                scene_mod.pressing_load(IN[FA.F_PRESS], IN[FA.TORQUE], self.p["s"]),
                IN[FA.PLUNGE_SPEED])
         block = slice(FA.W_PA, FA.W_NW)
