@@ -530,32 +530,34 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
     return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
+def row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+    """The tilt's balance k_t2 b + r f_n fa - lever row - c F (d - rho_c p) [N m] at slide slip
+    s [m/s] and tilt b [rad] (b2' = (b - b0) / h), and p there: (balance, p)."""
+    p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
+    return (O[O_KT2] * b + O[O_R] * fn * fa - O[O_LEVER] * row
+            - O[O_CRF] * (dax - O[O_RHO] * p)), p
+
+
 def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
-    """b2_1 [rad] where the tilt's balance k_t2 b2_1 + r f_n fa - lever row holds at slide slip
-    s [m/s] (b2' = (b2_1 - b0) / h): it rises with b2_1 (the friction of both contacts opposes
-    their slips, which b2' lowers), so regula falsi (Illinois) in the bracket where the two
+    """b2_1 [rad] where the tilt's balance (row_tilt_balance) holds at slide slip s [m/s]
+    (b2' = (b2_1 - b0) / h): it rises with b2_1 (the friction of both contacts opposes their
+    slips, which b2' lowers), so regula falsi (Illinois) in the bracket where the two
     frictions are spent."""
-    r, lev, kt2, mu, crf, rho = O[O_R], O[O_LEVER], O[O_KT2], O[O_MU], O[O_CRF], O[O_RHO]
+    mu, rho = O[O_MU], O[O_RHO]
     pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
     fmax = normal_force(O, pmax)
-    m = 1.01 * (r * fmax * mu + lev * O[O_MQ] + crf * (abs(dax) + rho * pmax)) / kt2 + 1e-12
+    m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
+                + O[O_CRF] * (abs(dax) + rho * pmax)) / O[O_KT2] + 1e-12
     lo, hi = -m, m
-    flo = hi_f = 0.0
-    for j in range(2):
-        b = lo if j == 0 else hi
-        p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
-        if j == 0:
-            flo = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
-        else:
-            hi_f = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
+    flo = row_tilt_balance(O, s, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    hi_f = row_tilt_balance(O, s, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
     side = 0
     b = 0.0
     for _ in range(200):
         b = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < b < hi:
             b = 0.5 * (lo + hi)
-        p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
-        f = kt2 * b + r * fn * fa - lev * row - crf * (dax - rho * p)
+        f = row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
         if f > 0.0:
             hi, hi_f = b, f
             if side == 1:
@@ -573,23 +575,23 @@ def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     return b
 
 
+def row_t4(O, rhs0, z, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+    """T4's trapezoidal residual rho_c p - h/2 z - rhs0 at slide slip z [m/s] with the tilt
+    balanced (row_tilt), and that tilt [rad]: (residual, b2_1)."""
+    b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
+    p = row_tilt_balance(O, z, b, b0, h, V, vax, yaw, dax, bi, dphi, spin)[1]
+    return O[O_RHO] * p - 0.5 * h * z - rhs0, b
+
+
 def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
-    residual rho_c p - h/2 s1 - rhs0 over s1, the tilt balanced at each (row_tilt); it falls
-    with s1 (slope <= -h/2) within the bracket |p| <= mu_groove + mu_needle q / f_n:
-    regula falsi (Illinois)."""
-    rho, mu = O[O_RHO], O[O_MU]
-    pmax = mu + O[O_MQ] / normal_force(O, 0.0)
+    residual over s1, the tilt balanced at each (row_t4); it falls with s1 (slope <= -h/2)
+    within the bracket |p| <= mu_groove + mu_needle q / f_n: regula falsi (Illinois)."""
+    rho = O[O_RHO]
+    pmax = O[O_MU] + O[O_MQ] / normal_force(O, 0.0)
     lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
-    flo = hi_f = 0.0
-    for j in range(2):
-        z = lo if j == 0 else hi
-        b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
-        f = rho * row_at(O, z, (b - b0) / h, V, vax, yaw, bi, dphi, spin)[0] - 0.5 * h * z - rhs0
-        if j == 0:
-            flo = f
-        else:
-            hi_f = f
+    flo = row_t4(O, rhs0, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    hi_f = row_t4(O, rhs0, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
     side = 0
     z = s
     b = b0
@@ -597,8 +599,7 @@ def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
         z = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < z < hi:
             z = 0.5 * (lo + hi)
-        b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
-        f = rho * row_at(O, z, (b - b0) / h, V, vax, yaw, bi, dphi, spin)[0] - 0.5 * h * z - rhs0
+        f, b = row_t4(O, rhs0, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
         if f > 0.0:
             lo, flo = z, f
             if side == -1:
@@ -703,4 +704,5 @@ def steps_of(O, dt):
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
             "normal_force", "beta_at", "share", "p_at", "trapezoid_step", "slip_step",
             "groove_forces", "row_groove_forces", "row_rates", "row_beta", "row_at", "row_step",
-            "row_tilt", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")
+            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance",
+            "substeps", "steps_of", "march")
