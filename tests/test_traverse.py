@@ -162,9 +162,10 @@ def test_a_table_that_is_not_periodic_says_so(monkeypatch):
     from reduced_model.analysis import format_analytic
     from reduced_model import analysis, traverse
     monkeypatch.setattr(table, "MAX_CYCLES", 2)    # this scene needs more
-    tr = Traverse(sc.validate(KNEE[1], "analytic"))
+    knee = dict(KNEE[1], **IDEAL)                  # (the scene as the knee tests have it)
+    tr = Traverse(sc.validate(knee, "analytic"))
     assert not tr.settled and tr.mismatch > 1e-5 * tr.vst and tr.cycles == 2
-    r = analysis.analytic_report(KNEE[1])
+    r = analysis.analytic_report(knee)
     assert r["traverse"]["settled"] is False
     assert "NOT periodic" in format_analytic(r)
     assert "NOT periodic" not in format_analytic(analysis.analytic_report({}))
@@ -202,9 +203,9 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
     2e-6 of v_st, mu and the thrust's scale, across input jumps.  (Far outside the checked
     range, 300 N at 40-80 Hz, friction cannot carry the spin inertia, T3 leaves s undetermined
     and the two differ by up to 2e-4 of the thrust: not tested.)"""
-    s0 = sc.validate(over, "analytic")
+    s0 = sc.validate(dict(over, **IDEAL), "analytic")     # slip_step is the march without the row
     first = equations.slip_step
-    runs = []
+    runs, calls = [], [0]
     for newton in (True, False):
         s, p, x, rows, fell_back = None, 0.0, 0.0, [], [0]
         for f in (1.0, 1.1, 0.8, 2.0):                     # an input jump every 500 steps
@@ -212,6 +213,7 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
             if newton:
                 def counted(*a, first=first):
                     r = first(*a)
+                    calls[0] += 1
                     fell_back[0] += not r[0]
                     return r
                 equations.slip_step = counted
@@ -232,6 +234,7 @@ def test_the_marchs_newton_on_the_slip_vector_is_the_bracketed_step(over):
     for col in (2, 3):                       # Fz, Fx
         assert d[:, col].max() <= 2e-6 * np.abs(b[:, col]).max()
     assert fell <= 10                       # the Newton on the slip vector takes nearly all
+    assert calls[0] >= 2000                 # and the march went through it
 
 
 def test_march_without_load_slips_by_the_drive():
