@@ -9,7 +9,7 @@ fitted:
   the roller's spin relative to the trunnion, v_r = (z'/r - psi') r_bore, psi the trunnion's
   yaw (Eq. 3) and q the row's summed needle loads (oppoint.row_sums, Eq. 17 with clearance);
 - T1 + the needles' sliding friction: mu_needle q tanh(3 u_r / (2 v_st)) along the trunnion
-  against the roller's slide relative to the trunnion's material, u_r = rho_c p' - d' (T4's
+  against the roller's slide relative to the trunnion's material, u_r = s - V' - d' (T4's
   slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts);
 - the roller rocking on the row (docs/model.md, "The roller rocks on the row"): the tilt b2
   about e2 (the groove's axis) held quasi-statically by the row's tilt stiffness,
@@ -104,18 +104,28 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
             p = pn
         return pn, fa, beta, fn, phi, row
 
+    def g(x):
+        """T4's inclination term [m/s]: -r a_y' (a_y = cos xi cos phi) by central differences."""
+        ay = [math.cos(d[1]) * math.cos(d[0]) for d in (E.drive_at(O, x + hx), E.drive_at(O, x - hx))]
+        return -r * (ay[0] - ay[1]) * w / (2 * hx)
+
     s = E.drive_at(O, 0.0)[2]
     b2 = 0.0
     p = at(0.0, s, 0.0)[0]
     fz = []
     for i in range(cycles * n):
         x1 = w * h * (i + 1)
-        rhs0 = rho * p + 0.5 * h * (s - E.drive_at(O, w * h * i)[2] - E.drive_at(O, x1)[2])
+        # T4 by the trapezoidal rule, its g p term implicit where g >= 0 and from the step's
+        # start where g < 0 (equations.t4_rhs): rho4 p1 - h/2 s1 = rhs0
+        g0, g1 = g(w * h * i), g(x1)
+        rho4 = rho + 0.5 * h * max(g1, 0.0)
+        rhs0 = rho * p + 0.5 * h * (s - E.drive_at(O, w * h * i)[2] - E.drive_at(O, x1)[2]
+                                    - (g0 + min(g1, 0.0)) * p)
         if rock:
             def residual(z):
                 pp, fa, _b, fn, _p, row = at(x1, z[0], (z[1] * 1e-3 - b2) / h)
                 d = trunnion_axial(x1, th, sc["s"], True)
-                return [(rho * pp - 0.5 * h * z[0] - rhs0) / (h * 1e-2),
+                return [(rho4 * pp - 0.5 * h * z[0] - rhs0) / (h * 1e-2),
                         (kt2 * z[1] * 1e-3 + rim * fn * fa - lever * row
                          - carry * (d - rho * pp)) / (kt2 * 1e-3)]
             z, info, _ier, msg = fsolve(residual, [s, b2 * 1e3], xtol=1e-12, full_output=True)
@@ -127,7 +137,7 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
                                        f"{msg}")
             s, b2d = z[0], (z[1] * 1e-3 - b2) / h
         else:
-            s = brentq(lambda z: rho * at(x1, z, 0.0)[0] - 0.5 * h * z - rhs0, s - 1.0, s + 1.0,
+            s = brentq(lambda z: rho4 * at(x1, z, 0.0)[0] - 0.5 * h * z - rhs0, s - 1.0, s + 1.0,
                        xtol=1e-15, rtol=1e-12)
             b2d = 0.0
         p, fa, beta, fn, phi, _row = at(x1, s, b2d)

@@ -188,6 +188,37 @@ def drive_at(O, x):
     return phi, xi, V, dphi, zd / r, -O[O_I] * zdd / (r * r)
 
 
+def inclination_slip(O, x):
+    """T4's g [m/s] at whirl angle x [rad]: the slip along the trunnion at the contact per unit
+    p.  The contact sits r p off the groove's bottom along the groove's cross direction, and
+    the trunnion's rotation moves the roller's material there along the trunnion by -r a_y'
+    p, a_y = cos(xi) cos(phi) the trunnion axis's component across the groove (Eqs. 1, 5,
+    exact): g = r (cos xi sin phi phi' + sin xi cos phi xi')."""
+    w, tn, k, r = O[O_W], O[O_T], O[O_KR], O[O_R]
+    tz = tn * math.sin(x)
+    cp = 1.0 / math.sqrt(1.0 + tz * tz)
+    dphi = tn * w * math.cos(x) * cp * cp
+    q = k * math.sin(2.0 * x)
+    cx = math.sqrt(1.0 - q * q)
+    dxi = 2.0 * w * k * math.cos(2.0 * x) / cx
+    return r * (cx * tz * cp * dphi + q * cp * dxi)
+
+
+def t4_rhs(O, s0, p0, V0, V1, g0, g1, h):
+    """The known side of T4's trapezoidal step over h [s] from slip s0 [m/s] and p0, the drive
+    V0, V1 [m/s] and g0, g1 (inclination_slip) at its ends: rho_c p1 - h/2 s1 = rhs0 with
+    t4_rho's coefficient in place of rho_c.  The g p term: implicit where g1 >= 0 (it holds the
+    slide), from p0 where g1 < 0 (implicit, it would turn T4's residual non-monotone in s1
+    where rho_c is small)."""
+    return O[O_RHO] * p0 + 0.5 * h * (s0 - V0 - V1 - (g0 + min(g1, 0.0)) * p0)
+
+
+def t4_rho(O, g1, h):
+    """T4's coefficient of p1 [m] in its trapezoidal step over h [s] (t4_rhs): rho_c + h/2
+    max(g1, 0)."""
+    return O[O_RHO] + 0.5 * h * max(g1, 0.0)
+
+
 def normal_force(O, p):
     """T5: f_n [N] at p [1]."""
     d = O[O_RHO] / math.sqrt(1.0 - p * p) - O[O_CLEAR]
@@ -253,13 +284,13 @@ def p_at(O, s, bi, dphi, spin, p0, guess):
     return p
 
 
-def trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p0, guess):
-    """s1 [m/s] of one trapezoidal step of T4 from slip s over h [s]: the root of f(z) = rho_c
-    p(z) - h/2 z - rhs0, p at the step's end point.  Newton: f falls with slope <= -h/2 and
-    |p| <= mu, so its root lies in [lo, hi]; a Newton step that leaves the bracket (it
-    overshoots on the tanh's knee and can cycle there) is a bisection instead.  guess (the
+def trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p0, guess, rho):
+    """s1 [m/s] of one trapezoidal step of T4 from slip s over h [s]: the root of f(z) = rho
+    p(z) - h/2 z - rhs0 (rho: t4_rho), p at the step's end point.  Newton: f falls with slope
+    <= -h/2 and |p| <= mu, so its root lies in [lo, hi]; a Newton step that leaves the bracket
+    (it overshoots on the tanh's knee and can cycle there) is a bisection instead.  guess (the
     march): p's fixed point starts from p0, then from the last p found."""
-    rho, mu, vst = O[O_RHO], O[O_MU], O[O_VST]
+    mu, vst = O[O_MU], O[O_VST]
     e = 1e-6 * vst              # finite-difference step of the Newton slope
     lo, hi = -2.0 * (rho * mu + rhs0) / h, 2.0 * (rho * mu - rhs0) / h
     z = min(max(s, lo), hi)
@@ -284,19 +315,20 @@ def trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p0, guess):
     return z
 
 
-def slip_step(O, rhs0, s, h, bi, dphi, spin, p0):
+def slip_step(O, rhs0, s, h, bi, dphi, spin, p0, rho):
     """(settled, s1 [m/s], p1 [1]) of one trapezoidal step of T4 from slip s and p0 over h [s],
     the march's first choice: T3 and T4 together as Newton on the slip vector (s, t), t >= 0
     across the slide, where trapezoid_step nests T3's inversion (and T2's fixed point) inside
     its Newton and costs three to four times as much.  The friction mu tanh(k |v|) v / |v| (k =
     3 / v_st) gives p = -mu g s / |v| and |f_b| / f_n = mu g t / |v|; the residuals are T4,
-    rho_c p - h/2 s - rhs0, and T2's demand, mu g t / |v| - |beta(p)| (capped as share caps
-    it), with the friction's Jacobian exact and beta's weak dependence on p left out of it.
+    rho p - h/2 s - rhs0 (rho: t4_rho), and T2's demand, mu g t / |v| - |beta(p)| (capped as
+    share caps it), with the friction's Jacobian exact and beta's weak dependence on p left out
+    of it.
     Not settled within 30 iterations to 1e-9 v_st (the start from rest, some steps after a
     jump: about one step in 200 over random scenes): the caller takes trapezoid_step.  Where T3
     determines the slip the two agree within 2e-6 of v_st, mu and the thrust over 2000 steps
     (tests/test_traverse.py; measured 1e-11 to 2e-8)."""
-    rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
+    mu, k = O[O_MU], 3.0 / O[O_VST]
     kt = 0.5 * h
     cap = mu * (1.0 - 1e-9)
     tol = 1e-9 * O[O_VST]
@@ -411,7 +443,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
     row to whirl angle x [rad] (the drive there: drive_at, row_rates) from slip s, cross slip
     t >= 0 and tilt
-    b2 [rad] over h [s]: T4's trapezoidal rule, rho_c p - h/2 s1 = rhs0, with the tilt's balance
+    b2 [rad] over h [s]: T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with
+    the tilt's balance
     k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as Newton on
     (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v / |v| on its
     contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n, with f_n's and
@@ -422,6 +455,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
     vax, yaw, dax = row_rates(O, x)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
     r, lev, kt2, mq, kr, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_MQ], O[O_KROW], O[O_CRF]
+    rho4 = t4_rho(O, inclination_slip(O, x), h)
     kt = 0.5 * h
     cap = mu * (1.0 - 1e-9)
     tol = 1e-9 * O[O_VST]
@@ -464,7 +498,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
         a11 = mu * (gv * (1.0 - us * us) + dg * us * us)
         a22 = mu * (gv * (1.0 - ut * ut) + dg * ut * ut) if not sat else 1.0
         a12 = mu * (dg - gv) * us * ut
-        r1 = rho * p - kt * s - rhs0
+        r1 = rho4 * p - kt * s - rhs0
         r2 = mu * gv * t - B if not sat else 0.0
         r3 = kt2 * b2 + r * fn * fa - lev * row - crf * (dax - rho * p)
         # the Jacobian in (s1, t1, b2_1): d(sg)/d(b2_1) = -r / h, d(u)/d(b2_1) = -lever / h;
@@ -477,9 +511,9 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
         dp2 = -c * a12
         dp3 = c * (a11 * r + dr * lev / fn) / h
         mf = r * fa * fnp + crf * rho
-        j11 = rho * dp1 - kt
-        j12 = rho * dp2
-        j13 = rho * dp3
+        j11 = rho4 * dp1 - kt
+        j12 = rho4 * dp2
+        j13 = rho4 * dp3
         # beta's dependence on p (f_n, the spin moment), by a difference
         pe = p + 1e-7
         db_dp = (min(abs(row_beta(O, pe, normal_force(O, pe), bi, dphi, spin, yaw)), cap) - B) \
@@ -575,23 +609,22 @@ def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     return b
 
 
-def row_t4(O, rhs0, z, b0, h, V, vax, yaw, dax, bi, dphi, spin):
-    """T4's trapezoidal residual rho_c p - h/2 z - rhs0 at slide slip z [m/s] with the tilt
-    balanced (row_tilt), and that tilt [rad]: (residual, b2_1)."""
+def row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+    """T4's trapezoidal residual rho p - h/2 z - rhs0 (rho: t4_rho) at slide slip z [m/s] with
+    the tilt balanced (row_tilt), and that tilt [rad]: (residual, b2_1)."""
     b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
     p = row_tilt_balance(O, z, b, b0, h, V, vax, yaw, dax, bi, dphi, spin)[1]
-    return O[O_RHO] * p - 0.5 * h * z - rhs0, b
+    return rho * p - 0.5 * h * z - rhs0, b
 
 
-def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
     residual over s1, the tilt balanced at each (row_t4); it falls with s1 (slope <= -h/2)
     within the bracket |p| <= mu_groove + mu_needle q / f_n: regula falsi (Illinois)."""
-    rho = O[O_RHO]
     pmax = O[O_MU] + O[O_MQ] / normal_force(O, 0.0)
     lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
-    flo = row_t4(O, rhs0, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
-    hi_f = row_t4(O, rhs0, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    flo = row_t4(O, rhs0, rho, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    hi_f = row_t4(O, rhs0, rho, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
     side = 0
     z = s
     b = b0
@@ -599,7 +632,7 @@ def row_trapezoid(O, rhs0, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
         z = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < z < hi:
             z = 0.5 * (lo + hi)
-        f, b = row_t4(O, rhs0, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
+        f, b = row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
         if f > 0.0:
             lo, flo = z, f
             if side == -1:
@@ -627,7 +660,8 @@ def row_advance(O, rhs0, s, t, b2, b2d, h, x):
         return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
-    s1, b1 = row_trapezoid(O, rhs0, s, b2, h, V, vax, yaw, dax, bi, dphi, spin)
+    rho = t4_rho(O, inclination_slip(O, x), h)
+    s1, b1 = row_trapezoid(O, rhs0, rho, s, b2, h, V, vax, yaw, dax, bi, dphi, spin)
     p, fa, fn, beta, row = row_at(O, s1, (b1 - b2) / h, V, vax, yaw, bi, dphi, spin)
     return s1, 0.0, b1, p, fa, fn, beta, row
 
@@ -644,6 +678,7 @@ def march(O, X, r, x, dt):
     n, h = steps_of(O, dt)
     wh = O[O_W] * h
     V0 = drive_at(O, x)[2]
+    g0 = inclination_slip(O, x)
     s, p, b2, bd, tt = X[r + R_S], X[r + R_P], X[r + R_B2], X[r + R_B2D], X[r + R_T]
     if X[r + R_HAS_S] == 0.0:
         s, p, b2, bd, tt = V0, 0.0, 0.0, 0.0, 0.0
@@ -652,20 +687,22 @@ def march(O, X, r, x, dt):
     for i in range(n):
         x1 = x + wh * (i + 1)
         phi, xi, V1, dphi, spin, bi = drive_at(O, x1)
+        g1 = inclination_slip(O, x1)
         if O[O_HELD] != 0.0:
-            rhs0 = O[O_RHO] * p + 0.5 * h * (s - V0 - V1)
+            rhs0 = t4_rhs(O, s, p, V0, V1, g0, g1, h)
             if row:
                 b1 = b2
                 s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, x1)
                 bd = (b2 - b1) / h
             else:
-                ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p)
+                rho = t4_rho(O, g1, h)
+                ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p, rho)
                 if ok:
                     s, p = s1, p1
                 else:
-                    s = trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p, True)
+                    s = trapezoid_step(O, rhs0, s, h, bi, dphi, spin, p, True, rho)
                     p = p_at(O, s, bi, dphi, spin, p, True)
-        V0 = V1
+        V0, g0 = V1, g1
     if O[O_HELD] == 0.0:
         s, p = V0, 0.0
     if row:
@@ -702,7 +739,8 @@ def steps_of(O, dt):
 
 # the functions kernel.py compiles (callees first)
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
-            "normal_force", "beta_at", "share", "p_at", "trapezoid_step", "slip_step",
+            "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
+            "trapezoid_step", "slip_step",
             "groove_forces", "row_groove_forces", "row_rates", "row_beta", "row_at", "row_step",
             "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance",
             "substeps", "steps_of", "march")

@@ -6,9 +6,10 @@ the analytic FMU (kernel.py).
 """
 import math
 
-from .equations import (N_PER_CYCLE, O_F, O_HELD, O_MU, O_RHO, O_ROW, O_VST, O_W, TWO_PI,
-                        beta_at, drive_at, groove_forces, normal_force, p_at, row_advance, row_at,
-                        row_groove_forces, row_rates, thrust_at, trapezoid_step)
+from .equations import (N_PER_CYCLE, O_F, O_HELD, O_MU, O_ROW, O_VST, O_W, TWO_PI, beta_at,
+                        drive_at, groove_forces, inclination_slip, normal_force, p_at,
+                        row_advance, row_at, row_groove_forces, row_rates, t4_rho, t4_rhs,
+                        thrust_at, trapezoid_step)
 
 # --- the reduced traverse model's table -------------------------------------------------------
 PERIODIC_TOL = 1e-7        # the secant's target: |s(2 pi) - s(0)| <= PERIODIC_TOL x v_st
@@ -65,7 +66,7 @@ def row_cycle(O, D, n, s0):
     Returns s at the cycle's end."""
     m = n + 1
     h = 2.0 * math.pi / O[O_W] / n
-    rho, v, ss, ps, bs = O[O_RHO], D_V * m, D_SS * m, D_PS * m, D_B2 * m
+    v, ss, ps, bs = D_V * m, D_SS * m, D_PS * m, D_B2 * m
     b2 = D[bs + n]
     b2d = (D[bs + n] - D[bs + n - 1]) / h
     s, t = s0, 0.0
@@ -73,9 +74,12 @@ def row_cycle(O, D, n, s0):
     D[ss] = s
     D[ps] = p0
     D[bs] = b2
+    g0 = inclination_slip(O, 0.0)
     for i in range(n):
-        rhs0 = rho * p0 + 0.5 * h * (s - D[v + i] - D[v + i + 1])
         j = i + 1
+        g1 = inclination_slip(O, 2.0 * math.pi * j / n)
+        rhs0 = t4_rhs(O, s, p0, D[v + i], D[v + j], g0, g1, h)
+        g0 = g1
         b0 = b2
         s, t, b2, p0, _fa, _fn, _beta, _row = row_advance(O, rhs0, s, t, b2, b2d, h,
                                                           2.0 * math.pi * j / n)
@@ -94,16 +98,19 @@ def cycle(O, D, n, s0):
         return row_cycle(O, D, n, s0)
     m = n + 1
     h = 2.0 * math.pi / O[O_W] / n
-    rho, v, ss, ps = O[O_RHO], D_V * m, D_SS * m, D_PS * m
+    v, ss, ps = D_V * m, D_SS * m, D_PS * m
     s = s0
     p0 = table_p(O, D, n, 0, s)
     D[ss] = s
     D[ps] = p0
+    g0 = inclination_slip(O, 0.0)
     for i in range(n):
-        rhs0 = rho * p0 + 0.5 * h * (s - D[v + i] - D[v + i + 1])
         j = i + 1
+        g1 = inclination_slip(O, 2.0 * math.pi * j / n)
+        rhs0 = t4_rhs(O, s, p0, D[v + i], D[v + j], g0, g1, h)
+        g0 = g1
         s = trapezoid_step(O, rhs0, s, h, D[D_BI * m + j], D[D_DPHI * m + j],
-                           D[D_SPIN * m + j], 0.0, False)
+                           D[D_SPIN * m + j], 0.0, False, t4_rho(O, g1, h))
         p0 = table_p(O, D, n, j, s)
         D[ss + j] = s
         D[ps + j] = p0

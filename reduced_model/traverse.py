@@ -15,9 +15,10 @@ contact normal n towards the trunnion axis a at whirl angle x (docs/model.md, "T
       spin about the normal w_n = phi' + (z'/r) p)
   T3  tanh friction, inverted:   |f| = mu_s f_n tanh(3 |v| / v_st), v parallel to -f  ->
       slip along a  s = -(v_st / 3) atanh(g) / g * p / mu_s,  g = sqrt(p^2 + beta^2) / mu_s
-  T4  kinematics:                s = V'(x) + rho_c p',   V' = v1 + v2 (1 + rho_c / r)
+  T4  kinematics:                s = V'(x) + g(x) p + rho_c p',   V' = v1 + v2 (1 + rho_c / r)
       (the roller centre, rho_c = r_groove - r_roller + Hertz approach from the groove axis,
-      must follow the rolling trunnion's tilt xi as well as its contact point)
+      must follow the rolling trunnion's tilt xi as well as its contact point; g = -r a_y',
+      the trunnion's turn moving the contact, r p off the groove's bottom, along a)
   T5  normal force:              f_n = K (rho_c / sqrt(1 - p^2) - (r_groove - r_roller))^1.5
   T6  forces on the groove:      Fz = -f_n (p sin phi + beta cos phi),
                                  Fx = f_n (sqrt(1 - p^2) + p^2 - p xi),  F . a = 0 (T1) gives Fy
