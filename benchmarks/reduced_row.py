@@ -10,7 +10,9 @@ fitted:
   yaw (Eq. 3) and q the row's summed needle loads (oppoint.row_sums, Eq. 17 with clearance);
 - T1 + the needles' sliding friction: mu_needle q tanh(3 u_r / (2 v_st)) along the trunnion
   against the roller's slide relative to the trunnion's material, u_r = s - V' - d' (T4's
-  slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts);
+  slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts), on a line
+  of 7 points along the needles whose slip across is the roller's tilt rate about e1 under the
+  spin moment (Eq. 16, held by k_t1 = k_w l^2 / 12) times the point's place;
 - the roller rocking on the row (docs/model.md, "The roller rocks on the row"): the tilt b2
   about e2 (the groove's axis) held quasi-statically by the row's tilt stiffness,
   k_t2 b2 = -r_roller f_a + lever f_row + c F (d - rho_c p) (k_t2 = k_r l^2 / 12, k_r the
@@ -40,6 +42,7 @@ from scipy.optimize import brentq, fsolve, root
 
 from benchmarks.needle_mechanism import phasor, run
 from reduced_model import equations as E, scene as S
+from reduced_model.friction import spin_moment
 from reduced_model.needle_row import ROW_CARRY
 from reduced_model.orders import last_cycle_orders, order_component
 from reduced_model.traverse import operating_point
@@ -56,15 +59,16 @@ VARIANTS = (("reduced traverse model", False, False, False),
 
 def row_terms(sc, F):
     """The row at the pressing load |F| [N] (Eq. 17 over the row, oppoint.row_sums): the summed
-    needle loads q [N], the tilt stiffness about e2 k_t2 [N m/rad] and the lever [m] from the
-    trunnion axis at which the loaded needles meet the bore (on the pressed side)."""
+    needle loads q [N], the tilt stiffness about e2 k_t2 [N m/rad], the lever [m] from the
+    trunnion axis at which the loaded needles meet the bore (on the pressed side) and the tilt
+    stiffness about e1 k_t1 [N m/rad]."""
     T = np.array([float(sc[n]) for n in PARAM_NAMES])
     P = np.zeros(K.P_LEN)
     kernel_params(T, P)
     a = brentq(lambda a: oppoint.row_sums(P, a)[0] - abs(F),
                P[K.P_NEEDLE_CLEARANCE] * (1 + 1e-12), 1e-3)
-    Fr, kr, _kw, q = oppoint.row_sums(P, a)
-    return q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q
+    Fr, kr, kw, q = oppoint.row_sums(P, a)
+    return q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q, kw * P[K.P_LT]
 
 
 def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
@@ -72,7 +76,9 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
     O = operating_point(sc)
     F, rho, vst, r, w = O[E.O_F], O[E.O_RHO], O[E.O_VST], O[E.O_R], O[E.O_W]
     side = 1.0 if F >= 0 else -1.0          # coast: the other flank, the row's other side
-    q, kt2, lever = row_terms(sc, F)
+    q, kt2, lever, kt1 = row_terms(sc, F)
+    ln = sc["l_needle"]
+    tilt1 = [0.0, 0.0]     # the tilt about e1 at the last step's end [rad], its rate over it
     lever, rim = side * lever, side * sc["r_roller"]
     mq = sc["mu_needle"] * q if slide else 0.0
     mr = sc["mu_rolling"] * q * sc["r_bore"] if rolling else 0.0
@@ -91,7 +97,12 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
                - trunnion_axial(x - hx, th, sc["s"], True)) * w / (2 * hx)
         yaw = (trunnion_yaw(x + hx, th, True) - trunnion_yaw(x - hx, th, True)) * w / (2 * hx)
         sg = s - rim * b2d                  # the groove contact's slip along the trunnion
-        row = mq * math.tanh(k_row * (s - V - vax - lever * b2d))
+        ur = s - V - vax - lever * b2d
+        row = 0.0                   # a line along the needles, 7 points: the slide along, the
+        for j in range(7):          # tilt about e1 across (the step before's rate)
+            c = tilt1[1] * ln * ((j + 0.5) / 7 - 0.5)
+            v = math.hypot(ur, c)
+            row += mq / 7 * (math.tanh(k_row * v) * ur / v if v > 0 else 0.0)
         p = 0.0
         for _ in range(40):         # beta depends weakly on p (f_n, the spin moment)
             fn = E.normal_force(O, p)
@@ -142,6 +153,12 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
             b2d = 0.0
         p, fa, beta, fn, phi, _row = at(x1, s, b2d)
         b2 += h * b2d
+        if sc["spin_moment"] and slide:
+            # the tilt about e1 under the spin moment (Eq. 16), held elastically: M_s / k_t1
+            _phi, _xi, _V, dphi, spin, _bi = E.drive_at(O, x1)
+            b1 = spin_moment(sc["mu_groove"], E.normal_force(O, p), O[E.O_A1],
+                             dphi + spin * p, vst) / kt1
+            tilt1[:] = [b1, (b1 - tilt1[0]) / h]
         if i >= (cycles - 1) * n:
             fz.append(-fn * (fa * math.sin(phi) + beta * math.cos(phi)))
     fz = np.array([fz[-1]] + fz[:-1])      # samples at 0, h w, ...: the cycle's end is its start

@@ -23,8 +23,8 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         MU_NEEDLE, NEEDLE_ROW, O_MQ, O_ROW,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
                         T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
-                        R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SLIP, R_T, S,
-                        TRAVERSE,
+                        R_B1D, R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S,
+                        R_SLIP, R_T, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
 from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_notes
 from .friction import spin_moment
@@ -349,6 +349,7 @@ def prepare(T, IN, X, W):
                                                  N_PER_CYCLE, mirrored(X, X[X_WHIRL + i]))[0]
                     X[r + R_B2D] = 0.0
                     X[r + R_T] = 0.0
+                    X[r + R_B1D] = 0.0
                     X[r + R_HAS_S] = 1.0
                 else:
                     X[r + R_HAS_S] = 0.0

@@ -35,16 +35,19 @@ T_LEN = len(PARAM_NAMES)
 (O_W, O_TH, O_T, O_KR, O_S, O_R, O_F, O_MU, O_VST, O_K, O_A1, O_CLEAR, O_RHO, O_VP, O_SM, O_I,
  O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD,
  # the needle row (needle_row = true; row_point): on, mu_needle q, mu_rolling q r_bore, the tilt
- # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3)
- O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_LEN) = range(37)
+ # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3),
+ # the row's load where its needles are, the tilt stiffness about e1, the needles' length
+ O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
+ O_LEN) = range(39)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
 # speed [m/s]), whether s and the outputs exist yet (the march starts at rest)
-# and, with the needle row, the roller's tilt b2 [rad] on it, its rate [rad/s] and the groove
-# contact's slip across the slide t [m/s] (the next step's Newton starts from them)
-(R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_B2, R_B2D, R_T,
- R_LEN) = range(13)
+# and, with the needle row, the roller's tilt b2 [rad] on it, its rate [rad/s], the groove
+# contact's slip across the slide t [m/s] (the next step's Newton starts from them) and the rate
+# of its tilt about e1 over the last step [rad/s] (the needles' friction takes it a step late)
+(R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_B2, R_B2D, R_T, R_B1D,
+ R_LEN) = range(14)
 
 # --- the scene's constants --------------------------------------------------------------------
 def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
@@ -130,17 +133,19 @@ def row_point(T, O):
     traverse model off, or nothing holding the roller."""
     on = T[NEEDLE_ROW] != 0.0 and T[TRAVERSE] != 0.0 and O[O_HELD] != 0.0
     O[O_ROW] = 1.0 if on else 0.0
-    for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF):
+    for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN):
         O[k] = 0.0
     if not on:
         return
     n, c, ln = int(T[N_NEEDLES]), T[NEEDLE_CLEARANCE], T[L_NEEDLE]
     c1, k_row, _ = row_constants(n, ln)
-    Fr, kr, _kw, q = sum_row(c, n, c1, row_offset(c, n, c1, k_row, O[O_F]))
+    Fr, kr, kw, q = sum_row(c, n, c1, row_offset(c, n, c1, k_row, O[O_F]))
     rb = T[R_BORE]
     O[O_MQ] = T[MU_NEEDLE] * q if T[FRICTION_NEEDLE] != 0.0 else 0.0
     O[O_MR] = T[MU_ROLLING] * q * rb if T[ROLLING_RESISTANCE] != 0.0 else 0.0
     O[O_KT2] = kr * ln * ln / 12.0                  # the lumped row's tilt stiffness about e2
+    O[O_KT1] = kw * ln * ln / 12.0                  # and about e1 (across the load)
+    O[O_LN] = ln
     O[O_LEVER] = rb * Fr / q
     O[O_RB] = rb
     O[O_KROW] = 1.5 / O[O_VST]        # half the slip at each of a needle's two contacts
@@ -414,7 +419,44 @@ def row_beta(O, p, fn, bi, dphi, spin, yaw):
         - O[O_MR] * math.tanh(3.0 * (spin - yaw) * O[O_RB] / O[O_VST]) / (O[O_R] * fn)
 
 
-def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin):
+ROW_POINTS = 7      # the needles' line contact: points along it (the lumped row's ROW_LINE)
+
+
+def row_line(O, u, b1d):
+    """The needles' sliding friction along the trunnion [N] and its slope in u [N s/m]: the
+    tanh law on the 2-D slip of a line contact along the needles (ROW_POINTS points, the
+    needles' load shared alike), the slide u [m/s] along the trunnion at each and the roller's
+    tilt rate about e1 b1d [rad/s] times the point's place along the needle across it (a needle
+    cannot roll that away); half the slip at each of a needle's two contacts (O_KROW).  The
+    tilt's slip uses up friction the slide would meet (docs/model.md, the lumped row's line)."""
+    mq, kr = O[O_MQ], O[O_KROW]
+    if b1d == 0.0:
+        g = math.tanh(kr * u)
+        return mq * g, mq * kr * (1.0 - g * g)
+    f = df = 0.0
+    for j in range(ROW_POINTS):
+        c = b1d * O[O_LN] * ((j + 0.5) / ROW_POINTS - 0.5)
+        v = math.sqrt(u * u + c * c)
+        g = math.tanh(kr * v)
+        if v > 0.0:
+            f += g * u / v
+            df += kr * (1.0 - g * g) * u * u / (v * v) + g * c * c / (v * v * v)
+        else:
+            df += kr
+    return mq * f / ROW_POINTS, mq * df / ROW_POINTS
+
+
+def row_tilt_e1(O, p, fn, dphi, spin):
+    """The roller's tilt about the pressing direction e1 [rad] under the spin moment (Eq. 16,
+    against the spin about the normal w_n = phi' + spin p), held by the row's tilt stiffness
+    about e1 k_t1 = k_w l^2 / 12 (elastically: the needles' friction, which resists its rate,
+    is left out of its balance)."""
+    if O[O_SM] == 0.0 or O[O_KT1] <= 0.0 or fn <= 0.0:
+        return 0.0
+    return spin_moment(O[O_MU], fn, O[O_A1], dphi + spin * p, O[O_VST]) / O[O_KT1]
+
+
+def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin, b1d):
     """T1-T3, T5 with the row at the slide slip s [m/s] and tilt rate b2d [rad/s], where the
     drive gives V (T4's driven slip), vax, yaw (row_rates), bi, dphi, spin: (p, fa, f_n [N],
     beta, row [N]).  fa: the groove's friction along the trunnion over f_n, against its
@@ -422,7 +464,7 @@ def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin):
     (2 v_st)) against the roller's slide on the trunnion, u = s - V - d' - lever b2d (half the
     slip at each of a needle's two contacts); T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
-    row = O[O_MQ] * math.tanh(O[O_KROW] * (s - V - vax - O[O_LEVER] * b2d))
+    row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d)[0]
     sign = -1.0 if sg > 0 else 1.0
     p = fa = 0.0
     fn = normal_force(O, p)
@@ -439,7 +481,7 @@ def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin):
     return p, fa, fn, beta, row
 
 
-def row_step(O, rhs0, s, t, b2, b2d, h, x):
+def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
     row to whirl angle x [rad] (the drive there: drive_at, row_rates) from slip s, cross slip
     t >= 0 and tilt
@@ -476,9 +518,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
             gv, dg = 0.0, 0.0
         fa = -mu * gv * sg
         ur = s - V - vax - lev * b2d
-        tr = math.tanh(kr * ur)
-        row = mq * tr
-        dr = mq * kr * (1.0 - tr * tr)
+        row, dr = row_line(O, ur, b1d)
         fn = normal_force(O, p)
         for _ in range(8):         # T1 with T5: p = fa - row / f_n(p)
             pn = fa - row / fn
@@ -554,7 +594,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
             sg = s - r * b2d
             v = math.sqrt(sg * sg + t * t)
             fa = -mu * (math.tanh(k * v) / v if v > 0.0 else k) * sg if not sat else 0.0
-            row = mq * math.tanh(kr * (s - V - vax - lev * b2d))
+            row = row_line(O, s - V - vax - lev * b2d, b1d)[0]
             p = fa - row / fn
             fn = normal_force(O, p)
             beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
@@ -564,15 +604,15 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x):
     return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
-def row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """The tilt's balance k_t2 b + r f_n fa - lever row - c F (d - rho_c p) [N m] at slide slip
     s [m/s] and tilt b [rad] (b2' = (b - b0) / h), and p there: (balance, p)."""
-    p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin)
+    p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin, b1d)
     return (O[O_KT2] * b + O[O_R] * fn * fa - O[O_LEVER] * row
             - O[O_CRF] * (dax - O[O_RHO] * p)), p
 
 
-def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """b2_1 [rad] where the tilt's balance (row_tilt_balance) holds at slide slip s [m/s]
     (b2' = (b2_1 - b0) / h): it rises with b2_1 (the friction of both contacts opposes their
     slips, which b2' lowers), so regula falsi (Illinois) in the bracket where the two
@@ -583,15 +623,15 @@ def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
                 + O[O_CRF] * (abs(dax) + rho * pmax)) / O[O_KT2] + 1e-12
     lo, hi = -m, m
-    flo = row_tilt_balance(O, s, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
-    hi_f = row_tilt_balance(O, s, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    flo = row_tilt_balance(O, s, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
+    hi_f = row_tilt_balance(O, s, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
     side = 0
     b = 0.0
     for _ in range(200):
         b = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < b < hi:
             b = 0.5 * (lo + hi)
-        f = row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+        f = row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
         if f > 0.0:
             hi, hi_f = b, f
             if side == 1:
@@ -609,22 +649,22 @@ def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     return b
 
 
-def row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """T4's trapezoidal residual rho p - h/2 z - rhs0 (rho: t4_rho) at slide slip z [m/s] with
     the tilt balanced (row_tilt), and that tilt [rad]: (residual, b2_1)."""
-    b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
-    p = row_tilt_balance(O, z, b, b0, h, V, vax, yaw, dax, bi, dphi, spin)[1]
+    b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
+    p = row_tilt_balance(O, z, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[1]
     return rho * p - 0.5 * h * z - rhs0, b
 
 
-def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
+def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
     residual over s1, the tilt balanced at each (row_t4); it falls with s1 (slope <= -h/2)
     within the bracket |p| <= mu_groove + mu_needle q / f_n: regula falsi (Illinois)."""
     pmax = O[O_MU] + O[O_MQ] / normal_force(O, 0.0)
     lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
-    flo = row_t4(O, rhs0, rho, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
-    hi_f = row_t4(O, rhs0, rho, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin)[0]
+    flo = row_t4(O, rhs0, rho, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
+    hi_f = row_t4(O, rhs0, rho, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
     side = 0
     z = s
     b = b0
@@ -632,7 +672,7 @@ def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
         z = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < z < hi:
             z = 0.5 * (lo + hi)
-        f, b = row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin)
+        f, b = row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
         if f > 0.0:
             lo, flo = z, f
             if side == -1:
@@ -650,20 +690,20 @@ def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin):
     return z, b
 
 
-def row_advance(O, rhs0, s, t, b2, b2d, h, x):
+def row_advance(O, rhs0, s, t, b2, b2d, h, x, b1d):
     """(s1, t1, b2_1, p, fa, f_n, beta, row) of one step with the row to whirl angle x [rad]
     (row_at's at its end):
     row_step, or row_trapezoid where it does not settle (t1 then 0: the next Newton starts
     across the slide afresh)."""
-    res = row_step(O, rhs0, s, t, b2, b2d, h, x)
+    res = row_step(O, rhs0, s, t, b2, b2d, h, x, b1d)
     if res[0]:
         return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
     rho = t4_rho(O, inclination_slip(O, x), h)
-    s1, b1 = row_trapezoid(O, rhs0, rho, s, b2, h, V, vax, yaw, dax, bi, dphi, spin)
-    p, fa, fn, beta, row = row_at(O, s1, (b1 - b2) / h, V, vax, yaw, bi, dphi, spin)
-    return s1, 0.0, b1, p, fa, fn, beta, row
+    s1, b21 = row_trapezoid(O, rhs0, rho, s, b2, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
+    p, fa, fn, beta, row = row_at(O, s1, (b21 - b2) / h, V, vax, yaw, bi, dphi, spin, b1d)
+    return s1, 0.0, b21, p, fa, fn, beta, row
 
 
 # --- the slide stepped in time (inputs that move) ---------------------------------------------
@@ -677,12 +717,14 @@ def march(O, X, r, x, dt):
     count (steps_of)."""
     n, h = steps_of(O, dt)
     wh = O[O_W] * h
-    V0 = drive_at(O, x)[2]
+    _phi, _xi, V0, dphi, spin, _bi = drive_at(O, x)
     g0 = inclination_slip(O, x)
     s, p, b2, bd, tt = X[r + R_S], X[r + R_P], X[r + R_B2], X[r + R_B2D], X[r + R_T]
+    b1d = X[r + R_B1D]
     if X[r + R_HAS_S] == 0.0:
-        s, p, b2, bd, tt = V0, 0.0, 0.0, 0.0, 0.0
+        s, p, b2, bd, tt, b1d = V0, 0.0, 0.0, 0.0, 0.0, 0.0
     row = O[O_ROW] != 0.0
+    b1 = row_tilt_e1(O, p, normal_force(O, p), dphi, spin) if row else 0.0
     phi = xi = bi = dphi = spin = fa = fn = beta = rw = 0.0
     for i in range(n):
         x1 = x + wh * (i + 1)
@@ -691,9 +733,12 @@ def march(O, X, r, x, dt):
         if O[O_HELD] != 0.0:
             rhs0 = t4_rhs(O, s, p, V0, V1, g0, g1, h)
             if row:
-                b1 = b2
-                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, x1)
-                bd = (b2 - b1) / h
+                b20 = b2
+                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, x1, b1d)
+                bd = (b2 - b20) / h
+                b11 = row_tilt_e1(O, p, fn, dphi, spin)
+                b1d = (b11 - b1) / h
+                b1 = b11
             else:
                 rho = t4_rho(O, g1, h)
                 ok, s1, p1 = slip_step(O, rhs0, s, h, bi, dphi, spin, p, rho)
@@ -714,6 +759,7 @@ def march(O, X, r, x, dt):
     X[r + R_B2] = b2
     X[r + R_B2D] = bd
     X[r + R_T] = tt
+    X[r + R_B1D] = b1d
     X[r + R_S] = s
     X[r + R_P] = p
     X[r + R_FZ] = Fz
@@ -740,7 +786,6 @@ def steps_of(O, dt):
 # the functions kernel.py compiles (callees first)
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
             "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
-            "trapezoid_step", "slip_step",
-            "groove_forces", "row_groove_forces", "row_rates", "row_beta", "row_at", "row_step",
-            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance",
-            "substeps", "steps_of", "march")
+            "trapezoid_step", "slip_step", "groove_forces", "row_groove_forces", "row_rates",
+            "row_beta", "row_line", "row_tilt_e1", "row_at", "row_step", "row_tilt_balance",
+            "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")

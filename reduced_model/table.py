@@ -8,8 +8,8 @@ import math
 
 from .equations import (N_PER_CYCLE, O_F, O_HELD, O_MU, O_ROW, O_VST, O_W, TWO_PI, beta_at,
                         drive_at, groove_forces, inclination_slip, normal_force, p_at,
-                        row_advance, row_at, row_groove_forces, row_rates, t4_rho, t4_rhs,
-                        thrust_at, trapezoid_step)
+                        row_advance, row_at, row_groove_forces, row_rates, row_tilt_e1, t4_rho,
+                        t4_rhs, thrust_at, trapezoid_step)
 
 # --- the reduced traverse model's table -------------------------------------------------------
 PERIODIC_TOL = 1e-7        # the secant's target: |s(2 pi) - s(0)| <= PERIODIC_TOL x v_st
@@ -51,13 +51,27 @@ def table_p(O, D, n, i, s):
     return p_at(O, s, D[D_BI * m + i], D[D_DPHI * m + i], D[D_SPIN * m + i], 0.0, False)
 
 
-def table_row_at(O, D, n, i, s, b2d):
+def table_row_at(O, D, n, i, s, b2d, b1d):
     """row_at at table point i: (p, fa, f_n, beta, row) for the slide slip s [m/s] and the
-    tilt rate b2d [rad/s]."""
+    tilt rates b2d, b1d [rad/s]."""
     m = n + 1
     vax, yaw, _dax = row_rates(O, 2.0 * math.pi * i / n)
     return row_at(O, s, b2d, D[D_V * m + i], vax, yaw, D[D_BI * m + i], D[D_DPHI * m + i],
-                  D[D_SPIN * m + i])
+                  D[D_SPIN * m + i], b1d)
+
+
+def table_tilt_e1(O, D, n, k, p):
+    """row_tilt_e1 at table point k (taken modulo n: point n is point 0) with p there."""
+    m = n + 1
+    k = k % n
+    return row_tilt_e1(O, p, normal_force(O, p), D[D_DPHI * m + k], D[D_SPIN * m + k])
+
+
+def table_b1_rate(O, D, n, i, ps, h):
+    """The tilt rate about e1 [rad/s] the step into table point i takes (the step before's,
+    as the march has it), from the p of row ps (D_PS or D_BEST_PS) over the cycle."""
+    return (table_tilt_e1(O, D, n, i - 1, D[ps + (i - 1) % n])
+            - table_tilt_e1(O, D, n, i - 2, D[ps + (i - 2) % n])) / h
 
 
 def row_cycle(O, D, n, s0):
@@ -69,8 +83,13 @@ def row_cycle(O, D, n, s0):
     v, ss, ps, bs = D_V * m, D_SS * m, D_PS * m, D_B2 * m
     b2 = D[bs + n]
     b2d = (D[bs + n] - D[bs + n - 1]) / h
+    # the tilt about e1 at the cycle run before's last step, and its rate into it
+    b1 = table_tilt_e1(O, D, n, n - 1, D[ps + n - 1])
+    b1d = (b1 - table_tilt_e1(O, D, n, n - 2, D[ps + n - 2])) / h
     s, t = s0, 0.0
-    p0 = table_row_at(O, D, n, 0, s, b2d)[0]
+    p0 = table_row_at(O, D, n, 0, s, b2d, b1d)[0]
+    b11 = table_tilt_e1(O, D, n, 0, p0)
+    b1d, b1 = (b11 - b1) / h, b11
     D[ss] = s
     D[ps] = p0
     D[bs] = b2
@@ -82,8 +101,10 @@ def row_cycle(O, D, n, s0):
         g0 = g1
         b0 = b2
         s, t, b2, p0, _fa, _fn, _beta, _row = row_advance(O, rhs0, s, t, b2, b2d, h,
-                                                          2.0 * math.pi * j / n)
+                                                          2.0 * math.pi * j / n, b1d)
         b2d = (b2 - b0) / h
+        b11 = table_tilt_e1(O, D, n, j, p0)
+        b1d, b1 = (b11 - b1) / h, b11
         D[ss + j] = s
         D[ps + j] = p0
         D[bs + j] = b2
@@ -179,7 +200,8 @@ def traverse_table(O, D, n, T, SS, PS, BS):
             # b2' of the step into point i (the cycle's end's into its start)
             k = i if i > 0 else n
             p, fa, fn, beta, rw = table_row_at(O, D, n, i, D[bss + i],
-                                               (D[bbs + k] - D[bbs + k - 1]) / h)
+                                               (D[bbs + k] - D[bbs + k - 1]) / h,
+                                               table_b1_rate(O, D, n, i, bps, h))
             Fz, Fx, Fy, Fzm = row_groove_forces(fn, p, fa, beta, rw, D[D_PHI * m + i],
                                                 D[D_XI * m + i], O[O_F])
             BS[i] = D[bbs + i]
@@ -256,6 +278,7 @@ def regime(g_max, T, n, O):
 
 
 # the functions kernel.py compiles (callees first)
-COMPILED = ("drive_table", "table_p", "table_row_at", "row_cycle", "cycle", "keep_best",
+COMPILED = ("drive_table", "table_p", "table_row_at", "table_tilt_e1", "table_b1_rate",
+            "row_cycle", "cycle", "keep_best",
             "periodic", "traverse_table", "table_index", "table_at", "table_state_at", "order3",
             "regime")
