@@ -604,34 +604,38 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
 
 
-def row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
+def row_tilt_balance(O, s, b, b0, h, x, b1d):
     """The tilt's balance k_t2 b + r f_n fa - lever row - c F (d - rho_c p) [N m] at slide slip
-    s [m/s] and tilt b [rad] (b2' = (b - b0) / h), and p there: (balance, p)."""
+    s [m/s] and tilt b [rad] (b2' = (b - b0) / h) at whirl angle x [rad] (the drive there:
+    drive_at, row_rates; the tilt rate about e1 b1d [rad/s]), and p there: (balance, p)."""
+    _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
+    vax, yaw, dax = row_rates(O, x)
     p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin, b1d)
     return (O[O_KT2] * b + O[O_R] * fn * fa - O[O_LEVER] * row
             - O[O_CRF] * (dax - O[O_RHO] * p)), p
 
 
-def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
+def row_tilt(O, s, b0, h, x, b1d):
     """b2_1 [rad] where the tilt's balance (row_tilt_balance) holds at slide slip s [m/s]
     (b2' = (b2_1 - b0) / h): it rises with b2_1 (the friction of both contacts opposes their
     slips, which b2' lowers), so regula falsi (Illinois) in the bracket where the two
     frictions are spent."""
     mu, rho = O[O_MU], O[O_RHO]
+    dax = row_rates(O, x)[2]
     pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
     fmax = normal_force(O, pmax)
     m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
                 + O[O_CRF] * (abs(dax) + rho * pmax)) / O[O_KT2] + 1e-12
     lo, hi = -m, m
-    flo = row_tilt_balance(O, s, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
-    hi_f = row_tilt_balance(O, s, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
+    flo = row_tilt_balance(O, s, lo, b0, h, x, b1d)[0]
+    hi_f = row_tilt_balance(O, s, hi, b0, h, x, b1d)[0]
     side = 0
     b = 0.0
     for _ in range(200):
         b = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < b < hi:
             b = 0.5 * (lo + hi)
-        f = row_tilt_balance(O, s, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
+        f = row_tilt_balance(O, s, b, b0, h, x, b1d)[0]
         if f > 0.0:
             hi, hi_f = b, f
             if side == 1:
@@ -649,22 +653,22 @@ def row_tilt(O, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
     return b
 
 
-def row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
+def row_t4(O, rhs0, rho, z, b0, h, x, b1d):
     """T4's trapezoidal residual rho p - h/2 z - rhs0 (rho: t4_rho) at slide slip z [m/s] with
     the tilt balanced (row_tilt), and that tilt [rad]: (residual, b2_1)."""
-    b = row_tilt(O, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
-    p = row_tilt_balance(O, z, b, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[1]
+    b = row_tilt(O, z, b0, h, x, b1d)
+    p = row_tilt_balance(O, z, b, b0, h, x, b1d)[1]
     return rho * p - 0.5 * h * z - rhs0, b
 
 
-def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d):
+def row_trapezoid(O, rhs0, rho, s, b0, h, x, b1d):
     """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
     residual over s1, the tilt balanced at each (row_t4); it falls with s1 (slope <= -h/2)
     within the bracket |p| <= mu_groove + mu_needle q / f_n: regula falsi (Illinois)."""
     pmax = O[O_MU] + O[O_MQ] / normal_force(O, 0.0)
     lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
-    flo = row_t4(O, rhs0, rho, lo, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
-    hi_f = row_t4(O, rhs0, rho, hi, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)[0]
+    flo = row_t4(O, rhs0, rho, lo, b0, h, x, b1d)[0]
+    hi_f = row_t4(O, rhs0, rho, hi, b0, h, x, b1d)[0]
     side = 0
     z = s
     b = b0
@@ -672,7 +676,7 @@ def row_trapezoid(O, rhs0, rho, s, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
         z = (lo * hi_f - hi * flo) / (hi_f - flo) if hi_f != flo else 0.5 * (lo + hi)
         if not lo < z < hi:
             z = 0.5 * (lo + hi)
-        f, b = row_t4(O, rhs0, rho, z, b0, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
+        f, b = row_t4(O, rhs0, rho, z, b0, h, x, b1d)
         if f > 0.0:
             lo, flo = z, f
             if side == -1:
@@ -699,9 +703,9 @@ def row_advance(O, rhs0, s, t, b2, b2d, h, x, b1d):
     if res[0]:
         return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
-    vax, yaw, dax = row_rates(O, x)
+    vax, yaw, _dax = row_rates(O, x)
     rho = t4_rho(O, inclination_slip(O, x), h)
-    s1, b21 = row_trapezoid(O, rhs0, rho, s, b2, h, V, vax, yaw, dax, bi, dphi, spin, b1d)
+    s1, b21 = row_trapezoid(O, rhs0, rho, s, b2, h, x, b1d)
     p, fa, fn, beta, row = row_at(O, s1, (b21 - b2) / h, V, vax, yaw, bi, dphi, spin, b1d)
     return s1, 0.0, b21, p, fa, fn, beta, row
 
