@@ -458,11 +458,11 @@ def row_tilt_e1(O, p, fn, dphi, spin):
 
 def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin, b1d):
     """T1-T3, T5 with the row at the slide slip s [m/s] and tilt rate b2d [rad/s], where the
-    drive gives V (T4's driven slip), vax, yaw (row_rates), bi, dphi, spin: (p, fa, f_n [N],
-    beta, row [N]).  fa: the groove's friction along the trunnion over f_n, against its
-    contact's slip s - r b2d (T3 inverted); row: the needles' friction, mu_needle q tanh(3 u /
-    (2 v_st)) against the roller's slide on the trunnion, u = s - V - d' - lever b2d (half the
-    slip at each of a needle's two contacts); T1: f_n p = f_n fa - row (fixed point in p)."""
+    drive gives V (T4's driven slip), vax, yaw (row_rates), bi, dphi, spin, and the tilt about
+    e1 moves at b1d [rad/s]: (p, fa, f_n [N], beta, row [N]).  fa: the groove's friction along
+    the trunnion over f_n, against its contact's slip s - r b2d (T3 inverted); row: the needles'
+    friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d;
+    T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
     row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d)[0]
     sign = -1.0 if sg > 0 else 1.0
@@ -484,19 +484,18 @@ def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin, b1d):
 def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
     row to whirl angle x [rad] (the drive there: drive_at, row_rates) from slip s, cross slip
-    t >= 0 and tilt
-    b2 [rad] over h [s]: T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with
-    the tilt's balance
-    k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as Newton on
-    (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v / |v| on its
-    contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n, with f_n's and
-    beta's dependence on p in the Jacobian (beta's by a difference); a step
-    is cut to move no slip by more than half of v_st or of the slip.  Not settled within 40
+    t >= 0 and tilt b2 [rad] over h [s], the tilt about e1 moving at b1d [rad/s] (the step
+    before's): T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with the tilt's
+    balance k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as
+    Newton on (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v /
+    |v| on its contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n,
+    with f_n's and beta's dependence on p in the Jacobian (beta's by a difference); a step is
+    cut to move no slip by more than half of v_st or of the slip.  Not settled within 40
     iterations to 1e-9 v_st: the caller takes row_trapezoid."""
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
-    r, lev, kt2, mq, kr, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_MQ], O[O_KROW], O[O_CRF]
+    r, lev, kt2, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_CRF]
     rho4 = t4_rho(O, inclination_slip(O, x), h)
     kt = 0.5 * h
     cap = mu * (1.0 - 1e-9)
@@ -716,7 +715,8 @@ def march(O, X, r, x, dt):
     angle x [rad] over dt [s] (T4 is an ODE in time; the table is its periodic solution), by the
     table's trapezoidal rule in substeps of at most the table's spacing (each by slip_step, or
     trapezoid_step where that does not settle; with the needle row by row_advance, the tilt
-    beside the slip); the row's outputs at the end (T5, T2, T6).  From rest (no slip yet): on
+    beside the slip, the tilt about e1 following p a step late: R_B1D); the row's outputs at
+    the end (T5, T2, T6).  From rest (no slip yet): on
     the groove bottom, p = 0, no tilt.  Returns x at the end.  The caller checks the substeps'
     count (steps_of)."""
     n, h = steps_of(O, dt)
