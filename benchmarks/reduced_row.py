@@ -117,7 +117,8 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
 
     def g(x):
         """T4's inclination term [m/s]: -r a_y' (a_y = cos xi cos phi) by central differences."""
-        ay = [math.cos(d[1]) * math.cos(d[0]) for d in (E.drive_at(O, x + hx), E.drive_at(O, x - hx))]
+        ay = [math.cos(d[1]) * math.cos(d[0])
+              for d in (E.drive_at(O, x + hx), E.drive_at(O, x - hx))]
         return -r * (ay[0] - ay[1]) * w / (2 * hx)
 
     s = E.drive_at(O, 0.0)[2]

@@ -430,7 +430,7 @@ def row_line(O, u, b1d):
     cannot roll that away); half the slip at each of a needle's two contacts (O_KROW).  The
     tilt's slip uses up friction the slide would meet (docs/model.md, the lumped row's line)."""
     mq, kr = O[O_MQ], O[O_KROW]
-    if b1d == 0.0:
+    if b1d == 0.0:      # every point alike (no spin moment, the march's first step): one tanh
         g = math.tanh(kr * u)
         return mq * g, mq * kr * (1.0 - g * g)
     f = df = 0.0

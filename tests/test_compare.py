@@ -54,7 +54,8 @@ def test_compare_names_the_contact_model_it_judged_against():
     assert "contact model: contact FMU, lumped needle row (bearing = 1)" in p.stdout
     # its tolerance column judges order 3's amplitude alone, and says why
     assert re.search(r"^order 3 .* 10 %$", p.stdout, re.M), p.stdout
-    assert "order 3's phase not judged with the lumped needle row: the analytic FMU without" in p.stdout
+    assert ("order 3's phase not judged with the lumped needle row: the analytic FMU "
+            "without") in p.stdout
 
 
 def test_compare_takes_coast_and_reverse_by_the_models_symmetry():
