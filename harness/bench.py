@@ -200,10 +200,17 @@ STEP_COST_CASES = {
     "analytic FMU (traverse model, default)": ("TripodRollerAnalytic", {}, ()),
     f"analytic FMU, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline "
     "master: the slide stepped in time)": ("TripodRollerAnalytic", MASTER_START, MASTER_INPUTS),
+    "the same without its needle row (needle_row = false: the ideal bearing's traverse model) "
+    "under that master: analytic FMU": ("TripodRollerAnalytic", dict(MASTER_START,
+                                                                     needle_row=False),
+                                        MASTER_INPUTS),
     "contact FMU, ideal bearing, no traverse": ("TripodRoller", {"traverse": False}, ()),
     "contact FMU, ideal bearing, traverse (default)": ("TripodRoller", {}, ()),
     f"the same, {', '.join(MASTER_INPUTS)} set to new values every step (a driveline master)":
         ("TripodRoller", MASTER_START, MASTER_INPUTS),
+    "contact FMU, lumped bearing (bearing = 1)": ("TripodRoller", {"bearing": 1}, ()),
+    "the lumped bearing under that master: contact FMU":
+        ("TripodRoller", dict(MASTER_START, bearing=1), MASTER_INPUTS),
     "the whole joint (n_rollers = 3) under that master: analytic FMU":
         ("TripodRollerAnalytic", dict(MASTER_START, n_rollers=3), MASTER_INPUTS),
     "the whole joint (n_rollers = 3) under that master: contact FMU":
