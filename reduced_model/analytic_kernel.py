@@ -20,7 +20,8 @@ import math
 
 from . import equations, needle_row, table
 from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLLERS, O_CLEAR,
-                        MU_NEEDLE, NEEDLE_ROW, O_MQ, O_ROW,
+                        L_NEEDLE, MU_NEEDLE, N_NEEDLES, NEEDLE_CLEARANCE, NEEDLE_ROW, O_MQ,
+                        O_RA, O_RAF, O_RC1, O_RKR, O_RL, O_RN, O_ROW,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
                         T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
                         R_B1D, R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S,
@@ -30,6 +31,7 @@ from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_not
 from .friction import spin_moment
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
+from .needle_row import row_constants, sum_row
 from .scene import (BY_NAME, CONTACT_ONLY_OUTPUTS, MAX_SUBSTEPS, OUTPUTS, RELATIONS, ROW_MU,
                     TOO_LONG,
                     params_for,
@@ -520,6 +522,18 @@ def state_problem(T, X):
             return 3
     if X[X_HAS_DT] != 0.0 and not X[X_DT] > 0.0:
         return 4
+    # the needle row's constants and offset kept in the operating point (row_point) are used
+    # as they are where they name these needles: then they must be theirs, the offset the one
+    # at its load (a state's offset far above it would cost Newton its iterations)
+    O = X[X_OP:X_OP + O_LEN]
+    if O[O_RN] == T[N_NEEDLES] and O[O_RL] == T[L_NEEDLE]:
+        c1, k_row, _q = row_constants(int(T[N_NEEDLES]), T[L_NEEDLE])
+        if O[O_RC1] != c1 or O[O_RKR] != k_row:
+            return 5
+        if O[O_RAF] != 0.0 or O[O_RA] != 0.0:
+            f = sum_row(T[NEEDLE_CLEARANCE], int(T[N_NEEDLES]), c1, O[O_RA])[0]
+            if not (O[O_RAF] > 0.0 and abs(f - O[O_RAF]) <= 1e-9 * O[O_RAF]):
+                return 5
     return 0
 
 
@@ -527,7 +541,9 @@ STATE_PROBLEMS = ("", "its mode, flags or counts are none the model writes",
                   "an input of its operating point is outside its range",
                   "a march row's p is outside [-mu_groove, mu_groove] (the needle row: widened "
                   "by mu_needle q / F)",
-                  "its step is not above 0")
+                  "its step is not above 0",
+                  "its needle row's kept constants or offset are not those of its parameters "
+                  "and load")
 
 # the functions the FMU's binary compiles (c_functions) besides equations.py's and table.py's,
 # callees first

@@ -36,9 +36,12 @@ T_LEN = len(PARAM_NAMES)
  O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD,
  # the needle row (needle_row = true; row_point): on, mu_needle q, mu_rolling q r_bore, the tilt
  # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3),
- # the row's load where its needles are, the tilt stiffness about e1, the needles' length
+ # the row's load where its needles are, the tilt stiffness about e1, the needles' length;
+ # kept from one derivation to the next (row_point): the row's constants with the needles'
+ # count and length they are for, and the roller's offset on the row with the load it carries
  O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
- O_LEN) = range(39)
+ O_RN, O_RL, O_RC1, O_RKR, O_RA, O_RAF,
+ O_LEN) = range(45)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
@@ -138,8 +141,13 @@ def row_point(T, O):
     if not on:
         return
     n, c, ln = int(T[N_NEEDLES]), T[NEEDLE_CLEARANCE], T[L_NEEDLE]
-    c1, k_row, _ = row_constants(n, ln)
-    Fr, kr, kw, q = sum_row(c, n, c1, row_offset(c, n, c1, k_row, O[O_F]))
+    if not (O[O_RN] == n and O[O_RL] == ln):     # (a master moves the inputs, not the needles)
+        O[O_RC1], O[O_RKR], _ = row_constants(n, ln)
+        O[O_RN], O[O_RL], O[O_RA], O[O_RAF] = n, ln, 0.0, 0.0
+    c1 = O[O_RC1]
+    a = row_offset(c, n, c1, O[O_RKR], O[O_F], O[O_RA], O[O_RAF])
+    O[O_RA], O[O_RAF] = a, abs(O[O_F])
+    Fr, kr, kw, q = sum_row(c, n, c1, a)
     rb = T[R_BORE]
     O[O_MQ] = T[MU_NEEDLE] * q if T[FRICTION_NEEDLE] != 0.0 else 0.0
     O[O_MR] = T[MU_ROLLING] * q * rb if T[ROLLING_RESISTANCE] != 0.0 else 0.0
@@ -434,15 +442,16 @@ def row_line(O, u, b1d):
         g = math.tanh(kr * u)
         return mq * g, mq * kr * (1.0 - g * g)
     f = df = 0.0
-    for j in range(ROW_POINTS):
+    for j in range(ROW_POINTS // 2 + 1):     # a point and its mirror about the middle alike
+        w = 1.0 if 2 * j + 1 == ROW_POINTS else 2.0
         c = b1d * O[O_LN] * ((j + 0.5) / ROW_POINTS - 0.5)
         v = math.sqrt(u * u + c * c)
         g = math.tanh(kr * v)
         if v > 0.0:
-            f += g * u / v
-            df += kr * (1.0 - g * g) * u * u / (v * v) + g * c * c / (v * v * v)
+            f += w * g * u / v
+            df += w * (kr * (1.0 - g * g) * u * u / (v * v) + g * c * c / (v * v * v))
         else:
-            df += kr
+            df += w * kr
     return mq * f / ROW_POINTS, mq * df / ROW_POINTS
 
 

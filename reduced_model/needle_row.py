@@ -69,11 +69,17 @@ def sum_row(c, n, c1, a):
     return c1 * f, 10.0 / 9.0 * c1 * k, 10.0 / 9.0 * c1 * kw, c1 * q
 
 
-def row_offset(c, n, c1, k_row, F):
+def row_offset(c, n, c1, k_row, F, a_near=0.0, F_near=0.0):
     """The roller's offset a > c [m] from the trunnion axis where the row's load (sum_row) is
     |F| [N] > 0: Newton from above (the load is convex in the offset), started where every
-    needle of the half row would be as loaded as the first (k_row: row_constants)."""
-    a = c + (abs(F) / k_row) ** 0.9 + 2.0 * c
+    needle of the half row would be as loaded as the first (k_row: row_constants), or from
+    a_near > c [m], the offset at another load F_near > 0 [N] (a step before's)."""
+    if a_near > c and F_near > 0.0:
+        # each needle's load rises at least as (a - c)^(10/9), so a - c at most as the load:
+        # scaled by the loads' ratio where the load rose, a_near stays above the root
+        a = c + (a_near - c) * max(abs(F) / F_near, 1.0)
+    else:
+        a = c + (abs(F) / k_row) ** 0.9 + 2.0 * c
     while sum_row(c, n, c1, a)[0] < abs(F):
         a = c + 2.0 * (a - c)
     for _ in range(60):

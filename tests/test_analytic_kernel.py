@@ -90,15 +90,26 @@ def test_the_notes_word_what_the_reports_word():
 def test_a_state_it_cannot_step_is_refused():
     """kernel.state_problem: a mode, flag or count the model never writes; an operating
     point's input out of range; a march row's p beyond mu_groove (|p| <= mu: T3); a step not
-    above 0.  A state the model wrote passes."""
+    above 0; the needle row's kept constants not its needles' or its kept offset not the one at
+    its kept load (row_point takes them as they are).  A state the model wrote passes."""
     T, IN, X, OUT, W = _arrays({})
     K.init(T, IN, X, OUT, W)
     IN[K.THETA] += 0.01
     K.step(T, IN, X, OUT, W, 0.0, 1e-4)          # the march
     assert K.state_problem(T, X) == 0
+    assert X[K.X_OP + K.O_RN] == T[K.N_NEEDLES] and X[K.X_OP + K.O_RA] > 0   # (the row kept)
+    other = T.copy()
+    other[K.N_NEEDLES] += 1                      # kept for other needles: recomputed, not read
+    bad = X.copy()
+    bad[K.X_OP + K.O_RC1] = 0.0
+    assert K.state_problem(other, bad) == 0
     for slot, value, code in ((K.X_MODE, 7.0, 1), (K.X_HAS_DT, 0.5, 1),
                               (K.X_KEY + K.OMEGA, 2e4, 2),
-                              (K.X_MARCH + K.R_P, 2 * T[K.MU_GROOVE], 3), (K.X_DT, -1e-4, 4)):
+                              (K.X_MARCH + K.R_P, 2 * T[K.MU_GROOVE], 3), (K.X_DT, -1e-4, 4),
+                              (K.X_OP + K.O_RC1, X[K.X_OP + K.O_RC1] * (1 + 1e-12), 5),
+                              (K.X_OP + K.O_RKR, 0.0, 5),
+                              (K.X_OP + K.O_RA, X[K.X_OP + K.O_RA] * 1e3, 5),
+                              (K.X_OP + K.O_RAF, 0.0, 5)):
         bad = X.copy()
         bad[slot] = value
         assert K.state_problem(T, bad) == code, K.STATE_PROBLEMS[code]

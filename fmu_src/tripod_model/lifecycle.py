@@ -142,7 +142,8 @@ def settled_table(T, W, theta, omega, F, vp):
     for j in range(RE.T_LEN):
         PA[j] = T[ANALYTIC_SLOTS[j]] if ANALYTIC_SLOTS[j] >= 0 else 0.0
     O = W[W_O:W_O + RE.O_LEN]
-    operating_point(PA, theta, omega, F, 0.0, vp, O)
+    O[RE.O_RA] = O[RE.O_RAF] = 0.0     # the row's offset from scratch: a start owes nothing to
+    operating_point(PA, theta, omega, F, 0.0, vp, O)    # the instance's history
     cycles, mismatch, g_max = traverse_table(
         O, W[W_D:W_D + D_COUNT * TABLE_ROWS], TABLE_N, W[W_T:W_T + 5 * TABLE_ROWS],
         W[W_SS:W_SS + TABLE_ROWS], W[W_PS:W_PS + TABLE_ROWS], W[W_BS:W_BS + TABLE_ROWS])

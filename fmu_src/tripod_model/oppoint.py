@@ -216,7 +216,7 @@ def lumped_offset(P, F):
     c = P[P_NEEDLE_CLEARANCE]
     if F == 0.0:
         return -c
-    e = row_offset(c, int(P[P_NROW]), P[P_KN1], P[P_KN], F)
+    e = row_offset(c, int(P[P_NROW]), P[P_KN1], P[P_KN], F, 0.0, 0.0)
     return e if F < 0.0 else -e
 
 
