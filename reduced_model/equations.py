@@ -419,12 +419,16 @@ def row_rates(O, x):
     return vax, -tn * math.sin(x) / (1.0 + tc * tc) * w, dax
 
 
-def row_beta(O, p, fn, bi, dphi, spin, yaw):
-    """T2 with the needles' rolling resistance, Eq. (12): f_b / f_n, the moment mu_rolling q
-    r_bore tanh(3 v_r / v_st) against the roller's spin relative to the trunnion, v_r = (spin -
-    psi') r_bore (spin, yaw: psi' [rad/s])."""
-    return beta_at(O, p, fn, bi, dphi, spin) \
-        - O[O_MR] * math.tanh(3.0 * (spin - yaw) * O[O_RB] / O[O_VST]) / (O[O_R] * fn)
+def rolling_moment(O, spin, yaw):
+    """The needles' rolling resistance, Eq. (12) [N m]: mu_rolling q r_bore tanh(3 v_r / v_st)
+    against the roller's spin relative to the trunnion, v_r = (spin - psi') r_bore (spin, yaw:
+    psi' [rad/s]).  It does not depend on p: taken once a step."""
+    return O[O_MR] * math.tanh(3.0 * (spin - yaw) * O[O_RB] / O[O_VST])
+
+
+def row_beta(O, p, fn, bi, dphi, spin, m_roll):
+    """T2 with the needles' rolling resistance m_roll [N m] (rolling_moment): f_b / f_n."""
+    return beta_at(O, p, fn, bi, dphi, spin) - m_roll / (O[O_R] * fn)
 
 
 ROW_POINTS = 7      # the needles' line contact: points along it (the lumped row's ROW_LINE)
@@ -474,17 +478,18 @@ def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin, b1d):
     T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
     row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d)[0]
+    m_roll = rolling_moment(O, spin, yaw)
     sign = -1.0 if sg > 0 else 1.0
     p = fa = 0.0
     fn = normal_force(O, p)
-    beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
+    beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
     for _ in range(40):
         fa = sign * share(O, sg, abs(beta))
         pn = fa - row / fn
         done = abs(pn - p) < 1e-14
         p = pn
         fn = normal_force(O, p)
-        beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
+        beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
         if done:
             break
     return p, fa, fn, beta, row
@@ -503,6 +508,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     iterations to 1e-9 v_st: the caller takes row_trapezoid."""
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
+    m_roll = rolling_moment(O, spin, yaw)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
     r, lev, kt2, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_CRF]
     rho4 = t4_rho(O, inclination_slip(O, x), h)
@@ -535,7 +541,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             p = pn
             if done:
                 break
-        B = abs(row_beta(O, p, fn, bi, dphi, spin, yaw))
+        B = abs(row_beta(O, p, fn, bi, dphi, spin, m_roll))
         if B >= cap and not sat:
             # the spin's demand for friction is all the contact has (a fast whirl's spin
             # inertia): the slip runs across the slide without bound and the friction along
@@ -564,8 +570,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         j13 = rho4 * dp3
         # beta's dependence on p (f_n, the spin moment), by a difference
         pe = p + 1e-7
-        db_dp = (min(abs(row_beta(O, pe, normal_force(O, pe), bi, dphi, spin, yaw)), cap) - B) \
-            / 1e-7 if not sat else 0.0
+        db_dp = (min(abs(row_beta(O, pe, normal_force(O, pe), bi, dphi, spin, m_roll)), cap)
+                 - B) / 1e-7 if not sat else 0.0
         j21 = a12 - db_dp * dp1
         j22 = a22 - db_dp * dp2
         j23 = -a12 * r / h - db_dp * dp3
@@ -605,7 +611,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             row = row_line(O, s - V - vax - lev * b2d, b1d)[0]
             p = fa - row / fn
             fn = normal_force(O, p)
-            beta = row_beta(O, p, fn, bi, dphi, spin, yaw)
+            beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
             if sat and abs(beta) < cap * (1.0 - 1e-6):
                 return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0   # (it was not saturated)
             return True, s, t, b2, p, fa, fn, beta, row
@@ -800,5 +806,5 @@ def steps_of(O, dt):
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
             "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
             "trapezoid_step", "slip_step", "groove_forces", "row_groove_forces", "row_rates",
-            "row_beta", "row_line", "row_tilt_e1", "row_at", "row_step", "row_tilt_balance",
-            "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")
+            "rolling_moment", "row_beta", "row_line", "row_tilt_e1", "row_at", "row_step",
+            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")
