@@ -807,4 +807,5 @@ COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", 
             "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
             "trapezoid_step", "slip_step", "groove_forces", "row_groove_forces", "row_rates",
             "rolling_moment", "row_beta", "row_line", "row_tilt_e1", "row_at", "row_step",
-            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps", "steps_of", "march")
+            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps",
+            "steps_of", "march")

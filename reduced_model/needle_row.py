@@ -69,11 +69,12 @@ def sum_row(c, n, c1, a):
     return c1 * f, 10.0 / 9.0 * c1 * k, 10.0 / 9.0 * c1 * kw, c1 * q
 
 
-def row_offset(c, n, c1, k_row, F, a_near=0.0, F_near=0.0):
+def row_offset(c, n, c1, k_row, F, a_near, F_near):
     """The roller's offset a > c [m] from the trunnion axis where the row's load (sum_row) is
     |F| [N] > 0: Newton from above (the load is convex in the offset), started where every
-    needle of the half row would be as loaded as the first (k_row: row_constants), or from
-    a_near > c [m], the offset at another load F_near > 0 [N] (a step before's)."""
+    needle of the half row would be as loaded as the first (k_row: row_constants), or, where
+    a_near > c and F_near > 0, from a_near [m], the offset at the load F_near [N] (a step
+    before's)."""
     if a_near > c and F_near > 0.0:
         # each needle's load rises at least as (a - c)^(10/9), so a - c at most as the load:
         # scaled by the loads' ratio where the load rose, a_near stays above the root

@@ -90,14 +90,19 @@ def test_the_slide_stepped_in_time_follows_the_table():
 
 def test_the_row_law_is_the_lumped_rows():
     """needle_row.sum_row at the offset row_offset finds carries the load asked (to 1e-12),
-    and for a row without clearance its load is row_constants' K_row g^(10/9) (every needle of
-    the loaded half squeezed by g cos(psi_j), Eq. 17): the law the lumped row and the reduced
-    model share."""
+    the same offset from scratch or from the one at a load 30 % off; for a row without
+    clearance its load is row_constants' K_row g^(10/9) (every needle of the loaded half
+    squeezed by g cos(psi_j), Eq. 17): the law the lumped row and the reduced model share."""
     c1, k_row, q_sum = NR.row_constants(46, 0.012)
     for F in (300.0, 4500.0, 45000.0):
-        a = NR.row_offset(1e-5, 46, c1, k_row, F)
+        a = NR.row_offset(1e-5, 46, c1, k_row, F, 0.0, 0.0)
         Fr, kr, kw, q = NR.sum_row(1e-5, 46, c1, a)
         assert Fr == pytest.approx(F, rel=1e-12)
+        # started from the offset at a load 30 % off (the march's step before), the same root
+        for near in (0.7 * F, 1.3 * F):
+            a_near = NR.row_offset(1e-5, 46, c1, k_row, near, 0.0, 0.0)
+            assert NR.row_offset(1e-5, 46, c1, k_row, F, a_near, near) == pytest.approx(
+                a, rel=1e-13)
         assert q > Fr and kr > 0 and kw > 0
         g = 2e-6 * F / 4500.0
         Fr0, _kr, _kw, q0 = NR.sum_row(0.0, 46, c1, g)
