@@ -47,12 +47,13 @@ def _steps(omega):
     return int(round(CYCLES * 2 * math.pi / abs(omega) / DT))
 
 
-def contact_orders(path, theta, F, omega, bearing):
+def contact_orders(path, theta, F, omega, bearing, **over):
     """{1: (amplitude [N], phase [deg]), 3: ...} of Fz of one roller of the contact model with
-    ``bearing`` (0 ideal, 1 lumped, 2 needle-resolved) in the scene."""
+    ``bearing`` (0 ideal, 1 lumped, 2 needle-resolved) in the scene; over: its parameters other
+    than their defaults."""
     from tripod_model.model import ContactModel
     m = ContactModel(dict(for_model(load_joint(path), "contact"), bearing=bearing, theta=theta,
-                          omega=omega, F_press=F))
+                          omega=omega, F_press=F, **over))
     t, fz, x = [], [], []
     for _ in range(_steps(omega)):
         o = m.step(DT, theta, omega, F)
