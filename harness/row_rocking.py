@@ -2,7 +2,8 @@
 row"), measured in process: a run's tilt, slide and the groove's moment about e2, the tilt
 stiffness fitted from them, and the axial shift of the row's load along the trunnion, whose
 moment adds to the groove's.  benchmarks/row_tilt.py prints the tables; tests/test_row_mechanism.py
-holds the mechanisms to their balances."""
+holds the mechanisms to their balances.  Where the needles sit along the trunnion against its
+stroke (stroke_and_place, play_operator): benchmarks/row_play.py."""
 from __future__ import annotations
 
 import math
@@ -46,13 +47,13 @@ def row_load_shift(m, L):
 def lumped_row_shift(m, theta, L):
     """A lumped row's radial load on the roller F_r [N] (contact.row_load) and where along the
     trunnion axis the row puts it, from the roller's centre, d [m]: the trunnion's axial stroke
-    (Eq. 7) relative to the roller, the whole of it with the row's friction off, else
-    contact.ROW_CARRY of it.  L as in row_load_shift."""
+    (Eq. 7) relative to the roller less the needles' lag behind it (contact.row_play), the whole
+    stroke with the row's friction off.  L as in row_load_shift."""
     Y, P = m.Y, m.P
-    stroke = (contact.trunnion_axial(Y[K.Y_X], theta, P[K.P_S], P[K.P_AXIAL] > 0.5)
-              - Y[K.Y_U] - Y[K.Y_E] * L[K.L_AX])
-    carry = contact.ROW_CARRY if P[K.P_FRICTION_NEEDLE] > 0.5 else 1.0
-    return float(contact.row_load(P, Y[K.Y_E])[0]), carry * stroke
+    stroke = contact.row_stroke(Y, P, theta, L[K.L_AX])
+    lag = contact.row_play(P, Y[K.Y_X], L[K.L_KW], theta, stroke)[0]
+    d = stroke - lag if P[K.P_FRICTION_NEEDLE] > 0.5 else stroke
+    return float(contact.row_load(P, Y[K.Y_E])[0]), d
 
 
 def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
@@ -93,3 +94,36 @@ def tilt_stiffness(a, shift=False):
     A = np.column_stack([a[:, C_B2], np.ones(len(a))])
     c, res, *_ = np.linalg.lstsq(A, m, rcond=None)
     return c[0], math.sqrt(res[0] / len(a)) / m.std()
+
+
+def stroke_and_place(theta, F, omega, cycles=3, dt=1e-4):
+    """A needle-resolved run of one roller (row friction on) at the pressing load F [N], joint
+    angle theta [rad], whirl omega [rad/s]: per communication step of dt [s] over the last
+    whole cycle of `cycles`, the whirl angle [rad], the trunnion's axial stroke relative to the
+    roller [m] (contact.row_stroke) and d, the bore-loaded needles' mean place from the roller's
+    centre [m] (row_load_shift); and the needles' axial play [m]."""
+    m = ContactModel({"bearing": 2, "theta": theta, "omega": omega, "F_press": F})
+    L = np.full(K.L_LEN, np.nan)
+    rows = []
+    for _ in range(int(round(cycles * 2 * math.pi / omega / dt))):
+        m.step(dt, theta, omega, F)
+        groove_moment_e2(m, omega, theta, L)       # (leaves the trunnion's line in L)
+        _fr, d = row_load_shift(m, L)
+        rows.append((m.whirl_angle, contact.row_stroke(m.Y, m.P, theta, L[K.L_AX]), d))
+    a = np.array(rows)
+    last = a[:, 0] >= a[-1, 0] - 2 * math.pi
+    return a[last], m.p["needle_axial_clearance"]
+
+
+def play_operator(stroke, play, carry=contact.ROW_CARRY, passes=3):
+    """d predicted [m]: the needles follow carry of the stroke's changes while their lag behind
+    the trunnion stays within +-play, the stop carrying them beyond (periodic: the cycle run
+    `passes` times from a centred start, the last kept)."""
+    lag, out = (1.0 - carry) * stroke[0], np.empty_like(stroke)
+    for _ in range(passes):
+        prev = stroke[0]
+        for i, s in enumerate(stroke):
+            lag = min(play, max(-play, lag + (1.0 - carry) * (s - prev)))
+            prev = s
+            out[i] = s - lag
+    return out

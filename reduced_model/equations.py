@@ -10,7 +10,7 @@ import math
 
 from .friction import V_ST_FLOOR, spin_moment
 from .hertz import hertz_point
-from .needle_row import ROW_CARRY, row_constants, row_offset, sum_row
+from .needle_row import ROW_CARRY, needle_lag, row_constants, row_offset, sum_row
 from .scene import params_for, pressing_load
 from .thrust import fz_mod
 
@@ -25,9 +25,9 @@ PARAM_NAMES = tuple(p.name for p in params_for("analytic") if p.causality != "in
     "r_roller", "r_groove", "r_bore", "m_roller", "spin_inertia", "traverse", "spin_moment",
     "E", "nu"))
 (NEEDLE_ROW, MU_NEEDLE, MU_ROLLING, FRICTION_NEEDLE, ROLLING_RESISTANCE, L_NEEDLE,
- NEEDLE_CLEARANCE, N_NEEDLES) = map(PARAM_NAMES.index, (
+ NEEDLE_CLEARANCE, N_NEEDLES, NEEDLE_AXIAL_CLEARANCE) = map(PARAM_NAMES.index, (
     "needle_row", "mu_needle", "mu_rolling", "friction_needle", "rolling_resistance",
-    "l_needle", "needle_clearance", "n_needles"))
+    "l_needle", "needle_clearance", "n_needles", "needle_axial_clearance"))
 T_LEN = len(PARAM_NAMES)
 
 # the operating point: the scene's constants at the inputs of its key, for the scene the reduced
@@ -36,12 +36,13 @@ T_LEN = len(PARAM_NAMES)
  O_HELD, O_MIRROR, O_A, O_B, O_KT, O_MUF, O_THP, O_VPP, O_KSPIN, O_LOAD,
  # the needle row (needle_row = true; row_point): on, mu_needle q, mu_rolling q r_bore, the tilt
  # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3),
- # the row's load where its needles are, the tilt stiffness about e1, the needles' length;
+ # the row's load, the tilt stiffness about e1, the needles' length, their axial play (-1:
+ # the row's friction off, the needles ride the stops);
  # kept from one derivation to the next (row_point): the row's constants with the needles'
  # count and length they are for, and the roller's offset on the row with the load it carries
- O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
+ O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN, O_PLAY,
  O_RN, O_RL, O_RC1, O_RKR, O_RA, O_RAF,
- O_LEN) = range(45)
+ O_LEN) = range(46)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
@@ -136,7 +137,8 @@ def row_point(T, O):
     traverse model off, or nothing holding the roller."""
     on = T[NEEDLE_ROW] != 0.0 and T[TRAVERSE] != 0.0 and O[O_HELD] != 0.0
     O[O_ROW] = 1.0 if on else 0.0
-    for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN):
+    for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
+              O_PLAY):
         O[k] = 0.0
     if not on:
         return
@@ -160,10 +162,9 @@ def row_point(T, O):
     th = O[O_TH]
     O[O_EAX] = O[O_S] * (1.0 - math.cos(th)) / (2.0 * math.cos(th)) if T[AXIAL] != 0.0 else 0.0
     O[O_TYAW] = math.tan(th) if T[YAW] != 0.0 else 0.0
-    # the row's load acts where its needles are along the trunnion: CARRY of the stroke relative
-    # to the roller with the needles' friction on (they roll between a race that strokes and one
-    # that stays), the whole with it off (contact.row_load_moment)
-    O[O_CRF] = (ROW_CARRY if T[FRICTION_NEEDLE] != 0.0 else 1.0) * O[O_F]
+    # the row's load acts where its needles are along the trunnion (row_moment)
+    O[O_CRF] = O[O_F]
+    O[O_PLAY] = T[NEEDLE_AXIAL_CLEARANCE] if T[FRICTION_NEEDLE] != 0.0 else -1.0
 
 
 # --- Eqs. (18)-(27) ---------------------------------------------------------------------------
@@ -434,14 +435,38 @@ def row_beta(O, p, fn, bi, dphi, spin, m_roll):
 ROW_POINTS = 7      # the needles' line contact: points along it (the lumped row's ROW_LINE)
 
 
-def row_line(O, u, b1d):
+def row_moment(O, dax, p, vax):
+    """The moment about e2 [N m] of the row's load acting where its needles are along the
+    trunnion, off the roller's centre by the trunnion's stroke relative to the roller, dax -
+    rho p (Eq. 7's d [m] less the slide), less the needles' lag behind the trunnion
+    (needle_row.needle_lag: ROW_CARRY of the way within their axial play, the stroke rising
+    where d' = vax [m/s] >= 0), the whole stroke with the row's friction off; and its slope in
+    the stroke [N] (contact.row_load_moment, row_play)."""
+    stroke = dax - O[O_RHO] * p
+    if O[O_PLAY] < 0.0:         # the row's friction off: the needles ride the stops
+        return O[O_CRF] * stroke, O[O_CRF]
+    lag, stop = needle_lag(stroke, O[O_EAX], O[O_PLAY], vax >= 0.0)
+    return O[O_CRF] * (stroke - lag), O[O_CRF] * (1.0 if stop else ROW_CARRY)
+
+
+def row_slope(O, dax, vax):
+    """The row's tanh slope [s/m] on the roller's slide (row_line): half the slip at each of a
+    needle's two contacts (O_KROW), the whole at the bore where a stop carries the needles
+    (needle_row.needle_lag at the trunnion's stroke dax [m], rising where vax >= 0; the
+    roller's own slide, a few um, left out of where the stop is reached)."""
+    if O[O_PLAY] < 0.0:
+        return O[O_KROW]
+    return 2.0 * O[O_KROW] if needle_lag(dax, O[O_EAX], O[O_PLAY], vax >= 0.0)[1] else O[O_KROW]
+
+
+def row_line(O, u, b1d, kr):
     """The needles' sliding friction along the trunnion [N] and its slope in u [N s/m]: the
     tanh law on the 2-D slip of a line contact along the needles (ROW_POINTS points, the
     needles' load shared alike), the slide u [m/s] along the trunnion at each and the roller's
     tilt rate about e1 b1d [rad/s] times the point's place along the needle across it (a needle
-    cannot roll that away); half the slip at each of a needle's two contacts (O_KROW).  The
-    tilt's slip uses up friction the slide would meet (docs/model.md, the lumped row's line)."""
-    mq, kr = O[O_MQ], O[O_KROW]
+    cannot roll that away); kr [s/m]: the tanh's slope (row_slope).  The tilt's slip uses up
+    friction the slide would meet (docs/model.md, the lumped row's line)."""
+    mq = O[O_MQ]
     if b1d == 0.0:      # every point alike (no spin moment, the march's first step): one tanh
         g = math.tanh(kr * u)
         return mq * g, mq * kr * (1.0 - g * g)
@@ -469,15 +494,15 @@ def row_tilt_e1(O, p, fn, dphi, spin):
     return spin_moment(O[O_MU], fn, O[O_A1], dphi + spin * p, O[O_VST]) / O[O_KT1]
 
 
-def row_at(O, s, b2d, V, vax, yaw, bi, dphi, spin, b1d):
+def row_at(O, s, b2d, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """T1-T3, T5 with the row at the slide slip s [m/s] and tilt rate b2d [rad/s], where the
-    drive gives V (T4's driven slip), vax, yaw (row_rates), bi, dphi, spin, and the tilt about
+    drive gives V (T4's driven slip), vax, yaw, dax (row_rates), bi, dphi, spin, and the tilt about
     e1 moves at b1d [rad/s]: (p, fa, f_n [N], beta, row [N]).  fa: the groove's friction along
     the trunnion over f_n, against its contact's slip s - r b2d (T3 inverted); row: the needles'
     friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d;
     T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
-    row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d)[0]
+    row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d, row_slope(O, dax, vax))[0]
     m_roll = rolling_moment(O, spin, yaw)
     sign = -1.0 if sg > 0 else 1.0
     p = fa = 0.0
@@ -510,7 +535,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     vax, yaw, dax = row_rates(O, x)
     m_roll = rolling_moment(O, spin, yaw)
     rho, mu, k = O[O_RHO], O[O_MU], 3.0 / O[O_VST]
-    r, lev, kt2, crf = O[O_R], O[O_LEVER], O[O_KT2], O[O_CRF]
+    r, lev, kt2 = O[O_R], O[O_LEVER], O[O_KT2]
+    kr = row_slope(O, dax, vax)
     rho4 = t4_rho(O, inclination_slip(O, x), h)
     kt = 0.5 * h
     cap = mu * (1.0 - 1e-9)
@@ -532,7 +558,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             gv, dg = 0.0, 0.0
         fa = -mu * gv * sg
         ur = s - V - vax - lev * b2d
-        row, dr = row_line(O, ur, b1d)
+        row, dr = row_line(O, ur, b1d, kr)
         fn = normal_force(O, p)
         for _ in range(8):         # T1 with T5: p = fa - row / f_n(p)
             pn = fa - row / fn
@@ -554,7 +580,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         a12 = mu * (dg - gv) * us * ut
         r1 = rho4 * p - kt * s - rhs0
         r2 = mu * gv * t - B if not sat else 0.0
-        r3 = kt2 * b2 + r * fn * fa - lev * row - crf * (dax - rho * p)
+        mo, dmo = row_moment(O, dax, p, vax)
+        r3 = kt2 * b2 + r * fn * fa - lev * row - mo
         # the Jacobian in (s1, t1, b2_1): d(sg)/d(b2_1) = -r / h, d(u)/d(b2_1) = -lever / h;
         # p's (dp1, dp2, dp3) = d(fa) - d(row) / f_n, and the tilt's moment r f_n fa with
         # f_n's rise with p (T5)
@@ -564,7 +591,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         dp1 = c * (-a11 - dr / fn)
         dp2 = -c * a12
         dp3 = c * (a11 * r + dr * lev / fn) / h
-        mf = r * fa * fnp + crf * rho
+        mf = r * fa * fnp + dmo * rho
         j11 = rho4 * dp1 - kt
         j12 = rho4 * dp2
         j13 = rho4 * dp3
@@ -608,7 +635,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             sg = s - r * b2d
             v = math.sqrt(sg * sg + t * t)
             fa = -mu * (math.tanh(k * v) / v if v > 0.0 else k) * sg if not sat else 0.0
-            row = row_line(O, s - V - vax - lev * b2d, b1d)[0]
+            row = row_line(O, s - V - vax - lev * b2d, b1d, kr)[0]
             p = fa - row / fn
             fn = normal_force(O, p)
             beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
@@ -624,9 +651,9 @@ def row_tilt_balance(O, s, b, b0, h, x, b1d):
     drive_at, row_rates; the tilt rate about e1 b1d [rad/s]), and p there: (balance, p)."""
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
-    p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, bi, dphi, spin, b1d)
+    p, fa, fn, _beta, row = row_at(O, s, (b - b0) / h, V, vax, yaw, dax, bi, dphi, spin, b1d)
     return (O[O_KT2] * b + O[O_R] * fn * fa - O[O_LEVER] * row
-            - O[O_CRF] * (dax - O[O_RHO] * p)), p
+            - row_moment(O, dax, p, vax)[0]), p
 
 
 def row_tilt(O, s, b0, h, x, b1d):
@@ -639,7 +666,7 @@ def row_tilt(O, s, b0, h, x, b1d):
     pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
     fmax = normal_force(O, pmax)
     m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
-                + O[O_CRF] * (abs(dax) + rho * pmax)) / O[O_KT2] + 1e-12
+                + O[O_CRF] * (abs(dax) + rho * pmax + max(O[O_PLAY], 0.0))) / O[O_KT2] + 1e-12
     lo, hi = -m, m
     flo = row_tilt_balance(O, s, lo, b0, h, x, b1d)[0]
     hi_f = row_tilt_balance(O, s, hi, b0, h, x, b1d)[0]
@@ -717,10 +744,10 @@ def row_advance(O, rhs0, s, t, b2, b2d, h, x, b1d):
     if res[0]:
         return res[1], res[2], res[3], res[4], res[5], res[6], res[7], res[8]
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
-    vax, yaw, _dax = row_rates(O, x)
+    vax, yaw, dax = row_rates(O, x)
     rho = t4_rho(O, inclination_slip(O, x), h)
     s1, b21 = row_trapezoid(O, rhs0, rho, s, b2, h, x, b1d)
-    p, fa, fn, beta, row = row_at(O, s1, (b21 - b2) / h, V, vax, yaw, bi, dphi, spin, b1d)
+    p, fa, fn, beta, row = row_at(O, s1, (b21 - b2) / h, V, vax, yaw, dax, bi, dphi, spin, b1d)
     return s1, 0.0, b21, p, fa, fn, beta, row
 
 
@@ -806,6 +833,6 @@ def steps_of(O, dt):
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
             "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
             "trapezoid_step", "slip_step", "groove_forces", "row_groove_forces", "row_rates",
-            "rolling_moment", "row_beta", "row_line", "row_tilt_e1", "row_at", "row_step",
-            "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps",
+            "rolling_moment", "row_beta", "row_moment", "row_slope", "row_line", "row_tilt_e1",
+            "row_at", "row_step", "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps",
             "steps_of", "march")

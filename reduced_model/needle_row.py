@@ -13,6 +13,29 @@ import math
 ROW_CARRY = 0.5
 
 
+def needle_lag(stroke, E, play, rising):
+    """How far the needles lag the trunnion [m] at its axial stroke relative to the roller
+    `stroke` [m], and whether a stop carries them: they go ROW_CARRY of the stroke's way between
+    a race that strokes and one that stays, lagging by the rest, until the lag reaches their
+    axial play `play` [m] either way.  The stroke runs between -E and E [m] (Eq. 7's ends);
+    rising: it is moving from -E (else from E).  This play operator, closed-form over the
+    stroke's cycle: the lag changes by the rest of the stroke's travel from the stop the
+    needles left at the last end (none reached where the rest of the whole stroke fits in the
+    play: centred there)."""
+    k = 1.0 - ROW_CARRY
+    if k * E <= play:
+        return k * stroke, False
+    if rising:
+        lag = -play + k * (stroke + E)
+        if lag >= play:
+            return play, True
+    else:
+        lag = play - k * (E - stroke)
+        if lag <= -play:
+            return -play, True
+    return lag, False
+
+
 def needle_line_stiffness(l_needle):
     """Needle line contact, Eq. (17) / Table 1: delta = 3.8e-5 (N_s f)^0.9 / l^0.8 [mm, N].
 
@@ -93,4 +116,5 @@ def row_offset(c, n, c1, k_row, F, a_near, F_near):
 
 
 # the functions the models' binaries compile (callees first)
-COMPILED = ("needle_line_stiffness", "sum_row", "row_constants", "row_offset")
+COMPILED = ("needle_line_stiffness", "sum_row", "row_constants", "row_offset",
+            "needle_lag")

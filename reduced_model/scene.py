@@ -174,7 +174,8 @@ PARAMS: tuple[Param, ...] = (
           models=_C),
     Param("needle_axial_clearance", 1e-4, "m", 0.0, 1e-2,
           "axial play of each needle between trunnion flange and retainer, either way "
-          "(resolved bearing)", models=_C),
+          "(resolved bearing; the lumped row's and the analytic row's needles lag the "
+          "trunnion's stroke within it)", models=_A),
     Param("rho_needle", 7850.0, "kg/m3", 0.0, 1e5, "density of the needles (steel)",
           lo_open=True, models=_C),
     Param("roller_width", 0.013, "m", 0.0, 0.1, "roller width", lo_open=True, models=_C),

@@ -55,8 +55,8 @@ def table_row_at(O, D, n, i, s, b2d, b1d):
     """row_at at table point i: (p, fa, f_n, beta, row) for the slide slip s [m/s] and the
     tilt rates b2d, b1d [rad/s]."""
     m = n + 1
-    vax, yaw, _dax = row_rates(O, 2.0 * math.pi * i / n)
-    return row_at(O, s, b2d, D[D_V * m + i], vax, yaw, D[D_BI * m + i], D[D_DPHI * m + i],
+    vax, yaw, dax = row_rates(O, 2.0 * math.pi * i / n)
+    return row_at(O, s, b2d, D[D_V * m + i], vax, yaw, dax, D[D_BI * m + i], D[D_DPHI * m + i],
                   D[D_SPIN * m + i], b1d)
 
 

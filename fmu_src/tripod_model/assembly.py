@@ -8,14 +8,15 @@ from .jit import inline, njit
 from . import ring
 from .needles import needle_forces
 from .contact import (groove_contact, line_kinematics, roller_motion, row_damping, row_load,
-    row_lever, row_load_moment, row_rolling_resistance, row_sliding_friction, row_stiffness,
+    row_lever, row_load_moment, row_play, row_rolling_resistance, row_sliding_friction,
+    row_stiffness, row_stroke,
     spin_moment, trunnion_axial)
-from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_KTH, L_QZDD, L_SPIN,
-    L_VAX,
+from .layout import (INT_EXPLICIT, L_AAX, L_AAY, L_AAZ, L_AX, L_AY, L_AZ, L_KTH, L_KW, L_QZDD,
+    L_SPIN, L_VAX,
     P_AXIAL, P_A1, P_FRICTION_NEEDLE, P_INTEGRATOR, P_IS, P_IT, P_M_ROLLER, P_MU_GROOVE, P_QSUM,
     P_R_ROLLER, P_ROLLING_RESISTANCE, P_S, P_SPIN_MOMENT, P_VST_OP, R_FN, R_FX, R_FY, R_FZ, R_G,
     R_MX, R_MY, R_MZ, R_NX, R_NY, R_SLIP, R_SLOPE, R_VTX, R_VTY, R_VTZ, Y_B1, Y_B1D, Y_B2, Y_B2D,
-    Y_E, Y_ED, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
+    Y_E, Y_ED, Y_X, Y_LEN, Y_OM, Y_U, Y_UD, Y_W, Y_WD)
 
 
 @njit
@@ -140,9 +141,11 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     m = P[P_M_ROLLER]
     ud, om = Y[Y_UD], Y[Y_OM]
     Fr, kr, kw, q = row_load(P, Y[Y_E])
+    stroke = row_stroke(Y, P, L[L_KTH], L[L_AX])
+    lag, series = row_play(P, Y[Y_X], L[L_KW], L[L_KTH], stroke)
     if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
         fu, f1, f2, juu, ju1, ju2, j11, j12, j22 = row_sliding_friction(
-            P, q, ud, L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), h)
+            P, q, ud, L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), h, series)
         b[0] -= fu
         b[3] -= f1
         b[4] -= f2
@@ -166,7 +169,7 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     b[2] -= kw * (Y[Y_W] + h * Y[Y_WD]) + cw * Y[Y_WD]
     b[3] -= kt1 * (Y[Y_B1] + h * Y[Y_B1D]) + drag1 + c1 * Y[Y_B1D]
     b[4] -= kt2 * (Y[Y_B2] + h * Y[Y_B2D]) + drag2 + c2 * Y[Y_B2D]
-    b[4] += row_load_moment(Y, P, Fr, L[L_KTH], L[L_AX])
+    b[4] += row_load_moment(P, Fr, stroke, lag)
     A[2, 2] += m + h * h * kw + h * cw
     A[3, 3] += It + h * h * kt1 + h * c1
     A[4, 4] += It + h * h * kt2 + h * c2

@@ -15,7 +15,7 @@ from reduced_model import friction, needle_row
 from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
     L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
-    P_NEEDLE_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KN1, P_LT,
+    P_NEEDLE_CLEARANCE, P_AXIAL_PLAY, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KN1, P_LT,
     P_NROW,
     P_FRICTION_NEEDLE, P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE,
     P_R_GROOVE, P_ROLL, P_S,
@@ -365,12 +365,13 @@ def row_load(P, e):
 # paper's N_s spheres a needle)
 ROW_LINE = 7
 # a needle sits between two sliding contacts of equal load and friction (the bore and the
-# trunnion): each takes half of the roller's slip on the trunnion
+# trunnion): each takes half of the roller's slip on the trunnion; against its axial stop the
+# trunnion carries it and the bore takes the whole slip (row_play)
 ROW_SERIES = 0.5
 
 
 @inline
-def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
+def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h, series):
     """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, tanh law on
     the 2-D slip, as each needle contact of the resolved row has it), as a line contact along
     the needles (length l, ROW_LINE points y along it, q / ROW_LINE each) at the row's load
@@ -383,7 +384,7 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
     and h [s] times their symmetric Jacobian in (ud, b1d, b2d): (f_u, f_1, f_2, h j_uu,
     h j_u1, h j_u2, h j_11, h j_12, h j_22) (docs/model.md, "What the needle row does to the
     thrust")."""
-    k3 = ROW_SERIES * 3.0 / P[P_VST_OP]
+    k3 = series * 3.0 / P[P_VST_OP]
     lh = math.sqrt(12.0 * P[P_LT])          # the needles' length (P_LT = l^2 / 12)
     c = P[P_MU_NEEDLE] * q / ROW_LINE
     sa = ud - vax - lever * b2d
@@ -412,17 +413,40 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h):
 
 
 ROW_CARRY = needle_row.ROW_CARRY
+needle_lag = inline(needle_row.needle_lag)
 
 
 @inline
-def row_load_moment(Y, P, Fr, theta, ax):
+def row_stroke(Y, P, theta, ax):
+    """The trunnion's axial stroke (Eq. 7, joint angle theta [rad]) relative to the roller [m]:
+    less its slide and its offset e along the trunnion axis (whose x component is ax)."""
+    return trunnion_axial(Y[Y_X], theta, P[P_S], P[P_AXIAL] > 0.5) - Y[Y_U] - Y[Y_E] * ax
+
+
+@inline
+def row_play(P, x, w, theta, stroke):
+    """Lumped row: how far its needles lag the trunnion [m] (needle_row.needle_lag, their play
+    needle_axial_clearance) at whirl angle x [rad] turning at w [rad/s], joint angle theta
+    [rad] and the trunnion's stroke relative to the roller `stroke` [m] (row_stroke), and the
+    share of the roller's slip on the trunnion that their bore contact takes: ROW_SERIES, or 1
+    where a stop carries them.  The stroke's ends are at x = 0 and pi/2, +-E = +-s (1 - cos
+    theta) / (2 cos theta); w's sign says which it passed last.  The lag is that of a whirl
+    that has run a cycle in one sense (docs/model.md, "The needles' play")."""
+    c = math.cos(theta)
+    E = P[P_S] * (1.0 - c) / (2.0 * c) if P[P_AXIAL] > 0.5 else 0.0
+    rising = trunnion_axial_rate(x, theta, P[P_S], True) * w >= 0.0
+    lag, stop = needle_lag(stroke, E, P[P_AXIAL_PLAY], rising)
+    return lag, (1.0 if stop else ROW_SERIES)
+
+
+@inline
+def row_load_moment(P, Fr, stroke, lag):
     """Lumped row: the moment [N m] about e2 of its radial load F_r [N] acting off the roller's
-    centre, at the loaded needles' mean place along the trunnion: ROW_CARRY of the trunnion's
-    axial stroke (Eq. 7, joint angle theta [rad]) relative to the roller (its slide and its
-    offset e along the trunnion axis, whose x component is ax), the whole stroke with the row's
-    friction off (docs/model.md, "Why the resolved row rocks more")."""
-    stroke = trunnion_axial(Y[Y_X], theta, P[P_S], P[P_AXIAL] > 0.5) - Y[Y_U] - Y[Y_E] * ax
-    return Fr * stroke * (ROW_CARRY if P[P_FRICTION_NEEDLE] > 0.5 else 1.0)
+    centre, at the loaded needles' mean place along the trunnion: the trunnion's stroke
+    relative to the roller (row_stroke) less the needles' lag behind it (row_play) [m], the
+    whole stroke with the row's friction off, the needles then riding the stops (docs/model.md,
+    "Why the resolved row rocks more")."""
+    return Fr * (stroke - lag if P[P_FRICTION_NEEDLE] > 0.5 else stroke)
 
 
 @inline

@@ -8,8 +8,8 @@ import math
 from .jit import inline, njit
 from .linalg import solve_small
 from .contact import (groove_contact, groove_stiffness_x, line_kinematics, roller_motion,
-    row_damping, row_lever, row_load, row_load_moment, row_rolling_resistance,
-    row_sliding_friction, row_stiffness, tilt_drag)
+    row_damping, row_lever, row_load, row_load_moment, row_play, row_rolling_resistance,
+    row_sliding_friction, row_stiffness, row_stroke, tilt_drag)
 from .oppoint import JUMP_FULL, JUMP_RELAX, JUMP_STEP, LOAD_RELAX
 from .steplib import adaptive_steps
 from .layout import (BEAR_LUMPED, H_ACC, H_FACC, H_FALLBACK, H_GA, H_JUMPW, H_RING, H_TAKEN, L_AAX, L_AAY,
@@ -117,10 +117,12 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         e1x, e1y, e1z = e1
         e2x, e2y, e2z = e2
         Fr, kr, kw, q = row_load(P, Y[Y_E])
+        stroke = row_stroke(Y, P, drive.theta, ax)
+        lag, series = row_play(P, Y[Y_X], drive.w, drive.theta, stroke)
         f1 = f2 = 0.0
         if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
             fa, f1, f2, _j, _j, _j, _j, _j, _j = row_sliding_friction(
-                P, q, Y[Y_UD], L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), 0.0)
+                P, q, Y[Y_UD], L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), 0.0, series)
             Q[0] -= fa
         if P[P_ROLLING_RESISTANCE] > 0.5 and q > 0.0:
             Q[1] -= row_rolling_resistance(P, q, Y[Y_OM], L[L_SPIN], 0.0)[0]
@@ -132,7 +134,7 @@ def ga_forces(Y, P, drive, L, res, Q, M):
                 - row_damping(P, kt1, It) * Y[Y_B1D] - f1)
         Q[4] = (mx * e2x + my * e2y + mz * e2z - kt2 * Y[Y_B2] - drag2
                 - row_damping(P, kt2, It) * Y[Y_B2D] - f2
-                + row_load_moment(Y, P, Fr, drive.theta, ax))
+                + row_load_moment(P, Fr, stroke, lag))
         Q[5] = fx + Fr - row_damping(P, kx, m) * Y[Y_ED]
         M[2] = m
         M[3] = It

@@ -37,7 +37,8 @@ COPIED = tuple((slot, _slot(name)) for slot, name in (
     (K.P_V_ST, "v_st"), (K.P_MAX_SUBSTEP, "max_substep"), (K.P_NEWTON_PASSES, "newton_passes"),
     (K.P_NEWTON_TOL, "newton_tol"), (K.P_CONTACT_DAMPING, "contact_damping"),
     (K.P_ROW_DAMPING, "row_damping"), (K.P_SPIDER, "spider"), (K.P_SPIDER_MASS, "spider_mass"),
-    (K.P_SPIDER_INERTIA, "spider_inertia"), (K.P_TOLERANCE, "tolerance")))
+    (K.P_SPIDER_INERTIA, "spider_inertia"), (K.P_TOLERANCE, "tolerance"),
+    (K.P_AXIAL_PLAY, "needle_axial_clearance")))
 FLAGS = tuple((slot, _slot(name)) for slot, name in (
     (K.P_PITCH, "pitch"), (K.P_YAW, "yaw"), (K.P_ROLL, "roll"), (K.P_AXIAL, "axial"),
     (K.P_TRAVERSE, "traverse"), (K.P_FRICTION_GROOVE, "friction_groove"),

@@ -22,7 +22,7 @@ import math
 
 from . import layout as K
 from .contact import groove_contact, groove_stiffness_x, line_kinematics, roller_motion, row_load
-from .contact import row_damping, row_lever, row_sliding_friction
+from .contact import row_damping, row_lever, row_play, row_sliding_friction, row_stroke
 from reduced_model.housing import spider_orbit
 from .jit import inline, njit
 
@@ -85,8 +85,9 @@ def trunnion_force(Y, P, x0, rate, drive, W):
     Fw = -kw * Y[K.Y_W] - row_damping(P, kw, m) * Y[K.Y_WD]
     fa = 0.0
     if P[K.P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
+        series = row_play(P, Y[K.Y_X], drive.w, drive.theta, row_stroke(Y, P, drive.theta, ax))[1]
         fa = row_sliding_friction(P, q, Y[K.Y_UD], L[K.L_VAX], Y[K.Y_B1D], Y[K.Y_B2D],
-                                  lever, 0.0)[0]
+                                  lever, 0.0, series)[0]
     e1x, e1y, e1z = e1
     e2x, e2y, e2z = e2
     return (-(Fr * e1x + Fw * e2x) + fa * ax, -(Fr * e1y + Fw * e2y) + fa * ay,
