@@ -57,7 +57,8 @@ def test_the_analytic_model_takes_what_it_has():
     j = load_joint(EXAMPLES / "light-truck.toml")
     a = for_model(j, "analytic")
     assert set(a) == {"s", "r_roller", "r_groove", "r_bore", "m_roller", "mu_groove", "E", "nu",
-                      "l_needle", "n_needles", "needle_clearance", "mu_needle", "mu_rolling"}
+                      "l_needle", "n_needles", "needle_clearance", "needle_axial_clearance",
+                      "mu_needle", "mu_rolling"}
     assert for_model(j, "contact") == j
 
 

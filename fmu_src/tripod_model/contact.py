@@ -15,8 +15,8 @@ from reduced_model import friction, needle_row
 from .jit import inline, njit
 from .layout import (BEAR_IDEAL, L_AAX, L_AAY, L_AAZ, L_ADX, L_ADY, L_ADZ, L_AX, L_AY, L_AZ, L_KTH,
     L_KVP, L_KW, L_KX, L_QZ, L_QZD, L_QZDD, L_SPIN, L_VAX, P_A1, P_AXIAL, P_BEARING,
-    P_NEEDLE_CLEARANCE, P_AXIAL_PLAY, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING, P_K, P_KN, P_KN1, P_LT,
-    P_NROW,
+    P_NEEDLE_CLEARANCE, P_NEEDLE_AXIAL_CLEARANCE, P_FLANK, P_FRICTION_GROOVE, P_CONTACT_DAMPING,
+    P_K, P_KN, P_KN1, P_LT, P_NROW,
     P_FRICTION_NEEDLE, P_MU_GROOVE, P_MU_NEEDLE, P_MU_ROLLING, P_PITCH, P_R_ROLLER, P_R_BORE,
     P_R_GROOVE, P_ROLL, P_S,
     P_SPIN_MOMENT, P_VP, P_VST_OP, P_YAW, P_ROW_DAMPING, R_FN, R_FX, R_FY, R_FZ, R_G, R_LEN, R_MX,
@@ -435,7 +435,7 @@ def row_play(P, x, w, theta, stroke):
     c = math.cos(theta)
     E = P[P_S] * (1.0 - c) / (2.0 * c) if P[P_AXIAL] > 0.5 else 0.0
     rising = trunnion_axial_rate(x, theta, P[P_S], True) * w >= 0.0
-    lag, stop = needle_lag(stroke, E, P[P_AXIAL_PLAY], rising)
+    lag, stop = needle_lag(stroke, E, P[P_NEEDLE_AXIAL_CLEARANCE], rising)
     return lag, (1.0 if stop else ROW_SERIES)
 
 

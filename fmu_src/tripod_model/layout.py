@@ -14,7 +14,7 @@ from reduced_model import scene
  P_NEEDLE_CLEARANCE, P_INTEGRATOR, P_LT, P_IT, P_STEP_TOLERANCE, P_HMAX, P_V_ST,
  P_MAX_SUBSTEP, P_VP, P_CONTACT_DAMPING, P_ROW_DAMPING, P_DF, P_FLANK, P_HFREE, P_RINGA,
  P_NEWTON_PASSES, P_NEWTON_TOL, P_SPIDER, P_SPIDER_MASS, P_SPIDER_INERTIA, P_NROW, P_KN1, P_TOLERANCE,
- P_AXIAL_PLAY, P_LEN,
+ P_NEEDLE_AXIAL_CLEARANCE, P_LEN,
  *_) = range(128)
 # The slots named after a parameter hold its value (roller_setup.COPIED, FLAGS); the others
 # what the set-up derives (roller_setup.kernel_params) or the operating point does: P_VST_OP,

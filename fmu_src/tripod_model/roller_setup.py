@@ -38,7 +38,7 @@ COPIED = tuple((slot, _slot(name)) for slot, name in (
     (K.P_NEWTON_TOL, "newton_tol"), (K.P_CONTACT_DAMPING, "contact_damping"),
     (K.P_ROW_DAMPING, "row_damping"), (K.P_SPIDER, "spider"), (K.P_SPIDER_MASS, "spider_mass"),
     (K.P_SPIDER_INERTIA, "spider_inertia"), (K.P_TOLERANCE, "tolerance"),
-    (K.P_AXIAL_PLAY, "needle_axial_clearance")))
+    (K.P_NEEDLE_AXIAL_CLEARANCE, "needle_axial_clearance")))
 FLAGS = tuple((slot, _slot(name)) for slot, name in (
     (K.P_PITCH, "pitch"), (K.P_YAW, "yaw"), (K.P_ROLL, "roll"), (K.P_AXIAL, "axial"),
     (K.P_TRAVERSE, "traverse"), (K.P_FRICTION_GROOVE, "friction_groove"),
@@ -48,8 +48,7 @@ FLAGS = tuple((slot, _slot(name)) for slot, name in (
 # roller's set-up does not read, with where they go
 DERIVED_FROM = ("E", "nu", "l_needle", "n_needles", "roller_width", "step_tolerance",
                 "running_clearance")
-NEEDLE_ROW = ("n_spheres", "d_needle", "r_trunnion", "needle_circ_clearance",
-              "needle_axial_clearance", "rho_needle")
+NEEDLE_ROW = ("n_spheres", "d_needle", "r_trunnion", "needle_circ_clearance", "rho_needle")
 ELSEWHERE = {"n_rollers": "the joint (model.JointModel, lifecycle.py)",
              "drive_by_angle": "the step (lifecycle.step)",
              "spin_inertia": "the analytic model only: the contact model's roller always has "
