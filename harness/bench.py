@@ -115,8 +115,9 @@ print(json.dumps(res))
 
 def time_runs(fmu, cases, runs=5, read=("Fz_mod",)):
     """In one fresh process: per case, median wall time of ``runs`` runs after a warm-up, and
-    the recorded signals of the last run (y: the first of ``read``; signals: each by name).  cases: [{"sv": start values, "dt": comm step, "stop": s, "vary":
-    inputs the master moves every step, "spread": steps drawn from [0.2 dt, 2 dt] instead,
+    the recorded signals of the last run (y: the first of ``read``; signals: each by name).
+    cases: [{"sv": start values, "dt": comm step, "stop": s, "vary": inputs the master moves
+    every step, "spread": steps drawn from [0.2 dt, 2 dt] instead,
     "rollback": each step tried, the state set back and the step taken again}]; with sv's
     drive_by_angle the master sets shaft_angle every step (at omega's start value)."""
     req = {"fmu": str(fmu), "cases": cases, "runs": runs, "read": list(read)}
