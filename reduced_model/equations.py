@@ -496,8 +496,8 @@ def row_tilt_e1(O, p, fn, dphi, spin):
 
 def row_at(O, s, b2d, V, vax, yaw, dax, bi, dphi, spin, b1d):
     """T1-T3, T5 with the row at the slide slip s [m/s] and tilt rate b2d [rad/s], where the
-    drive gives V (T4's driven slip), vax, yaw, dax (row_rates), bi, dphi, spin, and the tilt about
-    e1 moves at b1d [rad/s]: (p, fa, f_n [N], beta, row [N]).  fa: the groove's friction along
+    drive gives V (T4's driven slip), vax, yaw, dax (row_rates), bi, dphi, spin, and the tilt
+    about e1 moves at b1d [rad/s]: (p, fa, f_n [N], beta, row [N]).  fa: the groove's friction along
     the trunnion over f_n, against its contact's slip s - r b2d (T3 inverted); row: the needles'
     friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d;
     T1: f_n p = f_n fa - row (fixed point in p)."""
@@ -665,8 +665,16 @@ def row_tilt(O, s, b0, h, x, b1d):
     dax = row_rates(O, x)[2]
     pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
     fmax = normal_force(O, pmax)
+    # the row's load's moment is within cm (|d| + rho p_max + extra) (row_moment): the stroke's
+    # ROW_CARRY where the needles never reach a stop, the stroke and the play where they do
+    cm, extra = O[O_CRF], 0.0
+    if O[O_PLAY] >= 0.0:
+        if (1.0 - ROW_CARRY) * O[O_EAX] <= O[O_PLAY]:
+            cm = ROW_CARRY * O[O_CRF]
+        else:
+            extra = O[O_PLAY]
     m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
-                + O[O_CRF] * (abs(dax) + rho * pmax + max(O[O_PLAY], 0.0))) / O[O_KT2] + 1e-12
+                + cm * (abs(dax) + rho * pmax + extra)) / O[O_KT2] + 1e-12
     lo, hi = -m, m
     flo = row_tilt_balance(O, s, lo, b0, h, x, b1d)[0]
     hi_f = row_tilt_balance(O, s, hi, b0, h, x, b1d)[0]
