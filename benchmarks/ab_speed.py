@@ -10,6 +10,7 @@ Usage: python benchmarks/ab_speed.py --before REV [--runs N]
 """
 import argparse
 import json
+import os
 import statistics
 import subprocess
 import sys
@@ -40,9 +41,12 @@ print(json.dumps(walls))
 '''
 
 
-def _run(code, *args):
-    p = subprocess.run([sys.executable, "-c", code, *map(str, args)], capture_output=True,
-                       text=True, timeout=3600)
+def _run(code, tree, *args):
+    # the tree's packages first, for this process and the builds it starts (the environment's
+    # own path names this checkout's fmu_src: the two trees' modules must not mix)
+    env = dict(os.environ, PYTHONPATH=os.pathsep.join((str(tree), str(Path(tree) / "fmu_src"))))
+    p = subprocess.run([sys.executable, "-c", code, str(tree), *map(str, args)],
+                       capture_output=True, text=True, timeout=3600, env=env)
     if p.returncode != 0:
         raise RuntimeError(p.stderr[-2000:])
     return p.stdout.strip().splitlines()[-1]
