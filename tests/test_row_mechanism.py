@@ -56,17 +56,22 @@ def test_both_fast_models_follow_the_resolved_row_at_the_papers_scene_and_a_laun
 
 @pytest.mark.slow   # (six resolved rows: about 2 minutes)
 @pytest.mark.parametrize("i", range(13, 19))
-def test_lumped_row_follows_the_resolved_row_over_the_envelope(i):
+def test_both_fast_models_follow_the_resolved_row_over_the_envelope(i):
     """Scenes 13-18 of the envelope's grid (harness/envelope_grid.py: the three joints, 2.7-23.6
-    deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md): order 3 of one
-    roller's Fz on the lumped row within the issue's 3 % of the needle-resolved row's (complex),
-    order 1 within 5 %.  Measured 0.3-2.1 % and 0.5-3.4 %; the resolved row's realizations
-    spread by about 0.2 %.  (Of the grid's 24 scenes two miss 3 %: a 25.8 kN coast at 3.4 deg,
-    4.1 %, and an order 3 a tenth of order 1, 11.5 %.)"""
+    deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md), one roller's Fz
+    against the needle-resolved row's (complex).  The lumped row: order 3 within the issue's 3 %
+    (measured 0.3-1.9 %), order 1 within 5 % (0.5-3.3 %).  The analytic model at its default
+    (its needle row): within 5 % in both (measured 1.0-4.3 % and 1.1-4.5 %, the most at scene
+    15, a light load at 23.6 deg); the issue's 3 % is not reached there, docs/validation.md
+    says where.  The resolved row's realizations spread by about 0.2 %.  (Of the grid's 24
+    scenes the lumped row misses 3 % in one: a 25.8 kN coast at 3.4 deg, 4.1 %.)"""
     s = scene(i)
     res, lum = contact_orders(*s, 2), contact_orders(*s, 1)
+    ana = analytic_orders(*s)
     assert off(lum, res, 3) < 3.0
     assert off(lum, res, 1) < 5.0
+    assert off(ana, res, 3) < 5.0
+    assert off(ana, res, 1) < 5.0
 
 
 def _run(over, F, tilt_scale=1.0):
