@@ -118,7 +118,7 @@ def test_the_needles_lag_is_a_play_operator_on_the_stroke(deg):
     a stroke within the play keeps the start, one beyond it forgets it): equal within the stepping's own error, the rest of one step's travel; at a
     stop exactly where the stepped lag sits on the play.  The paper's joint (s = 22 mm) and
     play (0.1 mm): the stroke's half travel E is 15 um at 3 deg and 108 um at 8 deg (never at
-    a stop: the rest of the whole stroke fits in the play below 10.9 deg), 388 um at 15 deg
+    a stop: the rest of the whole stroke fits in the play below 10.8 deg), 388 um at 15 deg
     and 1.14 mm at 25 deg."""
     s, play, k = 0.022, 1e-4, 1.0 - NR.ROW_CARRY
     th = math.radians(deg)
