@@ -12,7 +12,9 @@ fitted:
   against the roller's slide relative to the trunnion's material, u_r = s - V' - d' (T4's
   slide less Eq. 7's stroke d'; half the slip at each of a needle's two contacts), on a line
   of 7 points along the needles whose slip across is the roller's tilt rate about e1 under the
-  spin moment (Eq. 16, held by k_t1 = k_w l^2 / 12) times the point's place;
+  spin moment (Eq. 16, held by k_t1 = k_w l^2 / 12) times the point's place, at the loaded
+  arc's two sides, +-r_bore sqrt(sum q_j sin^2 psi_j / q) across the pressing direction, where
+  the same tilt rate moves the bore along the trunnion (half the load each);
 - the roller rocking on the row (docs/model.md, "The roller rocks on the row"): the tilt b2
   about e2 (the groove's axis) held quasi-statically by the row's tilt stiffness,
   k_t2 b2 = -r_roller f_a + lever f_row + c F (d - rho_c p) (k_t2 = k_r l^2 / 12, k_r the
@@ -61,14 +63,16 @@ def row_terms(sc, F):
     """The row at the pressing load |F| [N] (Eq. 17 over the row, oppoint.row_sums): the summed
     needle loads q [N], the tilt stiffness about e2 k_t2 [N m/rad], the lever [m] from the
     trunnion axis at which the loaded needles meet the bore (on the pressed side) and the tilt
-    stiffness about e1 k_t1 [N m/rad]."""
+    stiffness about e1 k_t1 [N m/rad] and where across the load the needles meet the bore, the
+    rms r_bore sin(psi_j) weighted by their loads [m]."""
     T = np.array([float(sc[n]) for n in PARAM_NAMES])
     P = np.zeros(K.P_LEN)
     kernel_params(T, P)
     a = brentq(lambda a: oppoint.row_sums(P, a)[0] - abs(F),
                P[K.P_NEEDLE_CLEARANCE] * (1 + 1e-12), 1e-3)
-    Fr, kr, kw, q = oppoint.row_sums(P, a)
-    return q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q, kw * P[K.P_LT]
+    Fr, kr, kw, q, qs = oppoint.row_sums(P, a)
+    return (q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q, kw * P[K.P_LT],
+            P[K.P_R_BORE] * math.sqrt(qs / q))
 
 
 def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
@@ -76,7 +80,7 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
     O = operating_point(sc)
     F, rho, vst, r, w = O[E.O_F], O[E.O_RHO], O[E.O_VST], O[E.O_R], O[E.O_W]
     side = 1.0 if F >= 0 else -1.0          # coast: the other flank, the row's other side
-    q, kt2, lever, kt1 = row_terms(sc, F)
+    q, kt2, lever, kt1, arc = row_terms(sc, F)
     ln = sc["l_needle"]
     tilt1 = [0.0, 0.0]     # the tilt about e1 at the last step's end [rad], its rate over it
     lever, rim = side * lever, side * sc["r_roller"]
@@ -99,10 +103,12 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
         sg = s - rim * b2d                  # the groove contact's slip along the trunnion
         ur = s - V - vax - lever * b2d
         row = 0.0                   # a line along the needles, 7 points: the slide along, the
-        for j in range(7):          # tilt about e1 across (the step before's rate)
-            c = tilt1[1] * ln * ((j + 0.5) / 7 - 0.5)
-            v = math.hypot(ur, c)
-            row += mq / 7 * (math.tanh(k_row * v) * ur / v if v > 0 else 0.0)
+        for x2 in (arc, -arc):      # tilt about e1 across (the step before's rate), on the
+            ua = ur + x2 * tilt1[1]     # arc's two sides, where that tilt slides the bore
+            for j in range(7):
+                c = tilt1[1] * ln * ((j + 0.5) / 7 - 0.5)
+                v = math.hypot(ua, c)
+                row += mq / 14 * (math.tanh(k_row * v) * ua / v if v > 0 else 0.0)
         p = 0.0
         for _ in range(40):         # beta depends weakly on p (f_n, the spin moment)
             fn = E.normal_force(O, p)

@@ -81,7 +81,7 @@ def run(over, tilt_scale, F, theta, omega, cycles=3, dt=1e-4):
             fr, d = math.nan, math.nan
         rows.append((m.time, m.whirl_angle, o["Fz"], m.Y[K.Y_B2], m.Y[K.Y_U], m2,
                      m._res[K.R_FN], fr, d))
-    _Fr, kr, _kw, _q = contact.row_load(m.P, m.Y[K.Y_E])
+    kr = contact.row_load(m.P, m.Y[K.Y_E])[1]
     return np.array(rows), m.P[K.P_R_ROLLER], kr * m.P[K.P_LT] / tilt_scale, m
 
 

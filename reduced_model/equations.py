@@ -10,7 +10,7 @@ import math
 
 from .friction import V_ST_FLOOR, spin_moment
 from .hertz import hertz_point
-from .needle_row import ROW_CARRY, needle_lag, row_constants, row_offset, sum_row
+from .needle_row import ROW_CARRY, needle_lag, row_arc, row_constants, row_offset, sum_row
 from .scene import params_for, pressing_load
 from .thrust import fz_mod
 
@@ -37,12 +37,14 @@ T_LEN = len(PARAM_NAMES)
  # the needle row (needle_row = true; row_point): on, mu_needle q, mu_rolling q r_bore, the tilt
  # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3),
  # the row's load, the tilt stiffness about e1, the needles' length, their axial play (-1:
- # the row's friction off, the needles ride the stops);
+ # the row's friction off, the needles ride the stops), where across the load the loaded
+ # needles meet the bore (needle_row.row_arc);
  # kept from one derivation to the next (row_point): the row's constants with the needles'
  # count and length they are for, and the roller's offset on the row with the load it carries
  O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN, O_PLAY,
+ O_ARC,
  O_RN, O_RL, O_RC1, O_RKR, O_RA, O_RAF,
- O_LEN) = range(46)
+ O_LEN) = range(47)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
@@ -138,7 +140,7 @@ def row_point(T, O):
     on = T[NEEDLE_ROW] != 0.0 and T[TRAVERSE] != 0.0 and O[O_HELD] != 0.0
     O[O_ROW] = 1.0 if on else 0.0
     for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
-              O_PLAY):
+              O_PLAY, O_ARC):
         O[k] = 0.0
     if not on:
         return
@@ -149,7 +151,7 @@ def row_point(T, O):
     c1 = O[O_RC1]
     a = row_offset(c, n, c1, O[O_RKR], O[O_F], O[O_RA], O[O_RAF])
     O[O_RA], O[O_RAF] = a, abs(O[O_F])
-    Fr, kr, kw, q = sum_row(c, n, c1, a)
+    Fr, kr, kw, q, qs = sum_row(c, n, c1, a)
     rb = T[R_BORE]
     O[O_MQ] = T[MU_NEEDLE] * q if T[FRICTION_NEEDLE] != 0.0 else 0.0
     O[O_MR] = T[MU_ROLLING] * q * rb if T[ROLLING_RESISTANCE] != 0.0 else 0.0
@@ -157,6 +159,7 @@ def row_point(T, O):
     O[O_KT1] = kw * ln * ln / 12.0                  # and about e1 (across the load)
     O[O_LN] = ln
     O[O_LEVER] = rb * Fr / q
+    O[O_ARC] = row_arc(rb, q, qs)
     O[O_RB] = rb
     O[O_KROW] = 1.5 / O[O_VST]        # half the slip at each of a needle's two contacts
     th = O[O_TH]
@@ -461,27 +464,31 @@ def row_slope(O, dax, vax):
 
 def row_line(O, u, b1d, kr):
     """The needles' sliding friction along the trunnion [N] and its slope in u [N s/m]: the
-    tanh law on the 2-D slip of a line contact along the needles (ROW_POINTS points, the
-    needles' load shared alike), the slide u [m/s] along the trunnion at each and the roller's
-    tilt rate about e1 b1d [rad/s] times the point's place along the needle across it (a needle
-    cannot roll that away); kr [s/m]: the tanh's slope (row_slope).  The tilt's slip uses up
-    friction the slide would meet (docs/model.md, the lumped row's line)."""
+    tanh law on the 2-D slip of two line contacts along the needles (ROW_POINTS points each,
+    the needles' load shared alike) on the loaded arc's two sides, +-row_arc across the
+    pressing direction (O_ARC): there the slide u [m/s] along the trunnion less -+O_ARC times
+    the roller's tilt rate about e1 b1d [rad/s], and across, b1d times the point's place along
+    the needle (a needle cannot roll that away); kr [s/m]: the tanh's slope (row_slope).  The
+    tilt's slip uses up friction the slide would meet (docs/model.md, the lumped row's line,
+    "The needles' friction around the loaded arc")."""
     mq = O[O_MQ]
     if b1d == 0.0:      # every point alike (no spin moment, the march's first step): one tanh
         g = math.tanh(kr * u)
         return mq * g, mq * kr * (1.0 - g * g)
     f = df = 0.0
-    for j in range(ROW_POINTS // 2 + 1):     # a point and its mirror about the middle alike
-        w = 1.0 if 2 * j + 1 == ROW_POINTS else 2.0
-        c = b1d * O[O_LN] * ((j + 0.5) / ROW_POINTS - 0.5)
-        v = math.sqrt(u * u + c * c)
-        g = math.tanh(kr * v)
-        if v > 0.0:
-            f += w * g * u / v
-            df += w * (kr * (1.0 - g * g) * u * u / (v * v) + g * c * c / (v * v * v))
-        else:
-            df += w * kr
-    return mq * f / ROW_POINTS, mq * df / ROW_POINTS
+    for side in range(2):
+        ua = u + (O[O_ARC] if side == 0 else -O[O_ARC]) * b1d
+        for j in range(ROW_POINTS // 2 + 1):     # a point and its mirror about the middle alike
+            w = 1.0 if 2 * j + 1 == ROW_POINTS else 2.0
+            c = b1d * O[O_LN] * ((j + 0.5) / ROW_POINTS - 0.5)
+            v = math.sqrt(ua * ua + c * c)
+            g = math.tanh(kr * v)
+            if v > 0.0:
+                f += w * g * ua / v
+                df += w * (kr * (1.0 - g * g) * ua * ua / (v * v) + g * c * c / (v * v * v))
+            else:
+                df += w * kr
+    return mq * f / (2 * ROW_POINTS), mq * df / (2 * ROW_POINTS)
 
 
 def row_tilt_e1(O, p, fn, dphi, spin):

@@ -69,13 +69,14 @@ def sum_row(c, n, c1, a):
     needles at psi_j = 2 pi j / n from the pressing direction, squeezed by a cos(psi_j) - c (c
     the row's radial clearance [m]) across its two races in series (c1: row_constants).
     Returns the radial load |F_r| [N], its tangent stiffness along the load k_r and across it
-    k_w [N/m], and the sum of the needle loads q [N] (more than |F_r|: the load fans out over
-    the row, by 6 % at 4.5 kN and 16 % at 45 kN on the default row)."""
+    k_w [N/m], the sum of the needle loads q [N] (more than |F_r|: the load fans out over
+    the row, by 6 % at 4.5 kN and 16 % at 45 kN on the default row) and that sum with each
+    load times sin^2(psi_j), q_s [N] (how far across the pressing direction it fans: row_arc)."""
     if not a > c:
-        return 0.0, 0.0, 0.0, 0.0
+        return 0.0, 0.0, 0.0, 0.0, 0.0
     dc, ds = math.cos(2.0 * math.pi / n), math.sin(2.0 * math.pi / n)
     cj, sj = 1.0, 0.0
-    f = k = kw = q = 0.0
+    f = k = kw = q = qs = 0.0
     # needle j and n - j alike: from the pressing direction outwards while they are loaded
     for j in range(n // 2 + 1):
         ap = a * cj - c
@@ -85,11 +86,21 @@ def sum_row(c, n, c1, a):
         g9 = math.exp(math.log(ap) / 9.0)   # ap^(1/9); pow costs more
         g = w * ap * g9
         q += g
+        qs += g * sj * sj
         f += g * cj
         k += w * g9 * cj * cj
         kw += w * g9 * sj * sj
         cj, sj = cj * dc - sj * ds, sj * dc + cj * ds   # the next needle's angle
-    return c1 * f, 10.0 / 9.0 * c1 * k, 10.0 / 9.0 * c1 * kw, c1 * q
+    return c1 * f, 10.0 / 9.0 * c1 * k, 10.0 / 9.0 * c1 * kw, c1 * q, c1 * qs
+
+
+def row_arc(r_bore, q, qs):
+    """Where across the pressing direction the loaded needles meet the bore [m]: r_bore [m]
+    times the load-weighted rms of sin(psi_j), sqrt(q_s / q) (sum_row's q, q_s [N]).  The
+    needles' sliding friction acts around that arc, not at one point: a tilt rate about the
+    pressing direction slides the bore along the trunnion by +-row_arc times it on the arc's two
+    sides (docs/model.md, "The needles' friction around the loaded arc")."""
+    return r_bore * math.sqrt(qs / q) if q > 0.0 else 0.0
 
 
 def row_offset(c, n, c1, k_row, F, a_near, F_near):
@@ -107,7 +118,7 @@ def row_offset(c, n, c1, k_row, F, a_near, F_near):
     while sum_row(c, n, c1, a)[0] < abs(F):
         a = c + 2.0 * (a - c)
     for _ in range(60):
-        f, k, _kw, _q = sum_row(c, n, c1, a)
+        f, k, _kw, _q, _qs = sum_row(c, n, c1, a)
         da = (f - abs(F)) / k
         a -= da
         if not da > 1e-15 * a:
@@ -117,4 +128,4 @@ def row_offset(c, n, c1, k_row, F, a_near, F_near):
 
 # the functions the models' binaries compile (callees first)
 COMPILED = ("needle_line_stiffness", "sum_row", "row_constants", "row_offset",
-            "needle_lag")
+            "needle_lag", "row_arc")

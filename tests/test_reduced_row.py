@@ -96,7 +96,7 @@ def test_the_row_law_is_the_lumped_rows():
     c1, k_row, q_sum = NR.row_constants(46, 0.012)
     for F in (300.0, 4500.0, 45000.0):
         a = NR.row_offset(1e-5, 46, c1, k_row, F, 0.0, 0.0)
-        Fr, kr, kw, q = NR.sum_row(1e-5, 46, c1, a)
+        Fr, kr, kw, q, _qs = NR.sum_row(1e-5, 46, c1, a)
         assert Fr == pytest.approx(F, rel=1e-12)
         # started from the offset at a load 30 % off (the march's step before), the same root
         for near in (0.7 * F, 1.3 * F):
@@ -105,7 +105,7 @@ def test_the_row_law_is_the_lumped_rows():
                 a, rel=1e-13)
         assert q > Fr and kr > 0 and kw > 0
         g = 2e-6 * F / 4500.0
-        Fr0, _kr, _kw, q0 = NR.sum_row(0.0, 46, c1, g)
+        Fr0, _kr, _kw, q0, _qs = NR.sum_row(0.0, 46, c1, g)
         assert Fr0 == pytest.approx(k_row * g ** (10.0 / 9.0), rel=1e-12)
         assert q0 == pytest.approx(q_sum * Fr0, rel=1e-12)
 
@@ -146,3 +146,50 @@ def test_the_needles_lag_is_a_play_operator_on_the_stroke(deg):
         assert stops.any() and not stops.all()
         assert np.all(np.abs(np.abs(lags[stops]) - play) == 0.0)
     assert np.abs(lags - np.array(stepped)).max() <= 2.0 * step + 1e-15
+
+
+def test_the_lumped_rows_friction_acts_around_the_loaded_arc():
+    """contact.row_sliding_friction's two points +-row_arc across the pressing direction: in the
+    tanh law's linear range the moment about e1 they make against a tilt rate b1' is the row's
+    own, mu k b1' (sum_j q_j x2_j^2 + q <y^2>), summed here needle by needle (Eq. 17 loads at
+    psi_j, x2_j = r_bore sin psi_j; <y^2> over the line's seven points), and a slide alone
+    meets one tanh law, mu q tanh(k s), as at one point.  Both to rounding (1e-12)."""
+    from tripod_model import contact, layout as K
+    from tripod_model.model import ContactModel
+    m = ContactModel({"bearing": 1})
+    m.step(1e-4, 0.14, 62.8, 45000.0)
+    P = m.P
+    n, c, c1, rb = int(P[K.P_NROW]), P[K.P_NEEDLE_CLEARANCE], P[K.P_KN1], P[K.P_R_BORE]
+    a = NR.row_offset(c, n, c1, NR.row_constants(n, math.sqrt(12.0 * P[K.P_LT]))[1], 45000.0,
+                      0.0, 0.0)
+    Fr, _kr, _kw, q, arc = contact.row_load(P, -a)
+    psi = 2.0 * math.pi * np.arange(n) / n
+    squeeze = np.clip(a * np.cos(psi) - c, 0.0, None)
+    qj = c1 * squeeze ** (10.0 / 9.0)
+    assert q == pytest.approx(qj.sum(), rel=1e-12)
+    k = NR.ROW_CARRY * 3.0 / P[K.P_VST_OP]          # half the slip at the bore (ROW_SERIES)
+    mu, l = P[K.P_MU_NEEDLE], math.sqrt(12.0 * P[K.P_LT])
+    y = l * ((np.arange(7) + 0.5) / 7 - 0.5)
+    lever = contact.row_lever(P, Fr, q)
+    b1d = 1e-12 * P[K.P_VST_OP] / rb                # k x2 b1' about 1e-12: linear
+    f = contact.row_sliding_friction(P, q, 0.0, 0.0, b1d, 0.0, lever, arc, 0.0, 0.5)
+    want = mu * k * b1d * ((qj * (rb * np.sin(psi)) ** 2).sum() + q * (y * y).mean())
+    assert f[1] == pytest.approx(want, rel=1e-12)
+    assert arc > 0.3 * rb                            # the load fans out well off e1 at 45 kN
+    s = 0.7 * P[K.P_VST_OP]
+    f = contact.row_sliding_friction(P, q, s, 0.0, 0.0, 0.0, lever, arc, 0.0, 0.5)
+    assert f[0] == pytest.approx(mu * q * math.tanh(k * s), rel=1e-12)
+
+
+def test_the_reduced_rows_line_takes_the_arcs_two_sides():
+    """equations.row_line with the needles' line shrunk to a point (O_LN = 0): the two sides of
+    the loaded arc meet the slide u less and plus O_ARC b1', each with half the load,
+    mu q (tanh(k (u + x b1')) + tanh(k (u - x b1'))) / 2, to rounding."""
+    from reduced_model import equations as E
+    O = np.zeros(E.O_LEN)
+    O[E.O_MQ], O[E.O_ARC], O[E.O_LN] = 3000.0, 6e-3, 0.0
+    kr, u, b1d = 300.0, 2e-3, 0.5
+    f, _df = E.row_line(O, u, b1d, kr)
+    x = O[E.O_ARC] * b1d
+    assert f == pytest.approx(1500.0 * (math.tanh(kr * (u + x)) + math.tanh(kr * (u - x))),
+                              rel=1e-12)

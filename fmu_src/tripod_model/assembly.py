@@ -140,12 +140,12 @@ def lumped_row_terms(Y, P, L, h, It, drag1, drag2, A, b):
     [N/m] (row_load)."""
     m = P[P_M_ROLLER]
     ud, om = Y[Y_UD], Y[Y_OM]
-    Fr, kr, kw, q = row_load(P, Y[Y_E])
+    Fr, kr, kw, q, arc = row_load(P, Y[Y_E])
     stroke = row_stroke(Y, P, L[L_KTH], L[L_AX])
     lag, series = row_play(P, Y[Y_X], L[L_KW], L[L_KTH], stroke)
     if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
         fu, f1, f2, juu, ju1, ju2, j11, j12, j22 = row_sliding_friction(
-            P, q, ud, L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), h, series)
+            P, q, ud, L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), arc, h, series)
         b[0] -= fu
         b[3] -= f1
         b[4] -= f2

@@ -349,16 +349,18 @@ def groove_contact(c, v, wr, P, res):
 
 # the lumped row's law, Eq. (17) over its needles (needle_row.sum_row), compiled inline
 sum_row = inline(needle_row.sum_row)
+row_arc = inline(needle_row.row_arc)
 
 
 @inline
 def row_load(P, e):
     """Lumped needle row with the roller e [m] off the trunnion axis along x: the row's radial
     force on the roller F_r [N] (pushing it back onto the axis: +x in drive, e < 0; -x in
-    coast), its tangent stiffness along the load k_r and across it k_w [N/m] and the sum of
-    the needle loads q [N] (sum_row, as oppoint.row_sums)."""
-    f, k, kw, q = sum_row(P[P_NEEDLE_CLEARANCE], int(P[P_NROW]), P[P_KN1], abs(e))
-    return (f if e < 0.0 else -f), k, kw, q
+    coast), its tangent stiffness along the load k_r and across it k_w [N/m], the sum of
+    the needle loads q [N] and where across the load they meet the bore, row_arc [m]
+    (sum_row, as oppoint.row_sums)."""
+    f, k, kw, q, qs = sum_row(P[P_NEEDLE_CLEARANCE], int(P[P_NROW]), P[P_KN1], abs(e))
+    return (f if e < 0.0 else -f), k, kw, q, row_arc(P[P_R_BORE], q, qs)
 
 
 # the lumped row's sliding friction as a line contact along the needles: its points (the
@@ -371,43 +373,48 @@ ROW_SERIES = 0.5
 
 
 @inline
-def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, h, series):
+def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, arc, h, series):
     """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, tanh law on
-    the 2-D slip, as each needle contact of the resolved row has it), as a line contact along
-    the needles (length l, ROW_LINE points y along it, q / ROW_LINE each) at the row's load
-    centre, lever [m] from the trunnion axis along the pressing direction e1 (row_lever: where
-    the loaded needles meet the bore).  The slip there along the trunnion is the slide's ud - vax less
-    the bore's own axial motion from the tilt about e2, lever b2d; across, along the needles'
-    rolling direction, it is the tilt about e1's b1d y, which a needle cannot roll away (it
-    varies along the needle).  q: the needle loads [N]; ud, vax [m/s]; b1d, b2d [rad/s].
-    Returns the generalized forces against the slide [N] and the tilts about e1, e2 [N m]
-    and h [s] times their symmetric Jacobian in (ud, b1d, b2d): (f_u, f_1, f_2, h j_uu,
-    h j_u1, h j_u2, h j_11, h j_12, h j_22) (docs/model.md, "What the needle row does to the
-    thrust")."""
+    the 2-D slip, as each needle contact of the resolved row has it), as two line contacts
+    along the needles (length l, ROW_LINE points y along each, q / (2 ROW_LINE) each) on the
+    loaded arc: lever [m] along the pressing direction e1 from the trunnion axis (row_lever)
+    and +-arc [m] across it (row_arc), where the needles meet the bore.  The slip along the
+    trunnion there is the slide's ud - vax less the bore's own axial motion from the tilts,
+    lever b2d about e2 and -+arc b1d about e1; across, along the needles' rolling direction,
+    it is the tilt about e1's b1d y, which a needle cannot roll away (it varies along the
+    needle); `series` of each is the bore's (row_play).  q: the needle loads [N]; ud, vax
+    [m/s]; b1d, b2d [rad/s].  Returns the generalized forces against the slide [N] and the
+    tilts about e1, e2 [N m] and h [s] times their symmetric Jacobian in (ud, b1d, b2d):
+    (f_u, f_1, f_2, h j_uu, h j_u1, h j_u2, h j_11, h j_12, h j_22) (docs/model.md, "What the
+    needle row does to the thrust", "The needles' friction around the loaded arc")."""
     k3 = series * 3.0 / P[P_VST_OP]
     lh = math.sqrt(12.0 * P[P_LT])          # the needles' length (P_LT = l^2 / 12)
-    c = P[P_MU_NEEDLE] * q / ROW_LINE
-    sa = ud - vax - lever * b2d
+    c = 0.5 * P[P_MU_NEEDLE] * q / ROW_LINE
+    s0 = ud - vax - lever * b2d
     fa = f1 = jaa = ja1 = j11 = 0.0
-    # the points at -y and y alike: the middle one, then the pairs outwards
-    for k in range(ROW_LINE // 2, ROW_LINE):
-        d = lh * ((k + 0.5) / ROW_LINE - 0.5)   # the point's place along the needle [m]
-        w = 1.0 if 2 * k + 1 == ROW_LINE else 2.0
-        st = d * b1d
-        s = math.sqrt(sa * sa + st * st)
-        x = k3 * s
-        g = tanh_clipped(x)
-        gs = k3 * (1.0 - x * x / 3.0) if x < 1e-4 else g / s   # g / |s|, its limit at 0
-        t = 0.0
-        if s > 0.0:
-            t = (k3 * (1.0 - g * g) - gs) / (s * s)   # (dg/d|s| - g/|s|) / |s|^2
-        cw = c * w
-        fa += cw * gs * sa
-        f1 += cw * gs * st * d
-        jaa += cw * (gs + t * sa * sa)
-        ja1 += cw * t * sa * st * d
-        j11 += cw * (gs + t * st * st) * d * d
-    # the slip along the trunnion is sa = ud - lever b2d: the chain rule for b2d
+    for side in range(2):                   # the arc's two sides, x2 = +arc and -arc
+        x2 = arc if side == 0 else -arc
+        sa = s0 + x2 * b1d
+        # the points at -y and y alike: the middle one, then the pairs outwards
+        for k in range(ROW_LINE // 2, ROW_LINE):
+            d = lh * ((k + 0.5) / ROW_LINE - 0.5)   # the point's place along the needle [m]
+            w = 1.0 if 2 * k + 1 == ROW_LINE else 2.0
+            st = d * b1d
+            s = math.sqrt(sa * sa + st * st)
+            x = k3 * s
+            g = tanh_clipped(x)
+            gs = k3 * (1.0 - x * x / 3.0) if x < 1e-4 else g / s   # g / |s|, its limit at 0
+            t = 0.0
+            if s > 0.0:
+                t = (k3 * (1.0 - g * g) - gs) / (s * s)   # (dg/d|s| - g/|s|) / |s|^2
+            cw = c * w
+            ga = gs + t * sa * sa                   # d(gs sa) / d sa
+            fa += cw * gs * sa
+            f1 += cw * gs * (st * d + sa * x2)
+            jaa += cw * ga
+            ja1 += cw * (ga * x2 + t * sa * st * d)
+            j11 += cw * ((gs + t * st * st) * d * d + 2.0 * t * sa * st * d * x2 + ga * x2 * x2)
+    # the slip along the trunnion is sa = ud - lever b2d + x2 b1d: the chain rule for b2d
     return (fa, f1, -lever * fa, h * jaa, h * ja1, -h * lever * jaa, h * j11,
             -h * lever * ja1, h * lever * lever * jaa)
 

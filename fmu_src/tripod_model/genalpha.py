@@ -116,13 +116,13 @@ def ga_forces(Y, P, drive, L, res, Q, M):
         drag1, drag2 = tilt_drag(It, L, e1, e2)
         e1x, e1y, e1z = e1
         e2x, e2y, e2z = e2
-        Fr, kr, kw, q = row_load(P, Y[Y_E])
+        Fr, kr, kw, q, arc = row_load(P, Y[Y_E])
         stroke = row_stroke(Y, P, drive.theta, ax)
         lag, series = row_play(P, Y[Y_X], drive.w, drive.theta, stroke)
         f1 = f2 = 0.0
         if P[P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
             fa, f1, f2, _j, _j, _j, _j, _j, _j = row_sliding_friction(
-                P, q, Y[Y_UD], L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), 0.0, series)
+                P, q, Y[Y_UD], L[L_VAX], Y[Y_B1D], Y[Y_B2D], row_lever(P, Fr, q), arc, 0.0, series)
             Q[0] -= fa
         if P[P_ROLLING_RESISTANCE] > 0.5 and q > 0.0:
             Q[1] -= row_rolling_resistance(P, q, Y[Y_OM], L[L_SPIN], 0.0)[0]

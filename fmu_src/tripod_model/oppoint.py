@@ -205,7 +205,7 @@ def row_sums(P, a):
     """The lumped row with the roller a >= 0 [m] off the trunnion axis (needle_row.sum_row
     over P's row, as the resolved row's start sums it: roller_setup.row_load): the radial
     load |F_r| [N], its tangent stiffness along the load k_r and across it k_w [N/m], the sum
-    of the needle loads q [N]."""
+    of the needle loads q [N] and that sum weighted by sin^2 of their angle q_s [N]."""
     return sum_row(P[P_NEEDLE_CLEARANCE], int(P[P_NROW]), P[P_KN1], a)
 
 

@@ -76,7 +76,7 @@ def trunnion_force(Y, P, x0, rate, drive, W):
         fx = res[K.R_FX]
         fz = res[K.R_FZ] - P[K.P_M_ROLLER] * L[K.L_QZDD]
         return fx, -(fx * ax + fz * az) / ay, fz, groove_stiffness_x(P, res, c)
-    Fr, kr, kw, q = row_load(P, Y[K.Y_E])
+    Fr, kr, kw, q, arc = row_load(P, Y[K.Y_E])
     lever = row_lever(P, Fr, q)
     # the radial damping the roller's step puts between it and the trunnion (kernel's lumped
     # radial step: the row's and the groove's stiffness together)
@@ -87,7 +87,7 @@ def trunnion_force(Y, P, x0, rate, drive, W):
     if P[K.P_FRICTION_NEEDLE] > 0.5 and q > 0.0:
         series = row_play(P, Y[K.Y_X], drive.w, drive.theta, row_stroke(Y, P, drive.theta, ax))[1]
         fa = row_sliding_friction(P, q, Y[K.Y_UD], L[K.L_VAX], Y[K.Y_B1D], Y[K.Y_B2D],
-                                  lever, 0.0, series)[0]
+                                  lever, arc, 0.0, series)[0]
     e1x, e1y, e1z = e1
     e2x, e2y, e2z = e2
     return (-(Fr * e1x + Fw * e2x) + fa * ax, -(Fr * e1y + Fw * e2y) + fa * ay,
