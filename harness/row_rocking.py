@@ -127,3 +127,38 @@ def play_operator(stroke, play, carry=contact.ROW_CARRY, passes=3):
             prev = s
             out[i] = s - lag
     return out
+
+
+def arc_moments(theta, F, omega, cycles=3, dt=1e-4):
+    """The needles' axial friction around the loaded arc (docs/model.md, "The needles' friction
+    around the loaded arc"): a needle-resolved run of one roller at the pressing load F [N],
+    joint angle theta [rad], whirl omega [rad/s]; per communication step of dt [s] over the
+    last whole cycle of `cycles`, the whirl angle [rad], the moment about e1 [N m] of the
+    resolved needles' axial friction at the bore, sum x2_j F3_j (x2_j = r_bore sin of needle
+    j's angle from e1), and that of the lumped row's law at the resolved roller's motion with
+    the line's length left out (contact.row_sliding_friction, P_LT = 0: the arc's part only)."""
+    m = ContactModel({"bearing": 2, "theta": theta, "omega": omega, "F_press": F})
+    lumped = ContactModel({"bearing": 1, "theta": theta, "omega": omega, "F_press": F})
+    lumped.step(dt, theta, omega, F)               # (its parameter vector at this scene)
+    P = lumped.P.copy()
+    P[K.P_LT] = 0.0
+    n = m.n_needle_bodies
+    q = K.Y_LEN + K.N_F * np.arange(n)
+    rb = m.P[K.P_R_BORE]
+    L = np.full(K.L_LEN, np.nan)
+    rows = []
+    for _ in range(int(round(cycles * 2 * math.pi / omega / dt))):
+        m.step(dt, theta, omega, F)
+        groove_moment_e2(m, omega, theta, L)       # (leaves the trunnion's line in L)
+        Y = m.Y
+        x2 = rb * Y[q + 1] / np.hypot(Y[q], Y[q + 1])
+        resolved = float((x2 * m.NW.ND[:n, K.D_R3]).sum())
+        P[K.P_VST_OP] = m.P[K.P_VST_OP]
+        Fr, _kr, _kw, qs, arc = contact.row_load(P, Y[K.Y_E])
+        stroke = contact.row_stroke(Y, P, theta, L[K.L_AX])
+        series = contact.row_play(P, Y[K.Y_X], omega, theta, stroke)[1]
+        f1 = contact.row_sliding_friction(P, qs, Y[K.Y_UD], L[K.L_VAX], Y[K.Y_B1D], Y[K.Y_B2D],
+                                          contact.row_lever(P, Fr, qs), arc, 0.0, series)[1]
+        rows.append((m.whirl_angle, resolved, -f1))
+    a = np.array(rows)
+    return a[a[:, 0] >= a[-1, 0] - 2 * math.pi]

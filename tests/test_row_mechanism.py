@@ -38,19 +38,19 @@ def test_lumped_row_shares_the_load_as_the_resolved_row(F):
 
 
 @pytest.mark.slow   # (two resolved rows: about 30 s)
-@pytest.mark.parametrize("F, bound3", [(4500.0, 0.03), (45000.0, 0.05)])
-def test_both_fast_models_follow_the_resolved_row_at_the_papers_scene_and_a_launch(F, bound3):
+@pytest.mark.parametrize("F", [4500.0, 45000.0])
+def test_both_fast_models_follow_the_resolved_row_at_the_papers_scene_and_a_launch(F):
     """One roller, 8 deg, 10 Hz: order 3 of Fz, complex (amplitude and phase), of the lumped
     row and of the analytic model at its default (its needle row) against the resolved row's:
-    within 3 % at 4.5 kN (300 N m, the paper's kind of load; measured 0.6 % lumped, 1.2 %
-    analytic) and 5 % at 45 kN (3000 N m, a launch; measured 4.1 % and 4.1 %: the 3 % the
-    issue asks for is not reached there, docs/model.md says what both leave out); order 1
-    within 5 % (measured 1.8 % and 2.9 % lumped, 1.9 % and 3.0 % analytic).  The resolved
-    row's realizations spread by about 0.2 % here; the ideal bearing is 10 % and 19 % off."""
+    within the issue's 3 % at 4.5 kN (300 N m, the paper's kind of load; measured 0.5 % lumped,
+    1.3 % analytic) and at 45 kN (3000 N m, a launch; measured 1.9 % and 1.3 %; 4.1 % and 4.1 %
+    with the needles' friction at one point, not around the loaded arc); order 1 within 5 %
+    (measured 1.8 % and 2.4 % lumped, 2.0 % and 2.6 % analytic).  The resolved row's
+    realizations spread by about 0.2 % here; the ideal bearing is 10 % and 19 % off."""
     res, lum = (contact_orders(PAPER, THETA, F, OMEGA, b) for b in (2, 1))
     ana = analytic_orders(PAPER, THETA, F, OMEGA)
     for fast in (lum, ana):
-        assert off(fast, res, 3) < 100 * bound3
+        assert off(fast, res, 3) < 3.0
         assert off(fast, res, 1) < 5.0
 
 
@@ -60,7 +60,7 @@ def test_both_fast_models_follow_the_resolved_row_over_the_envelope(i):
     """Scenes 13-18 of the envelope's grid (harness/envelope_grid.py: the three joints, 2.7-23.6
     deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md), one roller's Fz
     against the needle-resolved row's (complex).  The lumped row: order 3 within the issue's 3 %
-    (measured 0.3-1.9 %), order 1 within 5 % (0.5-3.3 %).  The analytic model at its default
+    (measured 0.3-1.8 %), order 1 within 5 % (0.5-3.3 %).  The analytic model at its default
     (its needle row): within 5 % in both (measured 1.0-4.3 % and 1.1-4.5 %, the most at scene
     15, a light load at 23.6 deg); the issue's 3 % is not reached there, docs/validation.md
     says where.  The resolved row's realizations spread by about 0.2 %.  (Of the grid's 24
@@ -179,3 +179,19 @@ def test_the_resolved_rows_needles_lag_the_trunnion_within_their_play():
     assert np.ptp(d) == pytest.approx(np.ptp(pred), rel=0.03)
     assert abs(np.ptp(d) - 0.5 * np.ptp(stroke)) > 0.3 * np.ptp(stroke)
     assert np.corrcoef(pred, d)[0, 1] > 0.99
+
+
+@pytest.mark.slow   # (one resolved row: about 20 s)
+def test_the_lumped_rows_arc_carries_the_resolved_needles_friction_moment():
+    """At 8 deg, 45 kN (one roller, 10 Hz): the moment about e1 of the resolved needles' axial
+    friction at the bore (sum x2_j F3_j) against the lumped law's around the loaded arc (its
+    two points +-row_arc, the line's length left out) at the resolved roller's own motion,
+    orders 1 and 3 over the last of three cycles: within 25 % in amplitude and 10 deg
+    (measured +17 % and +7 %, -5.5 and -5.9 deg: the arc's two points stand for needles spread
+    over +-70 deg, whose slips saturate the tanh law unequally).  A law at one point has none."""
+    a = R.arc_moments(THETA, 45000.0, OMEGA)
+    res, arc = (last_cycle_orders(np.arange(len(a)), a[:, k], a[:, 0], (1, 3)) for k in (1, 2))
+    for k in (1, 3):
+        assert arc[k][0] == pytest.approx(res[k][0], rel=0.25), k
+        assert abs((arc[k][1] - res[k][1] + 180.0) % 360.0 - 180.0) < 10.0, k
+    assert res[1][0] > 0.5      # N m: the resolved row has the moment the one-point law lacks
