@@ -187,10 +187,19 @@ def test_the_flanks_sit_the_running_clearance_apart(c):
 NEWTON_REL = 5e-5
 
 
-@pytest.mark.parametrize("sv,rel", [
-    ({"n_rollers": 3}, 1e-8),       # measured 2.2e-9 (Fz_joint) away from the load's zero
-    ({"bearing": 1}, NEWTON_REL)], ids=["three-rollers", "lumped"])
-def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_path):
+# the lumped row across the load's zero: the adaptive substeps' accept and reject decisions flip
+# on rounding there and leave a difference of the order of their local error (measured 1.4e-4
+# of contact_y, 8.6e-5 of it 2-5 ms after the zero; the clearance, were it to move the contact,
+# would move it by half its 0.6 mm change, 0.15 of contact_y's scale)
+CROSSING_REL = 5e-4
+
+
+@pytest.mark.parametrize("sv,rel,settle,across", [
+    # measured 2.2e-9 (Fz_joint) away from the load's zero
+    ({"n_rollers": 3}, 1e-8, 2e-3, NEWTON_REL),
+    ({"bearing": 1}, NEWTON_REL, 5e-3, CROSSING_REL)], ids=["three-rollers", "lumped"])
+def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, settle, across,
+                                                                 tmp_path):
     """Through a torque reversal 300 -> -300 N m, running clearance 1 mm against
     the geometry's 0.4 mm: each flank is the same arc, moved across the track, so every force
     and the contact point along the trunnion are the same to rounding (the coast symmetry's
@@ -198,10 +207,14 @@ def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_pat
     and the stiff contact carries that over 3000 steps), and with the lumped bearing to the
     Newton's tolerance.  The crossing spans more, nothing else: the roller goes with the
     trunnion (held on it, or on the row), which jumps across the clearance at the load's zero.
-    Within 2 ms of that zero the bound is the Newton's for both: the load's step there is taken
-    by the error-controlled adaptive substeps (genalpha.GA_STEP_IN), whose accept and reject
-    decisions, and the Newton's stops, can flip on rounding (three rollers: 2.4e-9 of Fz_joint
-    there through the FMU, 2.7e-8 in a run in process that reaches the zero at other loads)."""
+    Within `settle` of that zero the bound is the Newton's for both: the load's step there is
+    taken by the error-controlled adaptive substeps (genalpha.GA_STEP_IN), whose accept and
+    reject decisions, and the Newton's stops, can flip on rounding (three rollers: 2.4e-9 of
+    Fz_joint there through the FMU, 2.7e-8 in a run in process that reaches the zero at other
+    loads), and the lumped row settles from what they leave within about 20 ms, its friction
+    around the loaded arc damping the roller's tilt (contact_y: 8.6e-5 of its scale 2-5 ms after
+    the zero, 7.8e-6 at 5-10 ms, 1.2e-6 at 15-20 ms, 1.9e-9 at 20-30 ms): 2 ms, and 5 ms for
+    the lumped row."""
     inputs = {"time": [0.0, 0.05, 0.25, 0.3], "torque": [300.0, 300.0, -300.0, -300.0]}
     a, _ = run("TripodRoller", sv, tmp_path, "a", stop=0.3, inputs=inputs)
     b, info = run("TripodRoller", dict(sv, running_clearance=1e-3), tmp_path, "b", stop=0.3,
@@ -209,12 +222,12 @@ def test_the_running_clearance_moves_the_flanks_not_the_contact(sv, rel, tmp_pat
     assert b is not None, info
     names = ("Fx", "Fy", "Fz", "Fz_joint", "contact_y", "T_housing") + (
         ("Fx_2", "Fz_3") if sv.get("n_rollers") == 3 else ())
-    crossing = np.abs(a["time"] - 0.15) <= 2e-3     # the torque's zero: 300 -> -300 over 0.2 s
+    crossing = np.abs(a["time"] - 0.15) <= settle   # the torque's zero: 300 -> -300 over 0.2 s
     assert crossing.sum() >= 40
     for k in names:
         d, scale = np.abs(a[k] - b[k]), np.max(np.abs(a[k]))
         assert np.max(d[~crossing]) <= rel * scale, k
-        assert np.max(d[crossing]) <= max(rel, NEWTON_REL) * scale, k
+        assert np.max(d[crossing]) <= across * scale, k
 
 
 def test_a_running_clearance_below_the_grooves_is_refused(tmp_path):

@@ -307,7 +307,8 @@ def test_a_state_resumes_in_a_fresh_instance_of_another_process(case, tmp_path):
     bound = WINE_BOUND.get(case, 1e-9)
     off = np.abs(rw[half:] - full[half:])
     assert (off[0] <= 1e-9 * scale).all()       # the state itself carried over exactly
-    assert (off.max(axis=0) <= bound * scale).all()
+    worst = off.max(axis=0) / np.where(scale > 0, scale, 1.0)
+    assert (worst <= bound).all(), {i: float(v) for i, v in enumerate(worst) if v > bound}
 
 
 @pytest.mark.skipif(shutil.which("valgrind") is None, reason="valgrind not installed "

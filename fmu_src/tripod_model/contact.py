@@ -374,17 +374,14 @@ ROW_SERIES = 0.5
 
 @inline
 def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, arc, h, series):
-    """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, tanh law on
-    the 2-D slip, as each needle contact of the resolved row has it), as two line contacts
-    along the needles (length l, ROW_LINE points y along each, q / (2 ROW_LINE) each) on the
-    loaded arc: lever [m] along the pressing direction e1 from the trunnion axis (row_lever)
-    and +-arc [m] across it (row_arc), where the needles meet the bore.  The slip along the
-    trunnion there is the slide's ud - vax less the bore's own axial motion from the tilts,
-    lever b2d about e2 and -+arc b1d about e1; across, along the needles' rolling direction,
-    it is the tilt about e1's b1d y, which a needle cannot roll away (it varies along the
-    needle); `series` of each is the bore's (row_play).  q: the needle loads [N]; ud, vax
-    [m/s]; b1d, b2d [rad/s].  Returns the generalized forces against the slide [N] and the
-    tilts about e1, e2 [N m] and h [s] times their symmetric Jacobian in (ud, b1d, b2d):
+    """Lumped row: the loaded needles' sliding friction on the roller (mu_needle, the resolved
+    contacts' tanh law on the 2-D slip) as two line contacts along the needles (ROW_LINE
+    points y along each, q / (2 ROW_LINE) each) where they meet the bore: lever [m] along the
+    pressing direction e1 (row_lever), +-arc [m] across it (row_arc).  The slip along the
+    trunnion there is ud - vax less the bore's axial motion from the tilts (lever b2d, -+arc
+    b1d); across, the tilt about e1's b1d y, which a needle cannot roll away; `series` of each
+    is the bore's (row_play).  q [N]; ud, vax [m/s]; b1d, b2d [rad/s].  Returns the forces
+    against the slide [N] and the tilts [N m] and h [s] times their Jacobian in (ud, b1d, b2d):
     (f_u, f_1, f_2, h j_uu, h j_u1, h j_u2, h j_11, h j_12, h j_22) (docs/model.md, "What the
     needle row does to the thrust", "The needles' friction around the loaded arc")."""
     k3 = series * 3.0 / P[P_VST_OP]
@@ -408,13 +405,12 @@ def row_sliding_friction(P, q, ud, vax, b1d, b2d, lever, arc, h, series):
             if s > 0.0:
                 t = (k3 * (1.0 - g * g) - gs) / (s * s)   # (dg/d|s| - g/|s|) / |s|^2
             cw = c * w
-            ga = gs + t * sa * sa                   # d(gs sa) / d sa
+            ga = gs + t * sa * sa   # d(gs sa) / d sa (b2d: the chain rule, -lever)
             fa += cw * gs * sa
             f1 += cw * gs * (st * d + sa * x2)
             jaa += cw * ga
             ja1 += cw * (ga * x2 + t * sa * st * d)
             j11 += cw * ((gs + t * st * st) * d * d + 2.0 * t * sa * st * d * x2 + ga * x2 * x2)
-    # the slip along the trunnion is sa = ud - lever b2d + x2 b1d: the chain rule for b2d
     return (fa, f1, -lever * fa, h * jaa, h * ja1, -h * lever * jaa, h * j11,
             -h * lever * ja1, h * lever * lever * jaa)
 
