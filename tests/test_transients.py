@@ -292,6 +292,13 @@ ULP_CASES = {"ideal": ({}, 300.0), "lumped": ({"bearing": 1}, 300.0),
              "floating-spider": ({"spider": 1}, 300.0),
              "floating-spider-lumped": ({"spider": 1, "bearing": 1}, 300.0),
              "floating-spider-lumped-launch": ({"spider": 1, "bearing": 1}, 3000.0)}
+# The floating spider's lumped rows start each substep's Newton from their forces, and where a
+# last bit flips whether Newton stops, the step it did not take is left: at most GA_NTOL v_st
+# in a velocity, which moves the friction by at most its slope, 3 mu f_n / v_st, times that:
+# 3 GA_NTOL of mu f_n, and mu f_n is several times Fz_joint's scale; held to 3 GA_NTOL of the
+# scale.  Measured 2.4e-8 at 300 N m (two isolated spikes a cycle) and 4.5e-12 at 3000 N m;
+# the other cases 0-2.5e-12, held to 1e-9 (docs/integrators.md).
+ULP_NEWTON = {"floating-spider-lumped", "floating-spider-lumped-launch"}
 
 
 @pytest.mark.parametrize("case", sorted(ULP_CASES))
@@ -299,7 +306,8 @@ def test_an_ulp_of_an_input_moves_the_outputs_by_a_rounding(case):
     # outputs continuous in the inputs (oppoint.JUMP_FULL, genalpha.GA_NTOL, the driving
     # motions' rates in closed form): the whole joint settled at 10 Hz, 8 deg, 300 N m (and a
     # launch's 3000 N m on the floating spider); omega, theta and torque each moved by one ulp
-    # and held: Fz_joint within 1e-9 of its scale of the unmoved run over the next 1,000 steps.
+    # and held: Fz_joint within 1e-9 of its scale of the unmoved run over the next 1,000 steps
+    # (the floating spider's lumped rows: ULP_NEWTON).
     # A restart taken in full on any change moved it by 6.8e-5 to 1.9e-4; Newton stopped at
     # 1e-3 v_st, the floating spider's lumped rows by 1.2e-4 to 2.6e-4; the rates by finite
     # differences, theta by 1.1e-9 to 3.1e-9 whatever its move.  Measured 0-9.0e-12
@@ -322,7 +330,8 @@ def test_an_ulp_of_an_input_moves_the_outputs_by_a_rounding(case):
     base = run(None)
     scale = np.abs(base).max()
     moved = {n: np.abs(run(n) - base).max() / scale for n in T.INPUTS}
-    assert max(moved.values()) < 1e-9, moved
+    from tripod_model.genalpha import GA_NTOL
+    assert max(moved.values()) < (3 * GA_NTOL if case in ULP_NEWTON else 1e-9), moved
 
 
 def test_the_integrator_restarts_where_the_inputs_jumped():
