@@ -487,8 +487,8 @@ def test_a_crafted_contact_state_is_refused_or_meets_the_budget(slide, outcome, 
     """The roller's slide u in a serialised state (checksum made valid): at 0.5 m (the joint is
     0.022 m) refused when set, naming the bound; at 3 mm (inside the 6 mm bound, runs reach
     0.1 mm) taken, and one of its next two steps refused once the adaptive substeps have
-    tried their budget, with one line saying so (budget.py; measured: the second, at 0.1001 s,
-    the first step's generalized-alpha Newton getting through in its 30 iterations)."""
+    tried their budget, with one line saying so (budget.py; measured: the first, at 0.1 s;
+    with Newton given 30 iterations, tried, the second)."""
     from tripod_model import layout as K, lifecycle as LC
     at = LC.T_LEN + LC.IN_LEN + LC.X_Y + K.Y_U   # (the state's arrays: P, IN, X, ...)
     p = subprocess.run([sys.executable, "-c", _CRAFTED, str(ensure_fmu("TripodRoller")),
