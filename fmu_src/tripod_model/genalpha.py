@@ -29,8 +29,8 @@ RHO_GA = 0.8   # spectral radius at infinity; 1 (no numerical damping) lets the 
 # whose lumped rows start each substep from their forces, one ulp of an input grows to 1e-4 of
 # Fz_joint there; at 1e-5 it stays below 1e-11, or 2.4e-8 where a flip of the stop leaves a
 # step untaken (the lumped row's friction around the loaded arc: at most 3 GA_NTOL of mu f_n;
-# 1e-6 with 30 iterations removed that and broke the floating spider's lumped grid: a step
-# halved by the line search passed as converged) (docs/integrators.md, "Newton stops at 1e-5")
+# 1e-6 with 30 iterations removed that but broke the floating spider's lumped grid, not
+# examined further) (docs/integrators.md, "Newton stops at 1e-5")
 GA_NTOL = 1e-5
 GA_MAXIT = 12
 
