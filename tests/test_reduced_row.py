@@ -167,17 +167,18 @@ def test_the_lumped_rows_friction_acts_around_the_loaded_arc():
     squeeze = np.clip(a * np.cos(psi) - c, 0.0, None)
     qj = c1 * squeeze ** (10.0 / 9.0)
     assert q == pytest.approx(qj.sum(), rel=1e-12)
-    k = NR.ROW_CARRY * 3.0 / P[K.P_VST_OP]          # half the slip at the bore (ROW_SERIES)
+    series = contact.ROW_SERIES                      # half the slip at the bore
+    k = series * 3.0 / P[K.P_VST_OP]
     mu, l = P[K.P_MU_NEEDLE], math.sqrt(12.0 * P[K.P_LT])
     y = l * ((np.arange(7) + 0.5) / 7 - 0.5)
     lever = contact.row_lever(P, Fr, q)
     b1d = 1e-12 * P[K.P_VST_OP] / rb                # k x2 b1' about 1e-12: linear
-    f = contact.row_sliding_friction(P, q, 0.0, 0.0, b1d, 0.0, lever, arc, 0.0, 0.5)
+    f = contact.row_sliding_friction(P, q, 0.0, 0.0, b1d, 0.0, lever, arc, 0.0, series)
     want = mu * k * b1d * ((qj * (rb * np.sin(psi)) ** 2).sum() + q * (y * y).mean())
     assert f[1] == pytest.approx(want, rel=1e-12)
     assert arc > 0.3 * rb                            # the load fans out well off e1 at 45 kN
     s = 0.7 * P[K.P_VST_OP]
-    f = contact.row_sliding_friction(P, q, s, 0.0, 0.0, 0.0, lever, arc, 0.0, 0.5)
+    f = contact.row_sliding_friction(P, q, s, 0.0, 0.0, 0.0, lever, arc, 0.0, series)
     assert f[0] == pytest.approx(mu * q * math.tanh(k * s), rel=1e-12)
 
 
