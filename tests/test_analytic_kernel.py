@@ -1,20 +1,56 @@
 """reduced_model/analytic_kernel.py, the analytic FMU's one source: run as Python (the
-in-process oracle, the reports) and compiled by numba (the FMU's binary) it gives the same bits; its notes word what
+in-process oracle, the reports) and compiled (the FMU's binary) it gives the same bits; its notes word what
 the Python reports and the table's checks word; its state check refuses what it cannot step."""
+import json
 import math
+import subprocess
+import sys
 
 import numpy as np
 import pytest
 
+from harness.fmus import ensure_fmu
+from harness.inprocess import _layout_and_model
 from reduced_model import analytic_kernel as K
 from reduced_model import scene as sc
 from reduced_model.traverse import outside_checked
 
-
-@pytest.fixture(scope="module")
-def compiled():
-    pytest.importorskip("numba")
-    return K.compiled_namespace()
+# the FMU's binary under a host's calls, in a fresh process: its parameters set, initialised,
+# then each step's inputs set and stepped; every Real output and the state's X after each
+_NATIVE = r'''
+import json, struct, sys
+import numpy as np
+from fmpy import extract, read_model_description
+from fmpy.fmi2 import FMU2Slave
+fmu, req = sys.argv[1], json.loads(sys.argv[2])
+md = read_model_description(fmu)
+var = {v.name: v for v in md.modelVariables}
+s = FMU2Slave(guid=md.guid, unzipDirectory=extract(fmu),
+              modelIdentifier=md.coSimulation.modelIdentifier, instanceName="native")
+s.instantiate()
+s.setupExperiment(startTime=0.0)
+s.enterInitializationMode()
+for name, value in req["set"].items():
+    v = var[name]
+    {"Real": s.setReal, "Integer": s.setInteger,
+     "Boolean": s.setBoolean}[v.type]([v.valueReference], [value])
+s.exitInitializationMode()
+real = [v for v in md.modelVariables if v.causality == "output" and v.type == "Real"]
+outs = [v.valueReference for v in real]
+rows, xs = [], []
+for t, h, ins in req["steps"]:
+    for name, value in ins.items():
+        s.setReal([var[name].valueReference], [value])
+    s.doStep(t, h)
+    rows.append(s.getReal(outs))
+    blob = s.serializeFMUstate(s.getFMUstate())
+    at = req["header"] + 8 * req["x_at"]
+    xs.append(struct.unpack_from(f"<{req['x_len']}d", blob, at))
+np.save(req["out"], np.array(rows))
+np.save(req["out"] + ".x.npy", np.array(xs))
+print(json.dumps([v.name for v in real]))
+'''
+HEADER = 8 + 4 * 4 + 6 * 4 + 8      # fmi2_native.c's state: magic, 4 words, 6 sizes, time
 
 
 def _arrays(over):
@@ -48,25 +84,44 @@ SCENES = {   # name: (parameters and start inputs, the inputs at step i)
 
 
 @pytest.mark.parametrize("name", sorted(SCENES))
-def test_compiled_and_python_give_the_same_bits(name, compiled):
-    """init and 200 steps (a varying step size) with the inputs moving: every output and every
-    state value equal to the last bit, compiled against Python."""
+def test_the_binary_and_python_give_the_same_bits(name, tmp_path):
+    """init and 200 steps (a varying step size) with the inputs moving: every output and the
+    state X after every step equal to the last bit, the FMU's binary in a fresh process (the
+    kernel compiled, no Python) against the kernel as Python here."""
     over, inputs = SCENES[name]
     vals = dict(sc.defaults("analytic"), **over)
-    a, b = _arrays(over), _arrays(over)
-    assert K.init(*a) == compiled["init"](*b) == 1
-    for k in (2, 3):
-        assert np.array_equal(a[k], b[k])
-    t = 0.0
+    T, IN, X, OUT, W = _arrays(over)
+    assert K.init(T, IN, X, OUT, W) == 1
     rng = np.random.default_rng(1)
+    t, steps, rows, xs = 0.0, [], [], []
     for i in range(200):
         h = float(rng.uniform(5e-5, 2e-4))
-        for n, v in inputs(i, vals).items():
-            a[1][K.INPUT_NAMES.index(n)] = b[1][K.INPUT_NAMES.index(n)] = v
-        assert K.step(*a, t, h) == compiled["step"](*b, t, h) == 1
+        ins = inputs(i, vals)
+        for n, v in ins.items():
+            IN[K.INPUT_NAMES.index(n)] = v
+        assert K.step(T, IN, X, OUT, W, t, h) == 1
+        steps.append((t, h, ins))
+        rows.append(OUT.copy())
+        xs.append(X.copy())
         t += h
-        assert np.array_equal(a[2], b[2]) and np.array_equal(a[3], b[3]), i
-    assert np.ptp(a[3][:K.FZ + 1]) > 0 and np.isfinite(a[3]).all()
+    fmu = ensure_fmu("TripodRollerAnalytic")
+    req = {"set": {n: over[n] for n in over}, "steps": steps, "out": str(tmp_path / "r.npy"),
+           "header": HEADER, "x_at": len(T) + len(IN), "x_len": len(X)}
+    p = subprocess.run([sys.executable, "-c", _NATIVE, str(fmu), json.dumps(req)],
+                       capture_output=True, text=True, timeout=600)
+    assert p.returncode == 0, p.stderr[-3000:]
+    native, native_x = np.load(req["out"]), np.load(req["out"] + ".x.npy")
+    names = json.loads(p.stdout.strip().splitlines()[-1])
+    slots = [_layout_and_model("TripodRollerAnalytic")[0]["arrays"][n][1] for n in names]
+    python = np.array(rows)[:, slots]            # (the binary's outputs in their order)
+    assert np.array_equal(native_x, np.array(xs))
+    assert np.array_equal(native, python), _first_difference(native, python, names)
+    assert np.ptp(python[:, names.index("Fz")]) > 0 and np.isfinite(native).all()
+
+
+def _first_difference(native, python, names):
+    i, j = np.argwhere(native != python)[0]
+    return f"step {i}, {names[j]}: {native[i, j]!r} against {python[i, j]!r}"
 
 
 def test_the_notes_word_what_the_reports_word():
