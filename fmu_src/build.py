@@ -32,11 +32,11 @@ COMPILED = {"Powertrain": ("driveline.mounts:c_functions", "driveline.powertrain
                                      "reduced_model.analytic_kernel:native_layout"),
             "TripodRoller": ("tripod_model.lifecycle:c_functions",
                              "tripod_model.lifecycle:native_layout")}
-NATIVE_FMU = (FMU_SRC / "native_fmu.py", FMU_SRC / "native" / "exports.map",
-              *(FMU_SRC / "native" / f for f in ("fmi2_native.c", "native_values.c",
-                                                 "native_state.c", "native_model.h",
-                                                 "native_values.h", "native_state.h")))
-AOT = (FMU_SRC / "aot.py", FMU_SRC / "native" / "aot_stubs.c")   # compiling ahead of time
+# the native layer: every file of native/ (a file added there is a source without a list to
+# keep), and what compiles ahead of time
+NATIVE_FMU = (FMU_SRC / "native_fmu.py",
+              *sorted(f for f in (FMU_SRC / "native").iterdir() if f.suffix in (".c", ".h", ".map")))
+AOT = (FMU_SRC / "aot.py",)
 
 
 def _py_files(paths):

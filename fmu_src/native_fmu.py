@@ -18,9 +18,10 @@ import aot
 
 FMU_SRC = Path(__file__).resolve().parent
 NATIVE = FMU_SRC / "native"
-LAYER = (NATIVE / "fmi2_native.c", NATIVE / "native_values.c", NATIVE / "native_state.c")
+LAYER = (NATIVE / "fmi2_native.c", NATIVE / "native_values.c", NATIVE / "native_state.c",
+         NATIVE / "native_units.c")
 SOURCES = LAYER + (NATIVE / "native_model.h", NATIVE / "native_values.h",
-                   NATIVE / "native_state.h", NATIVE / "aot_stubs.c")
+                   NATIVE / "native_state.h", NATIVE / "native_units.h", NATIVE / "aot_stubs.c")
 BINARY = {"linux64": "{id}.so", "win64": "{id}.dll"}
 
 
@@ -76,7 +77,9 @@ def model_data(xml: bytes, by_name: dict, arrays: dict, sizes: dict, symbols: di
         ['    {0, ""},']
     problems = ", ".join(_c_string(s) for s in notes["state_problems"])
     optional = []
-    for name, fallback in (("end", 1), ("check_state", 0)):
+    # (a model without a step in parts has no units: model_step takes every step whole)
+    for name, fallback in (("end", 1), ("check_state", 0), ("step_units", 0),
+                           ("step_begin", 0), ("step_unit", 0), ("step_finish", 0)):
         fn = "model_" + name
         if name in symbols:
             optional += [f"int32_t compiled_{name}(double **args) "
@@ -130,7 +133,7 @@ def binary(objs: dict, xml: bytes, layout: dict, target: str, dest: Path,
         # folder's name: the same sources give the same DLL)
         flags = (["-static-libgcc", "-Wl,--no-insert-timestamp", "-Wl,--disable-auto-image-base"]
                  if aot.TARGETS[target]["triple"] else
-                 ["-fPIC", "-fvisibility=hidden", "-Wl,-z,defs",
+                 ["-fPIC", "-pthread", "-fvisibility=hidden", "-Wl,-z,defs",
                   f"-Wl,--version-script={NATIVE / 'exports.map'}"])
         cmd = cc.split()[:1] + ["-std=c99", "-O2", "-shared", "-Wall", "-Wextra",
                                 f"-I{headers}", f"-I{NATIVE}", *map(str, LAYER),

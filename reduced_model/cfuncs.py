@@ -80,10 +80,11 @@ def finite_into(vals, OUT):
 
 
 def c_functions(g, sizes):
-    """numba cfuncs of g's init, step and, where g has them, end and check_state (njit
-    functions: init(T, IN, X, OUT, W), step(T, IN, X, OUT, W, t, h), end as init,
-    check_state(T, X) or (T, IN, X, W), W the instance's work); sizes: the lengths of T, IN, X,
-    OUT, W."""
+    """numba cfuncs of g's init, step and, where g has them, end, check_state and the step's
+    parts (njit functions: init(T, IN, X, OUT, W), step(T, IN, X, OUT, W, t, h), end as init,
+    check_state(T, X) or (T, IN, X, W), step_units(T), step_begin as step, step_unit(T, X, W,
+    i), step_finish(T, X, OUT, W, ok); W the instance's work); sizes: the lengths of T, IN,
+    X, OUT, W."""
     import numba as nb
     from numba import carray
 
@@ -104,6 +105,29 @@ def c_functions(g, sizes):
                       carray(args[4], (n_w,)), th[0], th[1])
 
     out["init"], out["step"] = c_init, c_step
+    if "step_unit" in g:   # a step in parts, its units stepped at once (native_model.h)
+        units_c, unit_c, begin_c, finish_c = (g["step_units"], g["step_unit"], g["step_begin"],
+                                              g["step_finish"])
+
+        def c_units(args):
+            return units_c(carray(args[0], (n_p,)))
+
+        def c_begin(args):
+            th = carray(args[5], (2,))
+            return begin_c(carray(args[0], (n_p,)), carray(args[1], (n_in,)),
+                           carray(args[2], (n_x,)), carray(args[3], (n_out,)),
+                           carray(args[4], (n_w,)), th[0], th[1])
+
+        def c_unit(args):     # TH[0]: the unit
+            return unit_c(carray(args[0], (n_p,)), carray(args[2], (n_x,)),
+                          carray(args[4], (n_w,)), int(carray(args[5], (2,))[0]))
+
+        def c_finish(args):   # TH[0]: 1.0 when every unit returned 1
+            return finish_c(carray(args[0], (n_p,)), carray(args[2], (n_x,)),
+                            carray(args[3], (n_out,)), carray(args[4], (n_w,)),
+                            carray(args[5], (2,))[0])
+        out.update(step_units=c_units, step_begin=c_begin, step_unit=c_unit,
+                   step_finish=c_finish)
     if "end" in g:
         end_c = g["end"]
 

@@ -46,6 +46,10 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
                                        ("mu_groove", 0.07), 0.5),
          "TripodRoller-resolved": (CONTACT_INPUTS, {"bearing": 2, "n_needles": 12},
                                    ("mu_groove", 0.07), 0.03),
+         # (its rollers stepped at once on the machine's cores: native_units.c)
+         "TripodRoller-resolved-three": (CONTACT_INPUTS, {"bearing": 2, "n_needles": 12,
+                                                          "n_rollers": 3},
+                                         ("mu_groove", 0.07), 0.01),
          "TripodRoller-free-spider": (CONTACT_INPUTS, {"spider": 1, "n_rollers": 3},
                                       ("mu_groove", 0.07), 0.5)}
 
@@ -59,7 +63,7 @@ CASES = {"Powertrain": (None, {}, ("mass", 200.0), 0.5),
 WINE_BOUND = {"TripodRoller-free-spider-lumped": 3 * GA_NTOL,
               "TripodRoller-lumped-three": 3 * GA_NTOL}
 # runs in which a last bit grows: the needle-resolved row's impacts
-LAST_BIT_GROWS = {"TripodRoller-resolved"}
+LAST_BIT_GROWS = {"TripodRoller-resolved", "TripodRoller-resolved-three"}
 
 
 @pytest.fixture(scope="module", params=sorted(CASES))
@@ -322,14 +326,15 @@ def test_the_linux_binary_is_valgrind_clean(fmus, tmp_path):
     d.mkdir()
     zipfile.ZipFile(fmus[0]).extractall(d)
     host = _host(os.environ.get("CC") or "cc", tmp_path / "fmu_run", ["-ldl"])
-    # (the contact FMU: 200 steps, each path of its step taken; the analytic FMU: 400, its
-    # table at the start, then the march under the master from the first step on; memcheck
-    # runs 50x slower)
+    # (the contact FMU: 200 steps, each path of its step taken; three needle-resolved rollers:
+    # 40, each step their threads started and joined; the analytic FMU: 400, its table at the
+    # start, then the march under the master from the first step on; memcheck runs 50x slower)
     p, _ = _run(["valgrind", "--leak-check=full", "--errors-for-leak-kinds=definite",
                  "--error-exitcode=9", "-q", str(host),
                  str(d / f"binaries/linux64/{_model_id(fmus[0])}.so")],
                 fmus, tmp_path / "out.bin", {"PATH": "/usr/bin:/bin"},
-                steps=200 if fmus[2].startswith("TripodRoller-") or fmus[2] == "TripodRoller"
+                steps=40 if fmus[2] == "TripodRoller-resolved-three"
+                else 200 if fmus[2].startswith("TripodRoller-") or fmus[2] == "TripodRoller"
                 else 400 if fmus[2].startswith("TripodRollerAnalytic") else None)
     assert p.returncode == 0, p.stderr[-3000:]
 

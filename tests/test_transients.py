@@ -216,7 +216,7 @@ def test_a_jump_below_a_step_input_restarts_bdf2_by_backward_euler():
 
 def test_a_load_change_moves_the_needle_rows_offset_over_its_step(monkeypatch):
     # the mechanism: the needle-resolved bearing's pressing offset moves from the old load's
-    # value to the new one's over the step in which the load changed (lifecycle.step_resolved),
+    # value to the new one's over the step in which the load changed (lifecycle.step_unit),
     # ending where the held load puts it; no ramp at the first step, at an unchanged load,
     # after a restore at the load the state was stepped at, or with a comparison integrator
     m = T._model({"bearing": 2, "n_needles": 12}, 1)

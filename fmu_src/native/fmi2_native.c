@@ -7,8 +7,10 @@
      from the parameter table into model_data.c, its sizes, its four functions);
    - native_values.c: values checked and worded as reduced_model/scene.py's check_param does;
    - native_state.c: the FMU state serialised as checked data (magic, sizes, GUID, CRC-32),
-     nothing in it sizing an allocation.
-   Each instance owns its memory; no global state, no thread, nothing at exit. */
+     nothing in it sizing an allocation;
+   - native_units.c: a step's independent units (a joint's needle-resolved rollers) run at once
+     on the machine's cores, the only platform code (threads, each joined within the step).
+   Each instance owns its memory; no global state, no thread outlives a call, nothing at exit. */
 #include <float.h>
 #include <math.h>
 #include <stdarg.h>
@@ -19,6 +21,7 @@
 #include "fmi2Functions.h"
 #include "native_model.h"
 #include "native_state.h"
+#include "native_units.h"
 #include "native_values.h"
 
 typedef enum { INSTANTIATED, INIT_MODE, STEP_COMPLETE, STEP_FAILED, TERMINATED, ERRORED } Phase;
@@ -460,7 +463,7 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     }
     c->arr[A_TH][0] = t;
     c->arr[A_TH][1] = h;
-    int32_t rc = model_step(c->arr);
+    int32_t rc = native_step(c->arr);
     if (MODEL_NOTES_AT >= 0 && c->arr[A_W][MODEL_NOTES_AT] != 0.0) {   /* (worded only then) */
         char prefix[96];
         snprintf(prefix, sizeof prefix, "step refused at t = %g s: ", t);

@@ -58,6 +58,16 @@ int32_t model_init(double **args);
 int32_t model_step(double **args);
 /* the run's end (notes only): 1 */
 int32_t model_end(double **args);
+/* A step in parts, where it has independent units (a joint's needle-resolved rollers):
+   model_step_units(args) of them (0: model_step takes every step whole);
+   model_step_begin(args) as model_step until the units: 4 when they are next, else
+   model_step's code; model_step_unit(args) with TH[0] the unit's index: 1, 3 out of its budget
+   (0 an error), each unit reading and writing only its own slices; model_step_finish(args)
+   with TH[0] 1.0 when every unit returned 1: model_step's code (native_units.c) */
+int32_t model_step_units(double **args);
+int32_t model_step_begin(double **args);
+int32_t model_step_unit(double **args);
+int32_t model_step_finish(double **args);
 /* 0: the state's arrays (args) can be stepped; else a code of MODEL_STATE_PROBLEMS */
 int32_t model_check_state(double **args);
 

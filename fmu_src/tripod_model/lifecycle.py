@@ -1,8 +1,10 @@
 """The contact FMU's lifecycle as scalar functions over flat arrays, as
-reduced_model/analytic_kernel.py keeps the analytic FMU's: ``init``, ``step``, ``end`` and ``state_problem``, compiled ahead of
-time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without Python.  They
-compose the model's own functions: roller_setup.py (the parameter vector, the needle row, the
-start on the settled cycle) and kernel.py (the step), and run as Python in process
+reduced_model/analytic_kernel.py keeps the analytic FMU's: ``init``, ``step`` (in parts, whose
+units native_units.c runs at once), ``end`` and host_state.py's ``state_problem``, compiled
+ahead of time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without
+Python.  They compose the model's own functions: roller_setup.py (the parameter vector, the
+needle row, the start on the settled cycle) and kernel.py (the step), and run as Python in
+process
 (harness/inprocess.py) they are the oracle the binary is held to bit for bit
 (tests/test_native_fmu.py).  The arrays, their places and views: fmu_arrays.py.
 """
@@ -26,8 +28,8 @@ from .fmu_arrays import (ANALYTIC_SLOTS, FAILS, IN_HI, IN_LEN, IN_LO, INPUT_NAME
                          work, W_A, W_B, W_G, W_GW, W_RES, W_Y1)
 from .kernel import (_roller, derive_op, inputs_moved, joint_into, outputs_into, resolved_drive,
                      run_substeps, spider_into, step_joint, step_roller)
-from .oppoint import P_DERIVED, OP_DERIVED, substep, v_st
-from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE, T_L_NEEDLE,
+from .oppoint import substep, v_st
+from .roller_setup import (PARAM_NAMES, T_BEARING, T_DRIVE_BY_ANGLE,
                            T_N_ROLLERS, T_SPIDER, T_R_BORE, T_R_GROOVE, T_R_ROLLER, T_RUNNING_CLEARANCE,
                            T_S, T_AXIAL, T_TRAVERSE, kernel_params, needle_params,
                            place_on_cycle, pressing_offset, start_needles, start_state,
@@ -35,6 +37,8 @@ from .roller_setup import (PARAM_NAMES, T_BEARING, T_D_NEEDLE, T_DRIVE_BY_ANGLE,
 # (SPEED_MARGIN, VST_HI, WHIRL_HI: globals of the compiled copies of state_check's functions)
 from .state_check import (SPEED_MARGIN, VST_HI, WHIRL_HI, history_bound,  # noqa: F401
                           roller_bound, speed_limit, spider_bounds)
+# (compiled with this module's functions: a state a host sets)
+from .host_state import roller_problem, spider_problem, state_problem  # noqa: F401
 from reduced_model.scene import SPIDER_FREE
 
 
@@ -112,7 +116,7 @@ def probe(ctx):
     OP[K.OP_NOSTEP] = 1.0
     if NW is None:
         _roller(Y, P, OP, Wk, out, derive_op(P, OP))
-    else:           # the needle-resolved row: its own pressing offset (step_resolved)
+    else:           # the needle-resolved row: its own pressing offset (step_unit)
         inputs_moved(P, hs, derive_op(P, OP))
         x0, rate = resolved_drive(P, T, OP, math.nan, 0, False, cache)
         # (n as the step computes it, not a literal 0: numba would compile the integrators
@@ -261,34 +265,80 @@ def refused(X, W, n):
                 return
 
 
-def step_resolved(T, X, W, n, nn, ns, ny, ys, OUT):
-    """Each needle-resolved roller's step at its OP row's inputs, then the
-    joint's outputs.  Returns lifecycle.step's codes."""
+UNITS_NEXT = 4   # step_begin's code: the step's units next (native_model.h: model_step_begin)
+
+
+def step_units(T):
+    """How many independent parts a step has, each a step_unit: a joint's needle-resolved
+    rollers (the spider prescribed, each reads and writes only its own slices of X and W, so
+    the native layer steps them at once on the machine's cores, and any order gives the same
+    bits); 0 for the other bearings (step_begin takes the step whole)."""
+    n, resolved, _, _, _, _ = shape_of(T)
+    return n if resolved else 0
+
+
+def step_unit(T, X, W, i):
+    """Needle-resolved roller i's step at its OP row's inputs (step_begin set them).  Returns
+    1; 3 when it ran out of its budget (step_finish then refuses the step)."""
+    n, resolved, nn, ns, ny, ys = shape_of(T)
     ramped = X[X_P + K.P_INTEGRATOR] == K.INT_DEFAULT   # (model.Roller.load_ramped)
-    for i in range(n):
-        Y = X[X_Y + i * ys:X_Y + i * ys + ny]
-        P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
-        OP = X[X_OP + (i + 1) * K.OP_LEN:X_OP + (i + 2) * K.OP_LEN]
-        Wk = work(X, W, i, ny, ys)
-        # the load the last step ran at (none before the first: its key's theta is NaN)
-        F_was = (pressing_load(OP[K.OP_KEY + 2], OP[K.OP_KEY + 3], T[T_S])
-                 if OP[K.OP_KEY] == OP[K.OP_KEY] else math.nan)
-        inputs_moved(P, Wk.hs, derive_op(P, OP))
-        m = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
-        x0, rate = resolved_drive(P, T, OP, F_was, m, ramped, W[W_X0 + 3 * i:W_X0 + 3 * i + 3])
-        if not run_substeps(Y, P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate), OP[K.OP_H], m,
-                            X[X_OUTV + i * K.O_LEN:X_OUTV + (i + 1) * K.O_LEN], Wk,
-                            needle_work(X, W, i, nn, ns)):
-            return 3
-    return joint_outputs(_at(X, X_OUTV, (n, K.O_LEN)), n, T[T_S], X[X_OP + K.OP_LEN + K.OP_F],
-                         X[X_OP + K.OP_LEN + K.OP_THETA], OUT)
+    Y = X[X_Y + i * ys:X_Y + i * ys + ny]
+    P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
+    OP = X[X_OP + (i + 1) * K.OP_LEN:X_OP + (i + 2) * K.OP_LEN]
+    Wk = work(X, W, i, ny, ys)
+    # the load the last step ran at (none before the first: its key's theta is NaN)
+    F_was = (pressing_load(OP[K.OP_KEY + 2], OP[K.OP_KEY + 3], T[T_S])
+             if OP[K.OP_KEY] == OP[K.OP_KEY] else math.nan)
+    inputs_moved(P, Wk.hs, derive_op(P, OP))
+    m = 0 if OP[K.OP_NOSTEP] > 0 else int(OP[K.OP_N])
+    x0, rate = resolved_drive(P, T, OP, F_was, m, ramped, W[W_X0 + 3 * i:W_X0 + 3 * i + 3])
+    if not run_substeps(Y, P, K.Drive(OP[K.OP_THETA], OP[K.OP_W], x0, rate), OP[K.OP_H], m,
+                        X[X_OUTV + i * K.O_LEN:X_OUTV + (i + 1) * K.O_LEN], Wk,
+                        needle_work(X, W, i, nn, ns)):
+        return 3
+    return 1
+
+
+def step_finish(T, X, OUT, W, ok):
+    """A step's end after step_unit of each of step_units(T) (ok: 1.0 when each returned 1):
+    the joint's outputs, or the step refused; the step counted.  Returns step's codes."""
+    n, resolved, _, _, _, _ = shape_of(T)
+    rc = 3
+    if ok == 1.0:
+        rc = joint_outputs(_at(X, X_OUTV, (n, K.O_LEN)), n, T[T_S], X[X_OP + K.OP_LEN + K.OP_F],
+                           X[X_OP + K.OP_LEN + K.OP_THETA], OUT)
+    return counted(X, W, n, rc, X[X_OP + op_row(n, resolved, 0) * K.OP_LEN + K.OP_DT])
+
+
+def counted(X, W, n, rc, dt):
+    """A step of dt [s] done with code rc: a refused one's note, the time and the count."""
+    if rc == 3:
+        refused(X, W, n)
+    X[X_TIME] += dt
+    X[X_STEPS] += 1.0
+    return rc
 
 
 def step(T, IN, X, OUT, W, t, h):
     """From t to t + h [s] at IN's inputs (driven by angle: omega from the shaft angle), every
     roller started at the first.  Returns 1; 2 for a non-finite output (OUT untouched); 3 for a
     step refused (its note says why); 5 for an omega derived from the shaft angle out of its
-    range (written into IN; nothing stepped)."""
+    range (written into IN; nothing stepped).  In parts: step_begin, a needle-resolved row's
+    step_unit a roller, step_finish (the native layer runs the units at once)."""
+    rc = step_begin(T, IN, X, OUT, W, t, h)
+    if rc != UNITS_NEXT:
+        return rc
+    ok = 1.0
+    for i in range(step_units(T)):
+        if step_unit(T, X, W, i) != 1:
+            ok = 0.0
+    return step_finish(T, X, OUT, W, ok)
+
+
+def step_begin(T, IN, X, OUT, W, t, h):
+    """step up to its units: UNITS_NEXT when step_units(T) rollers are then to be stepped
+    (step_unit) and the step finished (step_finish); otherwise the step taken whole, and its
+    code."""
     W[W_NOTES] = 0.0
     n, resolved, nn, ns, ny, ys = shape_of(T)
     if T[T_DRIVE_BY_ANGLE] != 0.0:   # the whirl reaches the master's angle at the step's end
@@ -306,32 +356,27 @@ def step(T, IN, X, OUT, W, t, h):
     if resolved:
         for i in range(n):
             set_inputs(X[X_OP + (i + 1) * K.OP_LEN:X_OP + (i + 2) * K.OP_LEN], IN, dt)
-        rc = step_resolved(T, X, W, n, nn, ns, ny, ys, OUT)
+        return UNITS_NEXT
+    set_inputs(X[X_OP:X_OP + K.OP_LEN], IN, dt)
+    if n == 1:
+        rc = step_roller(X[X_Y:X_Y + K.Y_LEN], X[X_P:X_P + K.P_LEN], X[X_OP:X_OP + K.OP_LEN],
+                         work(X, W, 0, K.Y_LEN, K.Y_LEN), X[X_OUTV:X_OUTV + K.O_LEN], OUT)
+        one = _at(X, X_OUTV, (1, K.O_LEN))
+        if rc == 1 and not (joint_into(one, 1, X[X_P + K.P_S], X[X_OP + K.OP_F], OUT)
+                            and spider_into(one, 1, X[X_OP + K.OP_THETA], X[X_P + K.P_S],
+                                            X[X_OP + K.OP_F], X[X_OP:X_OP + K.OP_LEN],
+                                            False, OUT)):
+            rc = 2
     else:
-        set_inputs(X[X_OP:X_OP + K.OP_LEN], IN, dt)
-        if n == 1:
-            rc = step_roller(X[X_Y:X_Y + K.Y_LEN], X[X_P:X_P + K.P_LEN], X[X_OP:X_OP + K.OP_LEN],
-                             work(X, W, 0, K.Y_LEN, K.Y_LEN), X[X_OUTV:X_OUTV + K.O_LEN], OUT)
-            one = _at(X, X_OUTV, (1, K.O_LEN))
-            if rc == 1 and not (joint_into(one, 1, X[X_P + K.P_S], X[X_OP + K.OP_F], OUT)
-                                and spider_into(one, 1, X[X_OP + K.OP_THETA], X[X_P + K.P_S],
-                                                X[X_OP + K.OP_F], X[X_OP:X_OP + K.OP_LEN],
-                                                False, OUT)):
-                rc = 2
-        else:
-            Wn = K.Work(_at(W, W_L, (n, K.L_LEN)), _at(W, W_RES, (n, K.R_LEN)),
-                        _at(W, W_Y1, (n, K.Y_LEN)), _at(X, X_Y2, (n, K.Y_LEN)),
-                        _at(W, W_G, (n, K.NV, 3)), _at(W, W_A, (n, K.NV, K.NV)),
-                        _at(W, W_B, (n, K.NV)), _at(X, X_HS, (n, K.H_LEN)),
-                        _at(W, W_GW, (n, K.NV + 8, K.NV)))
-            rc = step_joint(n, _at(X, X_Y, (n, K.Y_LEN)), _at(X, X_P, (n, K.P_LEN)),
-                            _at(X, X_OP, (n + 1, K.OP_LEN)), Wn, _at(X, X_OUTV, (n, K.O_LEN)),
-                            OUT)
-    if rc == 3:
-        refused(X, W, n)
-    X[X_TIME] += dt
-    X[X_STEPS] += 1.0
-    return rc
+        Wn = K.Work(_at(W, W_L, (n, K.L_LEN)), _at(W, W_RES, (n, K.R_LEN)),
+                    _at(W, W_Y1, (n, K.Y_LEN)), _at(X, X_Y2, (n, K.Y_LEN)),
+                    _at(W, W_G, (n, K.NV, 3)), _at(W, W_A, (n, K.NV, K.NV)),
+                    _at(W, W_B, (n, K.NV)), _at(X, X_HS, (n, K.H_LEN)),
+                    _at(W, W_GW, (n, K.NV + 8, K.NV)))
+        rc = step_joint(n, _at(X, X_Y, (n, K.Y_LEN)), _at(X, X_P, (n, K.P_LEN)),
+                        _at(X, X_OP, (n + 1, K.OP_LEN)), Wn, _at(X, X_OUTV, (n, K.O_LEN)),
+                        OUT)
+    return counted(X, W, n, rc, dt)
 
 
 def end(T, IN, X, OUT, W):
@@ -352,90 +397,11 @@ def end(T, IN, X, OUT, W):
     return 1
 
 
-# --- a state a host sets ----------------------------------------------------------------------
-def roller_problem(T, IN, X, W, i, n, resolved, ny, ys):
-    """0 when roller i's state can be stepped (state_check.check_roller_state's bounds), else a
-    code of STATE_PROBLEMS."""
-    P = X[X_P + i * K.P_LEN:X_P + (i + 1) * K.P_LEN]
-    OP = X[X_OP + op_row(n, resolved, i) * K.OP_LEN:X_OP + (op_row(n, resolved, i) + 1) * K.OP_LEN]
-    hs = X[X_HS + i * K.H_LEN:X_HS + (i + 1) * K.H_LEN]
-    # its parameters: what the table's values derive; its operating point: what its inputs do
-    S = W[W_SAVE:W_SAVE + K.P_LEN]
-    kernel_params(T, S)
-    for j in range(K.P_LEN):
-        derived = False
-        for d in P_DERIVED:
-            if j == d:
-                derived = True
-        if not derived and P[j] != S[j]:
-            return 2
-    for j in P_DERIVED:
-        S[j] = P[j]
-    SO = W[W_SAVE + K.P_LEN:W_SAVE + K.P_LEN + K.OP_LEN]
-    for j in range(K.OP_LEN):
-        SO[j] = OP[j]
-    SO[K.OP_KEY + 4] = math.nan      # derived again at its inputs
-    derive_op(S, SO)
-    for j in OP_DERIVED:
-        if SO[j] != OP[j]:
-            return 3
-    for j in P_DERIVED:
-        if j != K.P_DF and S[j] != P[j]:
-            return 3
-    if not (0.0 <= P[K.P_DF] <= 2.0) or OP[K.OP_NOSTEP] != 0.0:
-        return 3
-    if history_bound(P[K.P_VST_OP], hs) != 0:
-        return 4
-    # the speeds the driven motion makes, at the larger of the inputs and the key
-    v = speed_limit(T[T_S], T[T_R_ROLLER], max(abs(IN[THETA]), abs(OP[K.OP_KEY])),
-                    max(abs(IN[OMEGA]), abs(OP[K.OP_KEY + 1])),
-                    max(abs(IN[PLUNGE_SPEED]), abs(OP[K.OP_KEY + 5])))
-    for k in range(2):
-        Y = X[(X_Y if k == 0 else X_Y2) + i * ys:(X_Y if k == 0 else X_Y2) + i * ys + ny]
-        code = roller_bound(Y, T[T_BEARING] != K.BEAR_IDEAL, T[T_L_NEEDLE], T[T_D_NEEDLE],
-                            T[T_R_ROLLER], T[T_R_BORE], v)[0]
-        if code != 0:
-            return code
-    return 0
-
-
-def state_problem(T, IN, X, W):
-    """0 when the state X is one the model can step (every value finite is the layer's
-    check), else a code of STATE_PROBLEMS: its flags or counts none the model writes (1), a
-    roller's parameters not this instance's (2), its operating point not its inputs' (3), its
-    transition velocity, substep or counts out of range (4), its motion beyond the scene's
-    bounds (5-8: state_check.py's)."""
-    if X[X_STARTED] != 0.0 and X[X_STARTED] != 1.0:
-        return 1
-    if X[X_TIME] < 0.0 or X[X_STEPS] < 0.0:
-        return 1
-    if X[X_STARTED] == 0.0:   # the first step starts it afresh
-        return 0
-    n, resolved, nn, ns, ny, ys = shape_of(T)
-    for i in range(n):
-        code = roller_problem(T, IN, X, W, i, n, resolved, ny, ys)
-        if code != 0:
-            return code
-    if T[T_SPIDER] == SPIDER_FREE:
-        return spider_problem(T, IN, X)
-    return 0
-
-
-def spider_problem(T, IN, X):
-    """0 when a free spider's state (OP's header row) can be stepped (state_check's
-    spider_bounds), else a code of STATE_PROBLEMS."""
-    h = X[X_OP:X_OP + K.OP_LEN]
-    if h[K.OP_SP_SET] != 0.0 and h[K.OP_SP_SET] != 1.0:
-        return 1
-    return spider_bounds(h[K.OP_SP_QX], h[K.OP_SP_QY], h[K.OP_SP_PSI], h[K.OP_SP_VX],
-                         h[K.OP_SP_VY], h[K.OP_SP_VPSI], T[T_S], T[T_R_GROOVE],
-                         T[T_S] * abs(IN[OMEGA]))
-
-
 # what the FMU's binary compiles of this module (c_functions), callees first
 COMPILED = ("check_scene", "setup", "no_key",
             "probe", "settled_table", "start", "joint_outputs", "init", "set_inputs", "refused",
-            "step_resolved", "step", "end", "speed_limit", "history_bound", "roller_bound",
+            "step_units", "step_unit", "counted", "step_finish", "step_begin", "step", "end",
+            "speed_limit", "history_bound", "roller_bound",
             "roller_problem", "spider_bounds", "spider_problem", "state_problem")
 
 
@@ -448,13 +414,13 @@ def compiled_namespace():
     from reduced_model.cfuncs import compile_over
     from reduced_model.analytic_kernel import compiled_namespace as reduced
     from reduced_model.thrust import spin_inertia
-    from . import fmu_arrays, kernel, roller_setup
+    from . import fmu_arrays, host_state, kernel, roller_setup
 
     def jit(f):
         return nb.njit(f)
 
     red = reduced()
-    g = {**vars(roller_setup), **vars(fmu_arrays), **globals()}
+    g = {**vars(roller_setup), **vars(fmu_arrays), **vars(host_state), **globals()}
     for name in ("operating_point", "traverse_table", "table_state_at", "hertz_point",
                  "pressing_load", "same_step"):
         g[name] = red[name]

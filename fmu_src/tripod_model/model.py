@@ -144,7 +144,7 @@ class JointModel:
     def state_problem(self, st, theta, omega, plunge_speed=0.0) -> str:
         """Why the state st (get_state's) could not be stepped here at these inputs, as the
         FMU refuses a state a host sets (its layer: every value finite; then
-        lifecycle.state_problem); "" when it can.  The model is not moved."""
+        host_state.state_problem); "" when it can.  The model is not moved."""
         st = np.array(st, dtype=float)
         if not np.isfinite(st).all():
             return "the state holds a non-finite value"

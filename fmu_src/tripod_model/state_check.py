@@ -1,5 +1,5 @@
 """The bounds a contact model's state must keep to be stepped: checked when a host sets a state
-(the FMU's fmi2SetFMUstate: lifecycle.state_problem compiles these functions), beyond its
+(the FMU's fmi2SetFMUstate: host_state.state_problem calls these functions), beyond its
 format.  Scalar Python.
 
 The bounds come from the scene, each far outside what a run reaches (benchmarks/step_budget.py
@@ -29,7 +29,7 @@ def speed_limit(s, r_roller, theta, omega, vp):
     """The fastest a roller's point may move [m/s] at joint angle theta [rad] (at most pi/4
     counted), whirl omega [rad/s] and plunge speed vp [m/s] on a joint of trunnion offset s and
     roller radius r_roller [m] (module docstring).  Scalar: the compiled state check
-    (lifecycle.roller_problem) compiles it."""
+    (host_state.roller_problem) compiles it."""
     kin = ((s + r_roller) * abs(omega) * (1.0 + abs(math.tan(min(abs(theta), math.pi / 4.0))))
            + abs(vp))
     return SPEED_MARGIN * max(kin, 1.0)
@@ -45,7 +45,7 @@ def history_bound(vst, hs):
     stepped, else the first that cannot: 1 vst outside (0, VST_HI], 2 the carried substep
     hs[H_SUB] outside [0, 1] s, 3 the restart's weight hs[H_JUMPW] outside [0, 1], 4 a negative
     count of substeps taken.  NaN is outside.  Scalar: the compiled state check
-    (lifecycle.roller_problem) compiles it."""
+    (host_state.roller_problem) compiles it."""
     if not 0.0 < vst <= VST_HI:
         return 1
     if not 0.0 <= hs[K.H_SUB] <= 1.0:
@@ -62,7 +62,7 @@ def roller_bound(Y, row, l_needle, d_needle, r_roller, r_bore, v):
     fmu_arrays.STATE_PROBLEMS, its index in Y, the bound), (0, -1, 0.0) when
     every one is within.  row: the bearing has a row (not the ideal one); l_needle, d_needle,
     r_roller, r_bore [m]; v: speed_limit [m/s].  NaN is beyond.  Scalar: the compiled state
-    check (lifecycle.roller_problem) compiles it."""
+    check (host_state.roller_problem) compiles it."""
     if not abs(Y[K.Y_X]) <= WHIRL_HI:
         return 5, K.Y_X, WHIRL_HI
     if not abs(Y[K.Y_U]) <= 0.5 * l_needle:
@@ -94,7 +94,7 @@ def spider_bounds(qx, qy, psi, vx, vy, vpsi, s, r_groove, kin):
     a trunnion would pass through its groove's flank), its twist within r_groove / s [rad], its
     speeds within SPEED_MARGIN times max(kin, 1 m/s), kin = s |omega| [m/s] (the twist's over
     s).  Runs reach micrometres and the clearance's twist (about 1e-2 rad).  Scalar: the
-    compiled FMU's state check (lifecycle.spider_problem) compiles it."""
+    compiled FMU's state check (host_state.spider_problem) compiles it."""
     vb = SPEED_MARGIN * max(kin, 1.0)
     if not (abs(qx) <= r_groove and abs(qy) <= r_groove and abs(psi) <= r_groove / s):
         return 9
