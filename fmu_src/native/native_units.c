@@ -43,8 +43,9 @@ static void run_worker(Worker *w)
 }
 
 /* A thread starts in the caller's floating-point environment: on Windows a new thread's x87
-   precision is not the main thread's, and mingw's libm computes with the x87 unit (the bits of
-   pow, exp and sin would depend on the thread a unit ran on). */
+   precision control is 53 bits where the main thread's is 64, and the win64 binary's math then
+   gave another last bit on the new thread (a roller's pressing offset, one ulp: the FMU refused
+   its own state). */
 static void worker_run(Worker *w)
 {
     fesetenv(w->env);

@@ -4,8 +4,7 @@ units native_units.c runs at once), ``end`` and host_state.py's ``state_problem`
 ahead of time (c_functions, fmu_src/aot.py) into the FMU's binary, which then runs without
 Python.  They compose the model's own functions: roller_setup.py (the parameter vector, the
 needle row, the start on the settled cycle) and kernel.py (the step), and run as Python in
-process
-(harness/inprocess.py) they are the oracle the binary is held to bit for bit
+process (harness/inprocess.py) they are the oracle the binary is held to bit for bit
 (tests/test_native_fmu.py).  The arrays, their places and views: fmu_arrays.py.
 """
 import math
