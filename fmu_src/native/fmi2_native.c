@@ -463,7 +463,8 @@ fmi2Status fmi2DoStep(fmi2Component component, fmi2Real t, fmi2Real h,
     }
     c->arr[A_TH][0] = t;
     c->arr[A_TH][1] = h;
-    int32_t rc = native_step(c->arr);
+    int units = (int)model_step_units(c->arr);   /* (a joint's needle-resolved rollers) */
+    int32_t rc = units > 1 ? native_step_units(c->arr, units) : model_step(c->arr);
     if (MODEL_NOTES_AT >= 0 && c->arr[A_W][MODEL_NOTES_AT] != 0.0) {   /* (worded only then) */
         char prefix[96];
         snprintf(prefix, sizeof prefix, "step refused at t = %g s: ", t);

@@ -69,9 +69,9 @@ static int cores(void)
 }
 #endif
 
-int32_t native_step(double **args)
+int32_t native_step_units(double **args, int n)
 {
-    int n = (int)model_step_units(args), k = cores();
+    int k = cores();
     if (k > n) k = n;
     if (k > MAX_WORKERS) k = MAX_WORKERS;
     if (k < 2) return model_step(args);

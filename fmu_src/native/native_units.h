@@ -4,8 +4,9 @@
 
 #include <stdint.h>
 
-/* model_step(args), its units stepped at once on up to as many threads as the machine has
-   cores (each joined before it returns): the same bits as one after the other */
-int32_t native_step(double **args);
+/* model_step(args) of a model whose step has n > 1 units (model_step_units), the units
+   stepped at once on up to as many threads as the machine has cores (each joined before it
+   returns): the same bits as one after the other */
+int32_t native_step_units(double **args, int n);
 
 #endif
