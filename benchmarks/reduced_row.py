@@ -56,15 +56,17 @@ SCENES = ((8.0, 4500.0), (8.0, 45000.0), (3.0, 4500.0), (3.0, 45000.0))   # deg,
 VARIANTS = (("reduced traverse model", False, False, False),
             ("+ rolling resistance", False, True, False),
             ("+ sliding friction", True, False, False), ("+ both", True, True, False),
-            ("+ both + rocking on the row", True, True, True))
+            ("+ both + rocking on the row", True, True, True),
+            ("+ the row's load with f_n (the analytic FMU)", True, True, True, True))
 
 
 def row_terms(sc, F):
     """The row at the pressing load |F| [N] (Eq. 17 over the row, oppoint.row_sums): the summed
     needle loads q [N], the tilt stiffness about e2 k_t2 [N m/rad], the lever [m] from the
     trunnion axis at which the loaded needles meet the bore (on the pressed side) and the tilt
-    stiffness about e1 k_t1 [N m/rad] and where across the load the needles meet the bore, the
-    rms r_bore sin(psi_j) weighted by their loads [m]."""
+    stiffness about e1 k_t1 [N m/rad], where across the load the needles meet the bore, the
+    rms r_bore sin(psi_j) weighted by their loads [m], and the row's stiffness along the load
+    k_r [N/m]."""
     T = np.array([float(sc[n]) for n in PARAM_NAMES])
     P = np.zeros(K.P_LEN)
     kernel_params(T, P)
@@ -72,15 +74,18 @@ def row_terms(sc, F):
                P[K.P_NEEDLE_CLEARANCE] * (1 + 1e-12), 1e-3)
     Fr, kr, kw, q, qs = oppoint.row_sums(P, a)
     return (q, kr * P[K.P_LT], P[K.P_R_BORE] * Fr / q, kw * P[K.P_LT],
-            P[K.P_R_BORE] * math.sqrt(qs / q))
+            P[K.P_R_BORE] * math.sqrt(qs / q), kr)
 
 
-def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
-    """Orders 1 and 3 of Fz [N] (complex) of the reduced traverse model with the row's terms."""
+def reduced_orders(sc, slide, rolling, rock=False, load=False, cycles=4, n=360):
+    """Orders 1 and 3 of Fz [N] (complex) of the reduced traverse model with the row's terms;
+    load: the row's load follows the groove's normal force (T6's Fx), the row yielding under it
+    in series with the Hertz contact (T5) and its friction and rolling resistance in
+    proportion to it."""
     O = operating_point(sc)
     F, rho, vst, r, w = O[E.O_F], O[E.O_RHO], O[E.O_VST], O[E.O_R], O[E.O_W]
     side = 1.0 if F >= 0 else -1.0          # coast: the other flank, the row's other side
-    q, kt2, lever, kt1, arc = row_terms(sc, F)
+    q, kt2, lever, kt1, arc, kr = row_terms(sc, F)
     ln = sc["l_needle"]
     tilt1 = [0.0, 0.0]     # the tilt about e1 at the last step's end [rad], its rate over it
     lever, rim = side * lever, side * sc["r_roller"]
@@ -92,6 +97,19 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
     carry = (ROW_CARRY if slide else 1.0) * F
     th, hx = O[E.O_TH], 1e-6
     h = 2 * math.pi / w / n
+
+    def normal(p):
+        """T5 [N] at p; with load, the roller's centre giving way by the row's load beyond F
+        over k_r (brentq on f_n)."""
+        if not load:
+            return E.normal_force(O, p)
+        c = math.sqrt(1.0 - p * p)
+
+        def excess(f):
+            d = (rho - (f * (c + p * p) - F) / kr) / c - O[E.O_CLEAR]
+            return O[E.O_K] * max(d, 0.0) ** 1.5 - f
+        top = O[E.O_K] * (rho / c - O[E.O_CLEAR]) ** 1.5 + F
+        return brentq(excess, 0.0, top, xtol=1e-13, rtol=1e-15)
 
     def at(x, s, b2d):
         """p, the friction along the trunnion over f_n, beta, f_n, phi and the row's axial
@@ -111,15 +129,17 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
                 row += mq / 14 * (math.tanh(k_row * v) * ua / v if v > 0 else 0.0)
         p = 0.0
         for _ in range(40):         # beta depends weakly on p (f_n, the spin moment)
-            fn = E.normal_force(O, p)
+            fn = normal(p)
+            # the row's load over F: T6's Fx less its p xi term, over F (or 1)
+            carried = fn * (math.sqrt(1.0 - p * p) + p * p) / F if load else 1.0
             beta = E.beta_at(O, p, fn, bi, dphi, spin)
-            beta -= mr * math.tanh(3.0 * (spin - yaw) * sc["r_bore"] / vst) / (r * fn)
+            beta -= carried * mr * math.tanh(3.0 * (spin - yaw) * sc["r_bore"] / vst) / (r * fn)
             fa = (-1.0 if sg > 0 else 1.0) * E.share(O, sg, abs(beta))
-            pn = fa - row / fn
+            pn = fa - carried * row / fn
             if abs(pn - p) < 1e-14:
                 break
             p = pn
-        return pn, fa, beta, fn, phi, row
+        return pn, fa, beta, fn, phi, carried * row
 
     def g(x):
         """T4's inclination term [m/s]: -r a_y' (a_y = cos xi cos phi) by central differences."""
@@ -163,7 +183,7 @@ def reduced_orders(sc, slide, rolling, rock=False, cycles=4, n=360):
         if sc["spin_moment"] and slide:
             # the tilt about e1 under the spin moment (Eq. 16), held elastically: M_s / k_t1
             _phi, _xi, _V, dphi, spin, _bi = E.drive_at(O, x1)
-            b1 = spin_moment(sc["mu_groove"], E.normal_force(O, p), O[E.O_A1],
+            b1 = spin_moment(sc["mu_groove"], normal(p), O[E.O_A1],
                              dphi + spin * p, vst) / kt1
             tilt1[:] = [b1, (b1 - tilt1[0]) / h]
         if i >= (cycles - 1) * n:
@@ -179,7 +199,8 @@ def grid_table():
     from harness import envelope_grid as G
     from reduced_model.joint import for_model, load_joint
     print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | lumped: order 1, 3 off "
-          "| reduced + both: order 1, 3 off | + rocking: order 1, 3 off | wall |")
+          "| reduced + both: order 1, 3 off | + rocking, the row's load with f_n: order 1, 3 "
+          "off | wall |")
     print("|---|---|---|---|---|---|---|---|---|")
     for i in range(1, 25):
         path, theta, F, omega = G.scene(i)
@@ -192,7 +213,7 @@ def grid_table():
                              omega=omega), "contact")
         cells = [f"{G.off(lumped, ref, 1):.1f} %, {G.off(lumped, ref, 3):.1f} %"]
         for rock in (False, True):
-            z = reduced_orders(sc, True, True, rock)
+            z = reduced_orders(sc, True, True, rock, rock)
             o = {k: (abs(z[k]), math.degrees(np.angle(z[k]))) for k in (1, 3)}
             cells.append(f"{G.off(o, ref, 1):.1f} %, {G.off(o, ref, 3):.1f} %")
         print(f"| {i} | {path.stem} | {math.degrees(theta):.1f} | {F / 1e3:.2f} | "
@@ -222,9 +243,9 @@ def main():
         print(f"| {scene} | needle-resolved row | {fmt(ref[1])} | {fmt(ref[3])} | reference | "
               f"reference | {time.perf_counter() - t0:.0f} s |", flush=True)
         sc = S.validate({"theta": theta, "F_press": F, "omega": omega}, "contact")
-        for name, slide, rolling, rock in VARIANTS:
+        for name, *terms in VARIANTS:
             t0 = time.perf_counter()
-            z = reduced_orders(sc, slide, rolling, rock)
+            z = reduced_orders(sc, *terms)
             off = {k: 100 * abs(z[k] - ref[k]) / abs(ref[k]) for k in (1, 3)}
             print(f"| {scene} | {name} | {fmt(z[1])} | {fmt(z[3])} | {off[1]:.1f} % | "
                   f"{off[3]:.1f} % | {time.perf_counter() - t0:.0f} s |", flush=True)

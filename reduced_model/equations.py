@@ -38,13 +38,13 @@ T_LEN = len(PARAM_NAMES)
  # stiffness about e2, the lever, r_bore, the row's tanh slope, e (Eq. 7), tan(theta) (Eq. 3),
  # the row's load, the tilt stiffness about e1, the needles' length, their axial play (-1:
  # the row's friction off, the needles ride the stops), where across the load the loaded
- # needles meet the bore (needle_row.row_arc);
+ # needles meet the bore (needle_row.row_arc), the row's stiffness along the load (T5 in series);
  # kept from one derivation to the next (row_point): the row's constants with the needles'
  # count and length they are for, and the roller's offset on the row with the load it carries
  O_ROW, O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN, O_PLAY,
- O_ARC,
+ O_ARC, O_KRR,
  O_RN, O_RL, O_RC1, O_RKR, O_RA, O_RAF,
- O_LEN) = range(47)
+ O_LEN) = range(48)
 
 
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
@@ -140,7 +140,7 @@ def row_point(T, O):
     on = T[NEEDLE_ROW] != 0.0 and T[TRAVERSE] != 0.0 and O[O_HELD] != 0.0
     O[O_ROW] = 1.0 if on else 0.0
     for k in (O_MQ, O_MR, O_KT2, O_LEVER, O_RB, O_KROW, O_EAX, O_TYAW, O_CRF, O_KT1, O_LN,
-              O_PLAY, O_ARC):
+              O_PLAY, O_ARC, O_KRR):
         O[k] = 0.0
     if not on:
         return
@@ -157,6 +157,7 @@ def row_point(T, O):
     O[O_MR] = T[MU_ROLLING] * q * rb if T[ROLLING_RESISTANCE] != 0.0 else 0.0
     O[O_KT2] = kr * ln * ln / 12.0                  # the lumped row's tilt stiffness about e2
     O[O_KT1] = kw * ln * ln / 12.0                  # and about e1 (across the load)
+    O[O_KRR] = kr                                   # along the load, in series with T5
     O[O_LN] = ln
     O[O_LEVER] = rb * Fr / q
     O[O_ARC] = row_arc(rb, q, qs)
@@ -236,10 +237,57 @@ def t4_rho(O, g1, h):
     return O[O_RHO] + 0.5 * h * max(g1, 0.0)
 
 
+def row_carried(O, p):
+    """The needle row's load over the pressing load F per newton of the groove's normal force
+    f_n [1/N]: T6's Fx / f_n without its p xi term, sqrt(1 - p^2) + p^2, over F.  The row's
+    friction and rolling resistance scale with its load, as its needle loads do (the lumped
+    row's q at its offset): f_n row_carried(p) times their values at F."""
+    return (math.sqrt(1.0 - p * p) + p * p) / O[O_F]
+
+
 def normal_force(O, p):
-    """T5: f_n [N] at p [1]."""
-    d = O[O_RHO] / math.sqrt(1.0 - p * p) - O[O_CLEAR]
-    return O[O_K] * d ** 1.5 if d > 0 else 0.0
+    """T5: f_n [N] at p [1].  With the needle row (O_KRR, its stiffness along the load at F)
+    the row yields in series with the Hertz contact: the roller's centre, rho_c from the
+    flank's centre at p = 0, gives way by the row's load beyond F over k_r, the load being
+    f_n row_carried(p) F (T6's Fx), so f_n = K ((rho_c - (f_n h - F) / k_r) / sqrt(1 - p^2)
+    - clearance)^1.5, solved by Newton from F (docs/model.md, "The row's load moves with the
+    normal force")."""
+    c = math.sqrt(1.0 - p * p)
+    kr = O[O_KRR]
+    if kr <= 0.0:
+        d = O[O_RHO] / c - O[O_CLEAR]
+        return O[O_K] * d ** 1.5 if d > 0 else 0.0
+    F, K = O[O_F], O[O_K]
+    hk = row_carried(O, p) * F / kr       # the roller's give per newton of f_n [m/N]
+    f = F
+    for _ in range(30):
+        d = (O[O_RHO] - f * hk + F / kr) / c - O[O_CLEAR]
+        if not d > 0.0:
+            return 0.0
+        sd = math.sqrt(d)
+        df = (K * d * sd - f) / (1.5 * K * sd * hk / c + 1.0)
+        f += df
+        if abs(df) <= 1e-14 * F:
+            break
+    return f
+
+
+def normal_slope(O, p, fn):
+    """d f_n / dp [N] of normal_force at p [1], where it gives fn [N]."""
+    c = math.sqrt(1.0 - p * p)
+    kr = O[O_KRR]
+    rho = O[O_RHO]
+    if kr > 0.0:
+        rho -= (fn * row_carried(O, p) * O[O_F] - O[O_F]) / kr
+    d = rho / c - O[O_CLEAR]
+    if not d > 0.0:
+        return 0.0
+    kh = 1.5 * O[O_K] * math.sqrt(d)        # the Hertz contact's tangent stiffness [N/m]
+    if kr <= 0.0:
+        return kh * rho * p / (c * c * c)
+    dh = 2.0 * p - p / c                    # d(row_carried F) / dp
+    give = kh * row_carried(O, p) * O[O_F] / (kr * c)
+    return kh * (rho * p / (c * c * c) - fn * dh / (kr * c)) / (1.0 + give)
 
 
 def beta_at(O, p, fn, bi, dphi, spin):
@@ -509,22 +557,22 @@ def row_at(O, s, b2d, V, vax, yaw, dax, bi, dphi, spin, b1d):
     friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d;
     T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
-    row = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d, row_slope(O, dax, vax))[0]
-    m_roll = rolling_moment(O, spin, yaw)
+    row0 = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d, row_slope(O, dax, vax))[0]
+    m_roll0 = rolling_moment(O, spin, yaw)
     sign = -1.0 if sg > 0 else 1.0
     p = fa = 0.0
     fn = normal_force(O, p)
-    beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
+    beta = row_beta(O, p, fn, bi, dphi, spin, m_roll0 * fn * row_carried(O, p))
     for _ in range(40):
         fa = sign * share(O, sg, abs(beta))
-        pn = fa - row / fn
+        pn = fa - row0 * row_carried(O, p)
         done = abs(pn - p) < 1e-14
         p = pn
         fn = normal_force(O, p)
-        beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
+        beta = row_beta(O, p, fn, bi, dphi, spin, m_roll0 * fn * row_carried(O, p))
         if done:
             break
-    return p, fa, fn, beta, row
+    return p, fa, fn, beta, row0 * fn * row_carried(O, p)
 
 
 def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
@@ -565,16 +613,18 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             gv, dg = 0.0, 0.0
         fa = -mu * gv * sg
         ur = s - V - vax - lev * b2d
-        row, dr = row_line(O, ur, b1d, kr)
-        fn = normal_force(O, p)
-        for _ in range(8):         # T1 with T5: p = fa - row / f_n(p)
-            pn = fa - row / fn
-            fn = normal_force(O, pn)
+        row0, dr0 = row_line(O, ur, b1d, kr)
+        for _ in range(8):         # T1: p = fa - row / f_n, row proportional to f_n
+            pn = fa - row0 * row_carried(O, p)
             done = abs(pn - p) < 1e-15
             p = pn
             if done:
                 break
-        B = abs(row_beta(O, p, fn, bi, dphi, spin, m_roll))
+        fn = normal_force(O, p)
+        hq = row_carried(O, p)
+        w = fn * hq
+        row, dr = row0 * w, dr0 * w
+        B = abs(row_beta(O, p, fn, bi, dphi, spin, m_roll * w))
         if B >= cap and not sat:
             # the spin's demand for friction is all the contact has (a fast whirl's spin
             # inertia): the slip runs across the slide without bound and the friction along
@@ -593,18 +643,21 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         # p's (dp1, dp2, dp3) = d(fa) - d(row) / f_n, and the tilt's moment r f_n fa with
         # f_n's rise with p (T5)
         q = math.sqrt(1.0 - p * p)
-        fnp = 1.5 * O[O_K] * math.sqrt(max(rho / q - O[O_CLEAR], 0.0)) * rho * p / (q * q * q)
-        c = 1.0 / (1.0 - row * fnp / (fn * fn))
-        dp1 = c * (-a11 - dr / fn)
+        fnp = normal_slope(O, p, fn)
+        hqp = (2.0 * p - p / q) / O[O_F]
+        c = 1.0 / (1.0 + row0 * hqp)
+        dp1 = c * (-a11 - dr0 * hq)
         dp2 = -c * a12
-        dp3 = c * (a11 * r + dr * lev / fn) / h
-        mf = r * fa * fnp + dmo * rho
+        dp3 = c * (a11 * r + dr0 * hq * lev) / h
+        mf = r * fa * fnp + dmo * rho - lev * row0 * (fnp * hq + fn * hqp)
         j11 = rho4 * dp1 - kt
         j12 = rho4 * dp2
         j13 = rho4 * dp3
         # beta's dependence on p (f_n, the spin moment), by a difference
         pe = p + 1e-7
-        db_dp = (min(abs(row_beta(O, pe, normal_force(O, pe), bi, dphi, spin, m_roll)), cap)
+        fne = normal_force(O, pe)
+        m_e = m_roll * fne * row_carried(O, pe)
+        db_dp = (min(abs(row_beta(O, pe, fne, bi, dphi, spin, m_e)), cap)
                  - B) / 1e-7 if not sat else 0.0
         j21 = a12 - db_dp * dp1
         j22 = a22 - db_dp * dp2
@@ -642,10 +695,11 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             sg = s - r * b2d
             v = math.sqrt(sg * sg + t * t)
             fa = -mu * (math.tanh(k * v) / v if v > 0.0 else k) * sg if not sat else 0.0
-            row = row_line(O, s - V - vax - lev * b2d, b1d, kr)[0]
-            p = fa - row / fn
+            row0 = row_line(O, s - V - vax - lev * b2d, b1d, kr)[0]
+            p = fa - row0 * row_carried(O, p)
             fn = normal_force(O, p)
-            beta = row_beta(O, p, fn, bi, dphi, spin, m_roll)
+            row = row0 * fn * row_carried(O, p)
+            beta = row_beta(O, p, fn, bi, dphi, spin, m_roll * fn * row_carried(O, p))
             if sat and abs(beta) < cap * (1.0 - 1e-6):
                 return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0   # (it was not saturated)
             return True, s, t, b2, p, fa, fn, beta, row
@@ -670,7 +724,7 @@ def row_tilt(O, s, b0, h, x, b1d):
     frictions are spent."""
     mu, rho = O[O_MU], O[O_RHO]
     dax = row_rates(O, x)[2]
-    pmax = min(mu + O[O_MQ] / normal_force(O, 0.0), 0.9)
+    pmax = min(mu + 1.01 * O[O_MQ] / O[O_F], 0.9)
     fmax = normal_force(O, pmax)
     # the row's load's moment is within cm (|d| + rho p_max + extra) (row_moment): the stroke's
     # ROW_CARRY where the needles never reach a stop, the stroke and the play where they do
@@ -680,7 +734,7 @@ def row_tilt(O, s, b0, h, x, b1d):
             cm = ROW_CARRY * O[O_CRF]
         else:
             extra = O[O_PLAY]
-    m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ]
+    m = 1.01 * (O[O_R] * fmax * mu + O[O_LEVER] * O[O_MQ] * 1.01 * fmax / O[O_F]
                 + cm * (abs(dax) + rho * pmax + extra)) / O[O_KT2] + 1e-12
     lo, hi = -m, m
     flo = row_tilt_balance(O, s, lo, b0, h, x, b1d)[0]
@@ -721,7 +775,7 @@ def row_trapezoid(O, rhs0, rho, s, b0, h, x, b1d):
     """(s1 [m/s], b2_1 [rad]) of one step with the row where row_step does not settle: T4's
     residual over s1, the tilt balanced at each (row_t4); it falls with s1 (slope <= -h/2)
     within the bracket |p| <= mu_groove + mu_needle q / f_n: regula falsi (Illinois)."""
-    pmax = O[O_MU] + O[O_MQ] / normal_force(O, 0.0)
+    pmax = O[O_MU] + 1.01 * O[O_MQ] / O[O_F]
     lo, hi = -2.0 * (rho * pmax + rhs0) / h, 2.0 * (rho * pmax - rhs0) / h
     flo = row_t4(O, rhs0, rho, lo, b0, h, x, b1d)[0]
     hi_f = row_t4(O, rhs0, rho, hi, b0, h, x, b1d)[0]
@@ -846,7 +900,8 @@ def steps_of(O, dt):
 
 # the functions kernel.py compiles (callees first)
 COMPILED = ("transition_velocity", "row_point", "operating_point", "thrust_at", "drive_at",
-            "inclination_slip", "t4_rhs", "t4_rho", "normal_force", "beta_at", "share", "p_at",
+            "inclination_slip", "t4_rhs", "t4_rho", "row_carried", "normal_force",
+            "normal_slope", "beta_at", "share", "p_at",
             "trapezoid_step", "slip_step", "groove_forces", "row_groove_forces", "row_rates",
             "rolling_moment", "row_beta", "row_moment", "row_slope", "row_line", "row_tilt_e1",
             "row_at", "row_step", "row_tilt_balance", "row_tilt", "row_t4", "row_trapezoid", "row_advance", "substeps",

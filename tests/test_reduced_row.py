@@ -34,7 +34,7 @@ def test_the_kernel_and_an_independent_march_agree(deg, F):
     from benchmarks.reduced_row import reduced_orders
     th = math.radians(deg)
     march = reduced_orders(S.validate({"theta": th, "F_press": F, "omega": 20 * math.pi},
-                                      "contact"), True, True, True)
+                                      "contact"), True, True, True, True)
     table = _table_orders(theta=th, F_press=F)
     for k in (1, 3):
         assert abs(march[k] - table[k]) <= 1e-5 * abs(table[k]), k
