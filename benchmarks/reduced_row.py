@@ -83,6 +83,7 @@ def reduced_orders(sc, slide, rolling, rock=False, load=False, cycles=4, n=360):
     in series with the Hertz contact (T5) and its friction and rolling resistance in
     proportion to it."""
     O = operating_point(sc)
+    O[E.O_KRR] = 0.0        # T5 of a rigid row: normal() below gives the row's give (load)
     F, rho, vst, r, w = O[E.O_F], O[E.O_RHO], O[E.O_VST], O[E.O_R], O[E.O_W]
     side = 1.0 if F >= 0 else -1.0          # coast: the other flank, the row's other side
     q, kt2, lever, kt1, arc, kr = row_terms(sc, F)

@@ -554,8 +554,8 @@ def row_at(O, s, b2d, V, vax, yaw, dax, bi, dphi, spin, b1d):
     drive gives V (T4's driven slip), vax, yaw, dax (row_rates), bi, dphi, spin, and the tilt
     about e1 moves at b1d [rad/s]: (p, fa, f_n [N], beta, row [N]).  fa: the groove's friction along
     the trunnion over f_n, against its contact's slip s - r b2d (T3 inverted); row: the needles'
-    friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d;
-    T1: f_n p = f_n fa - row (fixed point in p)."""
+    friction (row_line) against the roller's slide on the trunnion, u = s - V - d' - lever b2d,
+    at the load the row carries (row_carried); T1: f_n p = f_n fa - row (fixed point in p)."""
     sg = s - O[O_R] * b2d
     row0 = row_line(O, s - V - vax - O[O_LEVER] * b2d, b1d, row_slope(O, dax, vax))[0]
     m_roll0 = rolling_moment(O, spin, yaw)

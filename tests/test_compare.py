@@ -54,8 +54,10 @@ def test_compare_names_the_contact_model_it_judged_against():
     assert "contact model: contact FMU, lumped needle row (bearing = 1)" in p.stdout
     # its tolerance column judges order 3's amplitude alone, and says why
     assert re.search(r"^order 3 .* 10 %$", p.stdout, re.M), p.stdout
-    assert ("order 3's phase not judged with the lumped needle row: the analytic FMU "
-            "without") in p.stdout
+    # ... with the analytic FMU as compare ran it: with its needle row, the counterpart of a
+    # needle bearing (scene.analytic_counterpart)
+    assert ("order 3's phase not judged with the lumped needle row: the analytic FMU ran with "
+            "its needle row") in p.stdout
 
 
 def test_compare_takes_coast_and_reverse_by_the_models_symmetry():
