@@ -26,9 +26,9 @@ TOL_VERIFICATION = {"order1": {"amplitude_rel": 0.01, "phase_deg": 1.0},
 # 8.3 % at the fastest and lightest scene of the earlier, narrower grid
 TOL_PHYSICAL = {"order3": {"amplitude_rel": 0.10, "phase_deg": 3.0}}
 # a needle bearing: compare pairs the analytic FMU with its needle row (analytic_counterpart),
-# within 4.8 % (complex) of the resolved row's order 3 over the envelope grid inside the checked
-# range (docs/validation.md); amplitude only, since needle_row = false (a user's choice) leaves
-# the needles' friction on the roller's slide out, which moves the phase by up to 25 deg
+# within 3.0 % (complex) of the resolved row's order 3 over the envelope grid inside the checked
+# range (docs/validation.md: its phase within 1.7 deg there); the amplitude alone is judged, the
+# phase reported: it has not been checked beyond the grid's scenes
 TOL_BEARING = {"order3": {"amplitude_rel": 0.10}}
 ORDERS = (1, 3)
 
@@ -314,17 +314,10 @@ def format_table(r: dict) -> str:
             f"{ttxt:>20s}")
     t3 = r["tolerance"].get("order3", {})
     if "amplitude_rel" in t3 and "phase_deg" not in t3:
-        bearing, dp = BEARING_NAMES[int(sc['bearing'])], d['order3']['phase_deg']
-        if scene_mod.analytic_counterpart(sc).get("needle_row", True):
-            why = (f"the analytic FMU ran with its needle row ({dp:+.1f} deg here); the "
-                   f"tolerance is the amplitude's alone, as with needle_row = false, which "
-                   f"leaves the needles' friction on the roller's slide out and moves the phase "
-                   f"by up to 25 deg (docs/model.md)")
-        else:
-            why = (f"the analytic FMU without its row (needle_row = false) leaves the needles' "
-                   f"friction on the roller's slide out, which moves it ({dp:+.1f} deg here; "
-                   f"docs/model.md)")
-        lines.append(f"order 3's phase not judged with the {bearing}: {why}")
+        lines.append(f"order 3's phase not judged with the {BEARING_NAMES[int(sc['bearing'])]}: "
+                     f"the analytic FMU ran with its needle row ({d['order3']['phase_deg']:+.1f} "
+                     f"deg here; within 1.7 deg over the envelope grid, not checked beyond it: "
+                     f"docs/validation.md)")
     if r["phase_lag_deg"] is not None:
         d27 = r["difference_eqs_18_27"]["order3"]
         lines.append(f"against Eqs. (18)-(27) (reported, not judged): order 3 "
