@@ -12,9 +12,8 @@ roller, 10 Hz: the three-roller joint against one roller, lumped and resolved; a
 """
 import argparse
 import math
-import time
 
-from harness.envelope_grid import JOINTS, analytic_orders, contact_orders, joint_orders, off, scene
+from harness.envelope_grid import JOINTS, joint_orders, markdown_row, off, scene_orders
 
 
 def three_rollers():
@@ -48,18 +47,7 @@ def main():
           "analytic, ideal bearing: order 1, 3 off | wall, resolved [s] |")
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for i in range(args.first, args.first + args.scenes):
-        path, theta, F, omega = scene(i)
-        t0 = time.perf_counter()
-        ref = contact_orders(path, theta, F, omega, 2)
-        wall = time.perf_counter() - t0
-        cells = [f"{off(o, ref, 1):.1f} %, {off(o, ref, 3):.1f} %"
-                 for o in (contact_orders(path, theta, F, omega, 0),
-                           contact_orders(path, theta, F, omega, 1),
-                           analytic_orders(path, theta, F, omega, needle_row=True),
-                           analytic_orders(path, theta, F, omega, needle_row=False))]
-        print(f"| {i} | {path.stem} | {math.degrees(theta):.1f} | {F / 1e3:+.2f} | "
-              f"{omega / 2 / math.pi:.1f} | {ref[1][0]:.2f}, {ref[3][0]:.2f} | "
-              + " | ".join(cells) + f" | {wall:.0f} |", flush=True)
+        print(markdown_row(i, scene_orders(i)), flush=True)
 
 
 if __name__ == "__main__":

@@ -9,15 +9,17 @@ pressing load's sign).  Each run: three whirl cycles from the start at a 0.1 ms 
 step, in process; orders over the last whole cycle.
 """
 import math
+import time
 from pathlib import Path
 
 import numpy as np
 
 from reduced_model.joint import for_model, load_joint
 from reduced_model.orders import last_cycle_orders
-from reduced_model.scene import defaults
+from reduced_model.scene import defaults, validate
 
 JOINTS = sorted((Path(__file__).resolve().parents[1] / "joints").glob("*.toml"))
+TABLE_DOC = Path(__file__).resolve().parents[1] / "docs" / "validation.md"   # its table
 CYCLES = 3
 DT = 1e-4
 
@@ -104,3 +106,45 @@ def off(o, ref, k):
     """Order k of o off ref's: the complex difference over ref's amplitude [%]."""
     z = [a * np.exp(1j * math.radians(p)) for a, p in (o[k], ref[k])]
     return 100.0 * abs(z[0] - z[1]) / ref[k][0]
+
+
+# the table's columns after the resolved row's: (label, how the scene is run)
+COLUMNS = (("ideal", "contact", 0), ("lumped", "contact", 1), ("analytic", "analytic", True),
+           ("analytic, ideal bearing", "analytic", False))
+
+
+def scene_orders(i):
+    """Scene i (from 1) run by the resolved row and each of COLUMNS: {"resolved": orders,
+    label: orders, ..., "wall": the resolved run's wall time [s]}."""
+    path, theta, F, omega = scene(i)
+    t0 = time.perf_counter()
+    out = {"resolved": contact_orders(path, theta, F, omega, 2)}
+    out["wall"] = time.perf_counter() - t0
+    for label, model, arg in COLUMNS:
+        out[label] = (contact_orders(path, theta, F, omega, arg) if model == "contact" else
+                      analytic_orders(path, theta, F, omega, needle_row=arg))
+    return out
+
+
+def inside_checked_range(i):
+    """Whether scene i lies inside the analytic model's checked range (analytic_kernel.
+    CHECKED_RANGES, as the analytic FMU's notes judge it)."""
+    from reduced_model import analytic_kernel as K
+    from reduced_model.traverse import operating_point, params_array
+    path, theta, F, omega = scene(i)
+    sc = validate(dict(defaults("analytic"), **for_model(load_joint(path), "analytic"),
+                       theta=theta, omega=omega, F_press=F), "analytic")
+    T, O = params_array(sc), operating_point(sc)
+    return all(K.inside(k, v, v) for k, v in
+               ((k, K.checked_value(T, O, k)) for k in range(len(K.CHECKED_RANGES))))
+
+
+def markdown_row(i, r):
+    """Scene i's row of docs/validation.md's table from scene_orders' r."""
+    path, theta, F, omega = scene(i)
+    ref = r["resolved"]
+    cells = [f"{off(r[label], ref, 1):.1f} %, {off(r[label], ref, 3):.1f} %"
+             for label, _m, _a in COLUMNS]
+    return (f"| {i} | {path.stem} | {math.degrees(theta):.1f} | {F / 1e3:+.2f} | "
+            f"{omega / 2 / math.pi:.1f} | {ref[1][0]:.2f}, {ref[3][0]:.2f} | "
+            + " | ".join(cells) + f" | {r['wall']:.0f} |")

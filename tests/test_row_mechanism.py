@@ -8,7 +8,7 @@ import numpy as np
 import pytest
 
 from harness import row_rocking as R
-from harness.envelope_grid import JOINTS, analytic_orders, contact_orders, off, scene
+from harness.envelope_grid import JOINTS, analytic_orders, contact_orders, off
 from reduced_model.orders import last_cycle_orders
 from tripod_model import contact, layout as K, oppoint
 from tripod_model.model import ContactModel
@@ -52,28 +52,6 @@ def test_both_fast_models_follow_the_resolved_row_at_the_papers_scene_and_a_laun
     for fast in (lum, ana):
         assert off(fast, res, 3) < 3.0
         assert off(fast, res, 1) < 5.0
-
-
-@pytest.mark.slow   # (six resolved rows: about 2 minutes)
-@pytest.mark.parametrize("i", range(13, 19))
-def test_both_fast_models_follow_the_resolved_row_over_the_envelope(i):
-    """Scenes 13-18 of the envelope's grid (harness/envelope_grid.py: the three joints, 2.7-23.6
-    deg, 0.4-31 kN a roller, drive and coast, 2.8-21.7 Hz; docs/validation.md), one roller's Fz
-    against the needle-resolved row's (complex).  The lumped row: order 3 within the issue's 3 %
-    (measured 0.3-1.8 %), order 1 within 5 % (0.5-3.3 %).  The analytic model at its default
-    (its needle row): the same bounds (measured 0.6-2.8 % and 0.3-3.6 %), but at scene 15, a
-    light load at 23.6 deg, measured 2.98 % and 5.3 %: there order 3 is held to 3.2 % (the
-    resolved row's realizations spread by about 0.2 %) and order 1 to 5.6 %, where the issue's
-    5 % is missed (docs/validation.md says by what).  (Of the grid's 24 scenes the lumped row
-    misses 3 % in one: a 25.8 kN coast at 3.4 deg, 4.1 %.)"""
-    s = scene(i)
-    res, lum = contact_orders(*s, 2), contact_orders(*s, 1)
-    ana = analytic_orders(*s)
-    assert off(lum, res, 3) < 3.0
-    assert off(lum, res, 1) < 5.0
-    bound3, bound1 = (3.2, 5.6) if i == 15 else (3.0, 5.0)
-    assert off(ana, res, 3) < bound3
-    assert off(ana, res, 1) < bound1
 
 
 def _run(over, F, tilt_scale=1.0):
