@@ -98,8 +98,10 @@ def _run(code, tree, *args):
     # the tree's packages first, for this process and the builds it starts (the environment's
     # own path names this checkout's fmu_src: the two trees' modules must not mix)
     env = dict(os.environ, PYTHONPATH=os.pathsep.join((str(tree), str(Path(tree) / "fmu_src"))))
+    # run in the tree: `python -c` puts its working folder first on the path, ahead of
+    # PYTHONPATH, so run from another checkout it would import that checkout's packages
     p = subprocess.run([sys.executable, "-c", code, str(tree), *map(str, args)],
-                       capture_output=True, text=True, timeout=3600, env=env)
+                       capture_output=True, text=True, timeout=3600, env=env, cwd=tree)
     if p.returncode != 0:
         raise RuntimeError(p.stderr[-2000:])
     return p.stdout.strip().splitlines()[-1]
