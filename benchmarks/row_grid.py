@@ -13,7 +13,8 @@ roller, 10 Hz: the three-roller joint against one roller, lumped and resolved; a
 import argparse
 import math
 
-from harness.envelope_grid import JOINTS, joint_orders, markdown_row, off, scene_orders
+from harness.envelope_grid import (JOINTS, TABLE_HEAD, joint_orders, markdown_row, off,
+                                   scene_orders)
 
 
 def three_rollers():
@@ -42,9 +43,7 @@ def main():
     if args.three_rollers:
         three_rollers()
         return
-    print("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | resolved: order 1, order 3 "
-          "[N] | ideal: order 1, 3 off | lumped: order 1, 3 off | analytic: order 1, 3 off | "
-          "analytic, ideal bearing: order 1, 3 off | wall, resolved [s] |")
+    print(TABLE_HEAD)
     print("|---|---|---|---|---|---|---|---|---|---|---|")
     for i in range(args.first, args.first + args.scenes):
         print(markdown_row(i, scene_orders(i)), flush=True)

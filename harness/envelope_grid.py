@@ -108,7 +108,11 @@ def off(o, ref, k):
     return 100.0 * abs(z[0] - z[1]) / ref[k][0]
 
 
-# the table's columns after the resolved row's: (label, how the scene is run)
+# the table's head (docs/validation.md) and its columns after the resolved row's: (label, how
+# the scene is run)
+TABLE_HEAD = ("| # | joint | theta [deg] | load a roller [kN] | whirl [Hz] | resolved: order 1, "
+              "order 3 [N] | ideal: order 1, 3 off | lumped: order 1, 3 off | analytic: order 1, "
+              "3 off | analytic, ideal bearing: order 1, 3 off | wall, resolved [s] |")
 COLUMNS = (("ideal", "contact", 0), ("lumped", "contact", 1), ("analytic", "analytic", True),
            ("analytic, ideal bearing", "analytic", False))
 
