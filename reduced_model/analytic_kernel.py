@@ -24,11 +24,11 @@ from .equations import (DRIVE_BY_ANGLE, M_ROLLER, MU_GROOVE, N_PER_CYCLE, N_ROLL
                         O_RA, O_RAF, O_RC1, O_RKR, O_RL, O_RN, O_ROW,
                         O_F, O_K, O_LEN, O_LOAD, O_MIRROR, O_MU, O_TH, O_VP, O_VST, O_W,
                         T_LEN, PARAM_NAMES, R_BORE, R_FX, R_FY, R_FZ, R_FZ_MOD, R_GROOVE,
-                        R_B1D, R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S,
+                        R_B1D, R_B2, R_B2D, R_HAS_OUT, R_HAS_S, R_LEN, R_P, R_ROLLER, R_S, R_SD,
                         R_SLIP, R_T, S, TRAVERSE,
                         march, operating_point, substeps, thrust_at)
 from .cfuncs import NOTE_ARGS, compile_over, finite_into, leave_note, worded_notes
-from .friction import spin_moment
+from .friction import spin_moment, tanh_clipped
 from .hertz import groove_curvature_radii, hertz_point
 from .housing import housing_forces
 from .needle_row import row_constants, sum_row
@@ -352,6 +352,7 @@ def prepare(T, IN, X, W):
                     X[r + R_B2D] = 0.0
                     X[r + R_T] = 0.0
                     X[r + R_B1D] = 0.0
+                    X[r + R_SD] = 0.0
                     X[r + R_HAS_S] = 1.0
                 else:
                     X[r + R_HAS_S] = 0.0
@@ -570,7 +571,8 @@ def compiled_namespace():
     g = {**vars(equations), **vars(table), **globals()}
     g["needle_line_stiffness"] = needle_row.needle_line_stiffness
     g["hertz_point"] = jit(types.FunctionType(hertz_point.__code__, h, "hertz_point"))
-    for f in (spin_moment, housing_forces, fz_mod, pressing_load, same_step, same_value):
+    for f in (spin_moment, housing_forces, fz_mod, pressing_load, same_step, same_value,
+              tanh_clipped):
         g[f.__name__] = jit(f)
     return compile_over(g, needle_row.COMPILED + equations.COMPILED + table.COMPILED + COMPILED,
                         jit)

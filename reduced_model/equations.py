@@ -8,7 +8,7 @@ throughout, so compiled and Python give the same bits.
 """
 import math
 
-from .friction import V_ST_FLOOR, spin_moment
+from .friction import V_ST_FLOOR, spin_moment, tanh_clipped
 from .hertz import hertz_point
 from .needle_row import ROW_CARRY, needle_lag, row_arc, row_constants, row_offset, sum_row
 from .scene import params_for, pressing_load
@@ -50,10 +50,11 @@ T_LEN = len(PARAM_NAMES)
 # a roller's march row: slide slip s [m/s], p [1], the outputs (Fz, Fz_mod, Fx, Fy [N], slip
 # speed [m/s]), whether s and the outputs exist yet (the march starts at rest)
 # and, with the needle row, the roller's tilt b2 [rad] on it, its rate [rad/s], the groove
-# contact's slip across the slide t [m/s] (the next step's Newton starts from them) and the rate
+# contact's slip across the slide t [m/s] (the next step's Newton starts from them), the rate
 # of its tilt about e1 over the last step [rad/s] (the needles' friction takes it a step late)
+# and the slide slip's rate over the last step [m/s^2] (the next Newton starts from it carried on)
 (R_S, R_P, R_FZ, R_FZ_MOD, R_FX, R_FY, R_SLIP, R_HAS_S, R_HAS_OUT, R_B2, R_B2D, R_T, R_B1D,
- R_LEN) = range(14)
+ R_SD, R_LEN) = range(15)
 
 # --- the scene's constants --------------------------------------------------------------------
 def transition_velocity(v_st, s, r, w, th, vp, pitch, roll):
@@ -245,13 +246,14 @@ def row_carried(O, p):
     return (math.sqrt(1.0 - p * p) + p * p) / O[O_F]
 
 
-def normal_force(O, p):
+def normal_force(O, p, start=0.0):
     """T5: f_n [N] at p [1].  With the needle row (O_KRR, its stiffness along the load at F)
     the row yields in series with the Hertz contact: the roller's centre, rho_c from the
     flank's centre at p = 0, gives way by the row's load beyond F over k_r, the load being
     f_n row_carried(p) F (T6's Fx), so f_n = K ((rho_c - (f_n h - F) / k_r) / sqrt(1 - p^2)
-    - clearance)^1.5, solved by Newton from F (docs/model.md, "The row's load moves with the
-    normal force")."""
+    - clearance)^1.5, solved by Newton from ``start`` [N] (a nearby solution: a Newton
+    iteration's f_n, one or two iterations then instead of four or five), or from F where it
+    is 0 (docs/model.md, "The row's load moves with the normal force")."""
     c = math.sqrt(1.0 - p * p)
     kr = O[O_KRR]
     if kr <= 0.0:
@@ -260,6 +262,10 @@ def normal_force(O, p):
     F, K = O[O_F], O[O_K]
     hk = row_carried(O, p) * F / kr       # the roller's give per newton of f_n [m/N]
     f = F
+    # a start where the contact still closes (T5's right side falls and is convex in f_n:
+    # Newton from there stays where it closes)
+    if start > 0.0 and (O[O_RHO] - start * hk + F / kr) / c > O[O_CLEAR]:
+        f = start
     for _ in range(30):
         d = (O[O_RHO] - f * hk + F / kr) / c - O[O_CLEAR]
         if not d > 0.0:
@@ -475,7 +481,7 @@ def rolling_moment(O, spin, yaw):
     """The needles' rolling resistance, Eq. (12) [N m]: mu_rolling q r_bore tanh(3 v_r / v_st)
     against the roller's spin relative to the trunnion, v_r = (spin - psi') r_bore (spin, yaw:
     psi' [rad/s]).  It does not depend on p: taken once a step."""
-    return O[O_MR] * math.tanh(3.0 * (spin - yaw) * O[O_RB] / O[O_VST])
+    return O[O_MR] * tanh_clipped(3.0 * (spin - yaw) * O[O_RB] / O[O_VST])
 
 
 def row_beta(O, p, fn, bi, dphi, spin, m_roll):
@@ -521,7 +527,7 @@ def row_line(O, u, b1d, kr):
     "The needles' friction around the loaded arc")."""
     mq = O[O_MQ]
     if b1d == 0.0:      # every point alike (no spin moment, the march's first step): one tanh
-        g = math.tanh(kr * u)
+        g = tanh_clipped(kr * u)
         return mq * g, mq * kr * (1.0 - g * g)
     f = df = 0.0
     for side in range(2):
@@ -530,7 +536,7 @@ def row_line(O, u, b1d, kr):
             w = 1.0 if 2 * j + 1 == ROW_POINTS else 2.0
             c = b1d * O[O_LN] * ((j + 0.5) / ROW_POINTS - 0.5)
             v = math.sqrt(ua * ua + c * c)
-            g = math.tanh(kr * v)
+            g = tanh_clipped(kr * v)
             if v > 0.0:
                 f += w * g * ua / v
                 df += w * (kr * (1.0 - g * g) * ua * ua / (v * v) + g * c * c / (v * v * v))
@@ -577,15 +583,18 @@ def row_at(O, s, b2d, V, vax, yaw, dax, bi, dphi, spin, b1d):
 
 def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
-    row to whirl angle x [rad] (the drive there: drive_at, row_rates) from slip s, cross slip
-    t >= 0 and tilt b2 [rad] over h [s], the tilt about e1 moving at b1d [rad/s] (the step
-    before's): T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with the tilt's
+    row to whirl angle x [rad] (the drive there: drive_at, row_rates), Newton starting from
+    slip s [m/s] (the step's own start is in rhs0), cross slip t >= 0 and tilt b2 [rad], over
+    h [s], the tilt about e1 moving at b1d [rad/s] (the step before's): T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with the tilt's
     balance k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as
     Newton on (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v /
     |v| on its contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n,
     with f_n's and beta's dependence on p in the Jacobian (beta's by a difference); a step is
-    cut to move no slip by more than half of v_st or of the slip.  Not settled within 40
-    iterations to 1e-9 v_st: the caller takes row_trapezoid."""
+    cut to move no slip by more than half of v_st or of the slip.  Settled where a step moved
+    every slip by less than 1e-9 v_st, or where the steps contract fast enough that what is
+    left, rate / (1 - rate) times the last step (Hairer and Wanner's estimate, rate the last
+    step over the one before), is below that; not settled within 40 iterations: the caller
+    takes row_trapezoid."""
     _phi, _xi, V, dphi, spin, bi = drive_at(O, x)
     vax, yaw, dax = row_rates(O, x)
     m_roll = rolling_moment(O, spin, yaw)
@@ -600,14 +609,16 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     b0 = b2
     b2 = b0 + h * b2d           # the last step's tilt rate carried on: the first iterate
     p = 0.0
+    fn = O[O_F]      # (Newton's start for T5: the last iterate's f_n)
     sat = False
+    last = 0.0       # the step before's size (how fast the steps contract)
     for _ in range(40):
         b2d = (b2 - b0) / h
         sg = s - r * b2d
         v = math.sqrt(sg * sg + t * t)
         gv, dg, us, ut = k, k, 0.0, 0.0      # the friction's slope at v = 0
         if v > 0.0:
-            g = math.tanh(k * v)
+            g = tanh_clipped(k * v)
             gv, dg, us, ut = g / v, k * (1.0 - g * g), sg / v, t / v
         if sat:     # the spin takes all the friction: none along the trunnion, t frozen
             gv, dg = 0.0, 0.0
@@ -620,7 +631,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
             p = pn
             if done:
                 break
-        fn = normal_force(O, p)
+        fn = normal_force(O, p, fn)
         hq = row_carried(O, p)
         w = fn * hq
         row, dr = row0 * w, dr0 * w
@@ -655,7 +666,7 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         j13 = rho4 * dp3
         # beta's dependence on p (f_n, the spin moment), by a difference
         pe = p + 1e-7
-        fne = normal_force(O, pe)
+        fne = normal_force(O, pe, fn)
         m_e = m_roll * fne * row_carried(O, pe)
         db_dp = (min(abs(row_beta(O, pe, fne, bi, dphi, spin, m_e)), cap)
                  - B) / 1e-7 if not sat else 0.0
@@ -689,15 +700,20 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
         b2 += db
         if not (abs(s) < 1e3 and t < 1e3):      # run away (no slip reaches 1 km/s)
             return False, s, t, b2, 0.0, 0.0, 0.0, 0.0, 0.0
-        if abs(ds) < tol and abs(dt) < tol and abs(db) * arm < tol:
+        e = max(abs(ds), abs(dt), abs(db) * arm)
+        rate = e / last if last > 0.0 else 1.0
+        last = e
+        # (a step cut by ``big`` says nothing of the rate; a contraction above 1/2 is not
+        # trusted to go on)
+        if e < tol or (big <= 1.0 and rate < 0.5 and rate / (1.0 - rate) * e < tol):
             # the friction, p and beta where it settled
             b2d = (b2 - b0) / h
             sg = s - r * b2d
             v = math.sqrt(sg * sg + t * t)
-            fa = -mu * (math.tanh(k * v) / v if v > 0.0 else k) * sg if not sat else 0.0
+            fa = -mu * (tanh_clipped(k * v) / v if v > 0.0 else k) * sg if not sat else 0.0
             row0 = row_line(O, s - V - vax - lev * b2d, b1d, kr)[0]
             p = fa - row0 * row_carried(O, p)
-            fn = normal_force(O, p)
+            fn = normal_force(O, p, fn)
             row = row0 * fn * row_carried(O, p)
             beta = row_beta(O, p, fn, bi, dphi, spin, m_roll * fn * row_carried(O, p))
             if sat and abs(beta) < cap * (1.0 - 1e-6):
@@ -826,8 +842,9 @@ def march(O, X, r, x, dt):
     angle x [rad] over dt [s] (T4 is an ODE in time; the table is its periodic solution), by the
     table's trapezoidal rule in substeps of at most the table's spacing (each by slip_step, or
     trapezoid_step where that does not settle; with the needle row by row_advance, the tilt
-    beside the slip, the tilt about e1 following p a step late: R_B1D); the row's outputs at
-    the end (T5, T2, T6).  From rest (no slip yet): on
+    beside the slip, the tilt about e1 following p a step late: R_B1D, its Newton starting
+    from the slip's last rate carried on: R_SD); the row's outputs at the end (T5, T2, T6).
+    From rest (no slip yet): on
     the groove bottom, p = 0, no tilt.  Returns x at the end.  The caller checks the substeps'
     count (steps_of)."""
     n, h = steps_of(O, dt)
@@ -835,9 +852,9 @@ def march(O, X, r, x, dt):
     _phi, _xi, V0, dphi, spin, _bi = drive_at(O, x)
     g0 = inclination_slip(O, x)
     s, p, b2, bd, tt = X[r + R_S], X[r + R_P], X[r + R_B2], X[r + R_B2D], X[r + R_T]
-    b1d = X[r + R_B1D]
+    b1d, sd = X[r + R_B1D], X[r + R_SD]
     if X[r + R_HAS_S] == 0.0:
-        s, p, b2, bd, tt, b1d = V0, 0.0, 0.0, 0.0, 0.0, 0.0
+        s, p, b2, bd, tt, b1d, sd = V0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0
     row = O[O_ROW] != 0.0
     b1 = row_tilt_e1(O, p, normal_force(O, p), dphi, spin) if row else 0.0
     phi = xi = bi = dphi = spin = fa = fn = beta = rw = 0.0
@@ -848,8 +865,13 @@ def march(O, X, r, x, dt):
         if O[O_HELD] != 0.0:
             rhs0 = t4_rhs(O, s, p, V0, V1, g0, g1, h)
             if row:
-                b20 = b2
-                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s, tt, b2, bd, h, x1, b1d)
+                b20, s0 = b2, s
+                # Newton starts from the slip's last rate carried on (at most v_st / 2 on): a
+                # step fewer, where it started from the slip as it was
+                ds = max(-0.5 * O[O_VST], min(0.5 * O[O_VST], h * sd))
+                s, tt, b2, p, fa, fn, beta, rw = row_advance(O, rhs0, s + ds, tt, b2, bd, h, x1,
+                                                             b1d)
+                sd = (s - s0) / h
                 bd = (b2 - b20) / h
                 b11 = row_tilt_e1(O, p, fn, dphi, spin)
                 b1d = (b11 - b1) / h
@@ -875,6 +897,7 @@ def march(O, X, r, x, dt):
     X[r + R_B2D] = bd
     X[r + R_T] = tt
     X[r + R_B1D] = b1d
+    X[r + R_SD] = sd
     X[r + R_S] = s
     X[r + R_P] = p
     X[r + R_FZ] = Fz

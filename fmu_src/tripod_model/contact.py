@@ -213,34 +213,9 @@ def hertz_normal_force(K, delta):
     return K * delta * math.sqrt(delta)   # (pow costs more)
 
 
-# tanh x = x P(x^2) / Q(x^2): Lambert's continued fraction x / (1 + x^2 / (3 + x^2 / (5 + ...
-# x^2 / 17))) multiplied out; its error at |x| = 1/2 is 1.5e-22 (exact arithmetic)
-TANH_P = (34459425.0, 4729725.0, 135135.0, 990.0, 1.0)
-TANH_Q = (34459425.0, 16216200.0, 945945.0, 13860.0, 45.0)
-
-
-@inline
-def tanh_clipped(x):
-    """tanh(x) from one exp, or below |x| = 1/2 a rational function: glibc's tanh takes about
-    2.4 times as long (the needle row calls it about 1100 times an evaluation: 13 % of the
-    contacts' time; the groove's friction and the lumped row's laws use it too).  Below 1/2,
-    1 - exp(-2|x|) would cancel (3e-13 relative at 1e-4, where a slide creeps: another libm's
-    last bit of exp would move the outputs where a roller's slide lets go), so Lambert's
-    continued fraction cut at 17 (TANH_P / TANH_Q).  Relative error below 4 eps
-    (tests/test_needles.py); NaN stays NaN."""
-    a = abs(x)
-    if a >= 19.0:
-        t = 1.0                      # exact in double precision
-    elif a < 0.5:
-        y = a * a
-        p0, p1, p2, p3, p4 = TANH_P
-        q0, q1, q2, q3, q4 = TANH_Q
-        t = a * ((((p4 * y + p3) * y + p2) * y + p1) * y + p0) / \
-            ((((q4 * y + q3) * y + q2) * y + q1) * y + q0)
-    else:
-        e = math.exp(-2.0 * a)
-        t = (1.0 - e) / (1.0 + e)
-    return t if x >= 0.0 else -t
+# tanh from one exp (reduced_model.friction.tanh_clipped: the needle row calls it about 1100
+# times an evaluation; the groove's friction and the lumped row's laws use it too), inline
+tanh_clipped = inline(friction.tanh_clipped)
 
 
 @inline
