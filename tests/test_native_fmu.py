@@ -25,6 +25,9 @@ from tripod_model.genalpha import GA_NTOL
 ROOT = Path(__file__).resolve().parents[1]
 HOST = ROOT / "tests" / "c_host" / "fmu_run.c"
 WINE = "/usr/lib/wine/wine64"
+# wine's own errors kept (its fixme notes dropped): a wine run of a fresh machine's first test
+# run once exited 1 with nothing on stdout or stderr under "-all", and could not be told apart
+WINE_DEBUG = "err+all,fixme-all"
 DT = 1e-4
 
 
@@ -260,7 +263,7 @@ def test_the_win64_binary_under_wine_runs_as_the_linux_one(fmus, tmp_path):
                 ["-static-libgcc", "-lpsapi", "-lshell32"])
     pl, rl = _run([str(lin), str(d / f"binaries/linux64/{mid}.so")], fmus,
                   tmp_path / "lin.bin", {"PATH": "/usr/bin:/bin"})
-    env = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG="-all")
+    env = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG=WINE_DEBUG)
     pw, rw = _run([WINE, str(win), _windows(dll)], fmus, tmp_path / "win.bin", env, wine=True)
     assert pl.returncode == 0 and pw.returncode == 0, pw.stdout + pw.stderr
     assert "FAILED" not in pw.stdout and "check rollback bit for bit ok" in pw.stdout
@@ -305,7 +308,7 @@ def test_a_state_resumes_in_a_fresh_instance_of_another_process(case, tmp_path):
     half = len(full) // 2
     assert np.array_equal(resumed[half:], full[half:])
     assert np.ptp(full[half:], axis=0).max() > 0          # (the run moved)
-    wenv = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG="-all",
+    wenv = dict(os.environ, WINEPREFIX=str(ROOT / "build" / "wine-prefix"), WINEDEBUG=WINE_DEBUG,
                 FMU_RUN_STATE_IN=_windows(state))
     w, rw = _run([WINE, str(win), _windows(dll)], fm, tmp_path / "win.bin", wenv, wine=True)
     assert w.returncode == 0 and "FAILED" not in w.stdout, w.stdout + w.stderr
