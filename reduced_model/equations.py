@@ -585,7 +585,8 @@ def row_step(O, rhs0, s, t, b2, b2d, h, x, b1d):
     """(settled, s1, t1, b2_1, then row_at's p, fa, f_n, beta, row there) of one step with the
     row to whirl angle x [rad] (the drive there: drive_at, row_rates), Newton starting from
     slip s [m/s] (the step's own start is in rhs0), cross slip t >= 0 and tilt b2 [rad], over
-    h [s], the tilt about e1 moving at b1d [rad/s] (the step before's): T4's trapezoidal rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with the tilt's
+    h [s], the tilt about e1 moving at b1d [rad/s] (the step before's): T4's trapezoidal
+    rule, rho p - h/2 s1 = rhs0 (t4_rho, t4_rhs), with the tilt's
     balance k_t2 b2_1 + r f_n fa - lever row = 0 by backward Euler (b2' = (b2_1 - b2) / h), as
     Newton on (s1, t1, b2_1) in the way of slip_step: the groove's friction mu tanh(k |v|) v /
     |v| on its contact's slip vector (s - r b2', t), t across the slide; p = fa - row / f_n,
@@ -844,9 +845,8 @@ def march(O, X, r, x, dt):
     trapezoid_step where that does not settle; with the needle row by row_advance, the tilt
     beside the slip, the tilt about e1 following p a step late: R_B1D, its Newton starting
     from the slip's last rate carried on: R_SD); the row's outputs at the end (T5, T2, T6).
-    From rest (no slip yet): on
-    the groove bottom, p = 0, no tilt.  Returns x at the end.  The caller checks the substeps'
-    count (steps_of)."""
+    From rest (no slip yet): on the groove bottom, p = 0, no tilt.  Returns x at the end.  The
+    caller checks the substeps' count (steps_of)."""
     n, h = steps_of(O, dt)
     wh = O[O_W] * h
     _phi, _xi, V0, dphi, spin, _bi = drive_at(O, x)

@@ -194,3 +194,24 @@ def test_the_reduced_rows_line_takes_the_arcs_two_sides():
     x = O[E.O_ARC] * b1d
     assert f == pytest.approx(1500.0 * (math.tanh(kr * (u + x)) + math.tanh(kr * (u - x))),
                               rel=1e-12)
+
+
+@pytest.mark.parametrize("F", [1000.0, 45000.0])
+def test_t5_with_the_row_has_one_root_from_any_start(F):
+    """equations.normal_force (T5 with the row in series) started from a nearby f_n, from far
+    above the load where the contact opens (f_n beyond rho_c k_r / h: the start is refused and
+    Newton starts from F) and from F itself lands on one root, and that root solves T5 to
+    rounding: K ((rho_c - (f_n h - F) / k_r) / sqrt(1 - p^2) - clearance)^1.5 = f_n."""
+    from reduced_model import equations as E
+    from reduced_model import analytic_kernel as K
+    m = AnalyticModel({"F_press": F})
+    O = m.X[K.X_OP:K.X_OP + K.O_LEN].copy()
+    assert O[E.O_KRR] > 0.0                      # the row is in series
+    for p in (0.0, 0.05, -0.08):
+        ref = E.normal_force(O, p)
+        for start in (0.9 * ref, 1.1 * ref, 1e12):
+            assert E.normal_force(O, p, start) == pytest.approx(ref, rel=1e-12)
+        c = math.sqrt(1.0 - p * p)
+        h = E.row_carried(O, p) * O[E.O_F]
+        d = (O[E.O_RHO] - (ref * h - O[E.O_F]) / O[E.O_KRR]) / c - O[E.O_CLEAR]
+        assert O[E.O_K] * d ** 1.5 == pytest.approx(ref, rel=1e-12)
