@@ -43,8 +43,10 @@ def simulate(h, params=None, cycles=2.0, dt_out=1e-4):
     failed = 0
     t0 = time.perf_counter()
     for k in range(n_out):
+        reuse = False     # the Jacobian kept within a communication step, as genalpha.ga_steps
         for _ in range(every):
-            if not step(Y, P, drive, h, W):
+            reuse = step(Y, P, drive, h, W, reuse)
+            if not reuse:
                 failed += 1           # integrator 4 would hand this step to integrator 3
                 W.hs[LY.H_GA] = 0.0
                 steplib.adaptive_steps(Y, P, drive, h, 0.25 * h, W, None)
