@@ -194,8 +194,7 @@ def _ga_jacobian_to(GW, nv, co, to):
     """GW[0:nv, 0:nv], the residual's Jacobian under the coefficients co, made the one under
     the coefficients `to` as far as the forces move with the velocities: J = M (1 - am) -
     (1 - af) h (gamma dQ/dv + h beta dQ/dq), the second term scaled by the ratio of (1 - af)
-    gamma (a restart step's for the regular step after it: 2-5 force evaluations there where
-    a fresh Jacobian took 8-9, and one kept unscaled 16, under a master moving the inputs)."""
+    gamma (a restart step's, for the regular step after it)."""
     c = (1.0 - to[1]) * to[2] / ((1.0 - co[1]) * co[2])
     for i in range(nv):
         for j in range(nv):
@@ -241,10 +240,7 @@ def _ga_converged(size, last, stale, vs):
     """Newton's convergence test, before a step and after one, on a step of `size` [m/s]
     (_ga_step_size) after one of `last`: at most GA_NTOL v_st (vs [m/s]); with a Jacobian
     kept from the step before (stale), contracting by at least 1/2 a step too, so that what is
-    left, rate / (1 - rate) times the step, is within it.  (Stopping on that estimate alone,
-    Hairer and Wanner's, before the step is below GA_NTOL v_st left 1e-4 to 2e-4 of Fz's scale
-    against a run at 1e-9 v_st, where stopping on the step leaves 3e-6 to 1e-5, paper's
-    scene, lumped bearing, fixed inputs and under a master.)"""
+    left, rate / (1 - rate) times the step, is within it."""
     return size <= GA_NTOL * vs and not (stale and size > 0.5 * last)
 
 
@@ -291,13 +287,14 @@ def _ga_accept(Y, GW, h, w, nv, hs, co, Q, wr):
     # equation holds at t_f = t_{n+1} (alpha_f = 0), the state just written: the regular step
     # takes the forces there (Q, GA_AFTER_RESTART) instead of evaluating them again; one of
     # weight wr < 1 (its t_f before t_{n+1}) leaves a1 and those forces' accelerations
-    # blended by wr
+    # blended by wr; and its Jacobian made the regular step's, for the next step's Newton
     if wr == 0.0:
         hs[H_GA] = 1.0
     else:
         for i in range(nv):
             hs[H_FACC + i] = (1.0 - wr) * GW[W_A, i] + wr * (Q[i] / GW[W_M, i])
         hs[H_GA] = GA_AFTER_RESTART
+        _ga_jacobian_to(GW, nv, co, GA_STEP)
 
 
 @njit
@@ -306,12 +303,12 @@ def ga_step(Y, P, drive, h, W, reuse):
     1993).  Newton on the accelerations, its Jacobian by finite differences (refreshed when
     convergence is slow), each Newton step halved until the residual falls (the tanh friction
     is steep over v_st).  reuse: GW[0:nv, 0:nv] holds the Jacobian of the step before, of
-    the same h, for this step's coefficients (ga_steps, _ga_jacobian_to): Newton starts from
-    it (modified Newton) and takes a fresh one where that converges slowly.  hs[H_ACC:] carry the algorithmic
-    accelerations from step to step (hs[H_GA] = 1 when valid; GA_AFTER_RESTART,
-    GA_AFTER_RESTART_AFRESH after a restart step; 0: first step or after a fallback, from the
-    forces; -1: the inputs jumped at this communication point, this step a restart of weight
-    hs[H_JUMPW], inputs_jumped).
+    the same h, for this step's coefficients (ga_steps; a restart step leaves its own so,
+    _ga_accept): Newton starts from it (modified Newton) and takes a fresh one where that
+    converges slowly.  hs[H_ACC:] carry the algorithmic accelerations from step to step
+    (hs[H_GA] = 1 when valid; GA_AFTER_RESTART, GA_AFTER_RESTART_AFRESH after a restart step;
+    0: first step or after a fallback, from the forces; -1: the inputs jumped at this
+    communication point, this step a restart of weight hs[H_JUMPW], inputs_jumped).
     Returns False and leaves Y untouched when Newton does not converge.  W: the work arrays
     (layout.Work), taken apart once here: the Newton loop passes the arrays themselves (each
     access to a record's array costs a reference count: 9 % of this step's time, measured,
@@ -475,10 +472,8 @@ def ga_steps(Y, P, drive, h, n, W, NW):
             reuse = False
             continue
         if hs[H_GA] < 0.0:    # the inputs jumped: the restart step (GA_RESTART)
-            co = _restart_coefficients(hs[H_JUMPW])
             reuse = ga_step(Y, P, drive, h, W, False)
-            if reuse:   # its Jacobian made the regular step's for the next
-                _ga_jacobian_to(W.GW, 6 if P[P_BEARING] == BEAR_LUMPED else 2, co, GA_STEP)
+            if reuse:
                 amax = max(amax, abs(hs[H_ACC]))
                 continue
             hs[H_GA] = 1.0    # its Newton did not converge: the regular step
